@@ -1,0 +1,80 @@
+// scene.hpp — the scene model: what a scene file holds, in SI units (m, N, rad).
+//
+// A scene is a finger definition, contours (ordered chains of segments, solid on the RIGHT of the
+// direction of travel), a force model and a contact-location rule. scene_io.hpp reads and writes it
+// as JSON (format documented in scenes/README.md); environment.hpp compiles it for the servo.
+#pragma once
+
+#include "haptics/vec2.hpp"
+
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace contactlab {
+
+// A straight segment travelled from `from` to `to` (m).
+struct LineSegment {
+    Vec2 from{0.0, 0.0};
+    Vec2 to{0.0, 0.0};
+};
+
+// A circular arc travelled from start_angle to end_angle (rad, counter-clockwise from +x). If
+// end_angle > start_angle the arc runs counter-clockwise (solid outside the circle: concave as seen
+// by the finger, e.g. a bowl); otherwise clockwise (solid inside: a convex bump).
+// |end_angle - start_angle| is in (0, 2 pi].
+struct ArcSegment {
+    Vec2 center{0.0, 0.0};
+    double radius = 0.0;  // m, > 0
+    double start_angle = 0.0;
+    double end_angle = 0.0;
+};
+
+using Segment = std::variant<LineSegment, ArcSegment>;
+
+Vec2 segment_start(const Segment& s);
+Vec2 segment_end(const Segment& s);
+// Unit tangent (direction of travel) at the start and at the end of the segment.
+Vec2 segment_start_tangent(const Segment& s);
+Vec2 segment_end_tangent(const Segment& s);
+double segment_length(const Segment& s);  // m
+
+struct Contour {
+    // A closed contour returns from its last segment to the first; drawn clockwise it is solid
+    // inside. An open contour is a terrain-like profile: solid on the right, its two ends capped.
+    bool closed = false;
+    std::vector<Segment> segments;
+};
+
+// The finger's pad (seed 000): an arc of a circle of radius `radius` around the finger centre x_f,
+// `length` long, centred on the direction phi - pi/2.
+struct FingerDef {
+    double radius = 0.026;  // R, m (seed 000: 2.6 cm)
+    double length = 0.020;  // L, m (seed 000: 2.0 cm); 0 < L < 2 pi R
+};
+
+enum class ForceModel { spring };
+
+struct ForceDef {
+    ForceModel model = ForceModel::spring;
+    double stiffness = 1000.0;  // Ke, N/m
+    double max_force = 1.5;     // N; the magnitude is clamped here, direction kept (seed 000)
+};
+
+enum class ContactRule { centroid };
+
+struct ContactLocationDef {
+    ContactRule rule = ContactRule::centroid;  // seed 000: centroid of multiple contacts
+};
+
+inline constexpr int kSceneFormatVersion = 1;
+
+struct Scene {
+    int version = kSceneFormatVersion;
+    FingerDef finger;
+    std::vector<Contour> contours;
+    ForceDef force;
+    ContactLocationDef contact_location;
+};
+
+}  // namespace contactlab
