@@ -1,0 +1,96 @@
+// aabb_tree.hpp — a static bounding-volume hierarchy over the environment's segments.
+//
+// Why: a servo tick must not pay for segments far from the finger. Queries are "every item whose
+// box overlaps this box" (proxy motion) and "distance to the nearest item" (collision
+// anticipation), both pruned by node boxes so their cost grows with log N, not N.
+#pragma once
+
+#include "haptics/vec2.hpp"
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <vector>
+
+namespace contactlab {
+
+struct Aabb {
+    Vec2 lo{std::numeric_limits<double>::infinity()};
+    Vec2 hi{-std::numeric_limits<double>::infinity()};
+
+    void grow(Vec2 p) { lo = glm::min(lo, p); hi = glm::max(hi, p); }
+    void grow(const Aabb& b) { lo = glm::min(lo, b.lo); hi = glm::max(hi, b.hi); }
+    bool overlaps(const Aabb& b) const {
+        return lo.x <= b.hi.x && b.lo.x <= hi.x && lo.y <= b.hi.y && b.lo.y <= hi.y;
+    }
+    Vec2 center() const { return 0.5 * (lo + hi); }
+    // Distance (m) from p to the box; 0 inside.
+    double distance_to(Vec2 p) const {
+        const Vec2 d = glm::max(glm::max(lo - p, p - hi), Vec2(0.0));
+        return glm::length(d);
+    }
+};
+
+class AabbTree {
+public:
+    AabbTree() = default;
+    explicit AabbTree(const std::vector<Aabb>& item_boxes);
+
+    // Appends to `out` the index of every item whose box overlaps `box`. `out` keeps its capacity,
+    // so a caller that reserves once does not allocate per query.
+    void query(const Aabb& box, std::vector<int>& out) const;
+
+    // Smallest exact distance (m) from p to any item, where `item_distance(i)` is the exact distance
+    // to item i. Nodes farther than the best distance so far are skipped.
+    template <typename ItemDistance>
+    double nearest_distance(Vec2 p, ItemDistance&& item_distance) const;
+
+    int size() const { return static_cast<int>(items_.size()); }
+
+private:
+    struct Node {
+        Aabb box;
+        int left = -1;   // child node index; -1 for a leaf
+        int right = -1;
+        int first = 0;   // leaf: items_[first, first + count)
+        int count = 0;
+    };
+    int build(const std::vector<Aabb>& boxes, int first, int count);
+
+    std::vector<Node> nodes_;
+    std::vector<int> items_;
+    static constexpr int kLeafSize = 4;
+    static constexpr int kMaxDepth = 64;
+};
+
+template <typename ItemDistance>
+double AabbTree::nearest_distance(Vec2 p, ItemDistance&& item_distance) const {
+    double best = std::numeric_limits<double>::infinity();
+    if (nodes_.empty()) return best;
+    int stack[kMaxDepth * 2];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const Node& n = nodes_[stack[--top]];
+        if (n.box.distance_to(p) >= best) continue;
+        if (n.left < 0) {
+            for (int i = n.first; i < n.first + n.count; ++i) {
+                best = std::min(best, item_distance(items_[i]));
+            }
+            continue;
+        }
+        // Visit the nearer child first (pushed last) so `best` shrinks early.
+        const Node& l = nodes_[n.left];
+        const Node& r = nodes_[n.right];
+        if (l.box.distance_to(p) < r.box.distance_to(p)) {
+            stack[top++] = n.right;
+            stack[top++] = n.left;
+        } else {
+            stack[top++] = n.left;
+            stack[top++] = n.right;
+        }
+    }
+    return best;
+}
+
+}  // namespace contactlab

@@ -1,0 +1,216 @@
+// cspace.cpp — building the c-space pieces of one segment for one finger angle, and the few
+// geometric queries the proxy asks of a piece.
+#include "haptics/cspace.hpp"
+
+#include <algorithm>
+
+namespace contactlab {
+namespace {
+
+// A pad end whose tangent makes less than this (cosine) with the contour is not a distinct
+// contact: the pad's interior (an offset piece) already covers it.
+constexpr double kEndpointCosTolerance = 1e-12;
+
+// The span of pad angles theta (rad) that can touch, for finger angle phi.
+AngleSpan pad_span(const FingerShape& f, double phi) {
+    const double h = pad_half_angle(f);
+    if (h >= kPi) return {0.0, kTwoPi};
+    return {wrap_2pi(pad_mid_angle(phi) - h), 2.0 * h};
+}
+
+// Direction in which the pad continues away from its end `k` (0: low-angle end, 1: high end).
+Vec2 pad_inward_tangent(double theta_end, int k) {
+    const Vec2 t = perp_left(unit_at(theta_end));
+    return k == 0 ? t : -t;
+}
+
+void push_circle(std::vector<CPiece>& out, CPiece base, const AngleSpan& a, const AngleSpan& b) {
+    AngleSpan parts[2];
+    const int n = intersect_spans(a, b, parts);
+    for (int i = 0; i < n; ++i) {
+        base.span = parts[i];
+        out.push_back(base);
+    }
+}
+
+void append_vertex(const Environment& env, int owner, Vec2 vertex, const AngleSpan& cone,
+                   const FingerShape& f, const AngleSpan& pads, std::vector<CPiece>& out) {
+    if (cone.width <= 0.0 || f.radius <= 0.0) return;
+    (void)env;
+    CPiece p;
+    p.kind = CPiece::Kind::circle;
+    p.source = CPiece::Source::vertex;
+    p.segment = owner;
+    p.center = vertex;
+    p.radius = f.radius;
+    p.free_outside = true;
+    // Centre at angle alpha about the vertex <=> the pad touches it at theta = alpha - pi, and the
+    // contact normal (vertex toward centre) is u(alpha): it must lie in the vertex's normal cone.
+    push_circle(out, p, cone, {wrap_2pi(pads.start + kPi), pads.width});
+}
+
+void append_line(const EnvSegment& s, int index, const FingerShape& f, double phi,
+                 const AngleSpan& pads, std::vector<CPiece>& out) {
+    CPiece p;
+    p.kind = CPiece::Kind::line;
+    p.segment = index;
+    p.dir = s.dir;
+    p.len = s.length;
+    p.n = s.normal;
+    // Pad interior pressed by the line: the pad point facing -n must be on the pad.
+    if (span_contains(pads, angle_of(-s.normal))) {
+        p.source = CPiece::Source::line_offset;
+        p.a = s.start + f.radius * s.normal;
+        out.push_back(p);
+    }
+    if (!pad_has_endpoints(f)) return;
+    const double h = pad_half_angle(f);
+    for (int k = 0; k < 2; ++k) {
+        const double theta = pad_mid_angle(phi) + (k == 0 ? -h : h);
+        if (glm::dot(pad_inward_tangent(theta, k), s.normal) <= kEndpointCosTolerance) continue;
+        p.source = CPiece::Source::endpoint;
+        p.pad_theta = theta;
+        p.pad_l = k == 0 ? -0.5 * f.length : 0.5 * f.length;
+        p.a = s.start - f.radius * unit_at(theta);
+        out.push_back(p);
+    }
+}
+
+void append_arc(const EnvSegment& s, int index, const FingerShape& f, double phi,
+                const AngleSpan& pads, std::vector<CPiece>& out) {
+    CPiece p;
+    p.kind = CPiece::Kind::circle;
+    p.segment = index;
+    p.contour_radius = s.radius;
+    p.free_outside = s.free_outside;
+    // Pad interior against the arc at contour angle beta: the contact normal is u(beta) on a bump
+    // (pad angle beta + pi) and -u(beta) in a bowl (pad angle beta).
+    p.source = CPiece::Source::arc_offset;
+    p.center = s.center;
+    if (s.free_outside) {
+        p.radius = s.radius + f.radius;
+        push_circle(out, p, s.angles, {wrap_2pi(pads.start - kPi), pads.width});
+    } else if (s.radius > f.radius) {  // a bowl tighter than the pad only touches the pad's ends
+        p.radius = s.radius - f.radius;
+        push_circle(out, p, s.angles, pads);
+    }
+    if (!pad_has_endpoints(f)) return;
+    const double h = pad_half_angle(f);
+    for (int k = 0; k < 2; ++k) {
+        const double theta = pad_mid_angle(phi) + (k == 0 ? -h : h);
+        const Vec2 tau = pad_inward_tangent(theta, k);
+        p.source = CPiece::Source::endpoint;
+        p.pad_theta = theta;
+        p.pad_l = k == 0 ? -0.5 * f.length : 0.5 * f.length;
+        p.center = s.center - f.radius * unit_at(theta);
+        p.radius = s.radius;
+        // Non-penetrating where the pad leaves toward free space: tau . n(beta) > 0, a half circle
+        // of beta centred on tau's direction (bump) or on -tau's (bowl).
+        const double mid = angle_of(s.free_outside ? tau : -tau);
+        const double half = 0.5 * kPi - kEndpointCosTolerance;
+        push_circle(out, p, s.angles, {wrap_2pi(mid - half), 2.0 * half});
+    }
+}
+
+}  // namespace
+
+void append_cspace_pieces(const Environment& env, int index, const FingerShape& finger,
+                          double phi, std::vector<CPiece>& out) {
+    const EnvSegment& s = env.segments[index];
+    const AngleSpan pads = pad_span(finger, phi);
+    if (s.kind == EnvSegment::Kind::line) {
+        append_line(s, index, finger, phi, pads, out);
+    } else {
+        append_arc(s, index, finger, phi, pads, out);
+    }
+    append_vertex(env, index, s.end, s.end_cone, finger, pads, out);
+    append_vertex(env, index, s.start, s.start_cone, finger, pads, out);
+}
+
+double piece_signed_distance(const CPiece& piece, Vec2 p) {
+    if (piece.kind == CPiece::Kind::line) return glm::dot(p - piece.a, piece.n);
+    const double d = glm::length(p - piece.center) - piece.radius;
+    return piece.free_outside ? d : -d;
+}
+
+Vec2 piece_normal_at(const CPiece& piece, Vec2 p) {
+    if (piece.kind == CPiece::Kind::line) return piece.n;
+    const Vec2 r = p - piece.center;
+    const double len = glm::length(r);
+    const Vec2 u = len > 0.0 ? r / len : Vec2(1.0, 0.0);
+    return piece.free_outside ? u : -u;
+}
+
+double piece_param(const CPiece& piece, Vec2 p) {
+    if (piece.kind == CPiece::Kind::line) return glm::dot(p - piece.a, piece.dir);
+    const double rel = wrap_2pi(angle_of(p - piece.center) - piece.span.start);
+    // Angles just before the span's start read as slightly negative, not as nearly 2 pi.
+    return rel > 0.5 * (piece.span.width + kTwoPi) ? rel - kTwoPi : rel;
+}
+
+bool piece_param_inside(const CPiece& piece, double param, double slack) {
+    const double hi = piece.kind == CPiece::Kind::line ? piece.len : piece.span.width;
+    return param >= -slack && param <= hi + slack;
+}
+
+Vec2 piece_point(const CPiece& piece, double param) {
+    if (piece.kind == CPiece::Kind::line) return piece.a + param * piece.dir;
+    return piece.center + piece.radius * unit_at(piece.span.start + param);
+}
+
+PieceFoot piece_foot(const CPiece& piece, Vec2 p) {
+    PieceFoot f;
+    const double hi = piece.kind == CPiece::Kind::line ? piece.len : piece.span.width;
+    if (piece.kind == CPiece::Kind::circle && glm::length(p - piece.center) == 0.0) {
+        f.param = 0.5 * hi;  // every point is nearest: pick the middle, deterministically
+    } else {
+        f.param = piece_param(piece, p);
+        if (piece.kind == CPiece::Kind::circle && f.param > hi) {
+            // Outside the span: the nearer end by angle (rel in (hi, 2pi - ...)).
+            f.param = (f.param - hi) <= (kTwoPi - f.param) ? hi : 0.0;
+            f.clamped = true;
+        }
+    }
+    if (f.param < 0.0) { f.param = 0.0; f.clamped = true; }
+    if (f.param > hi) { f.param = hi; f.clamped = true; }
+    f.point = piece_point(piece, f.param);
+    return f;
+}
+
+Vec2 piece_contact_point(const CPiece& piece, const FingerShape& finger, Vec2 c) {
+    switch (piece.source) {
+        case CPiece::Source::line_offset: return c - finger.radius * piece.n;
+        case CPiece::Source::vertex: return piece.center;
+        case CPiece::Source::arc_offset: {
+            const Vec2 r = c - piece.center;
+            const double len = glm::length(r);
+            const Vec2 u = len > 0.0 ? r / len : Vec2(1.0, 0.0);
+            return piece.center + piece.contour_radius * u;
+        }
+        case CPiece::Source::endpoint: return c + finger.radius * unit_at(piece.pad_theta);
+    }
+    return c;
+}
+
+double piece_contact_location(const CPiece& piece, const FingerShape& finger, double phi, Vec2 c) {
+    if (piece.source == CPiece::Source::endpoint) return piece.pad_l;
+    if (finger.kind == FingerKind::point) return 0.0;
+    // Direction from x_f to the contact, computed without subtracting nearly equal coordinates.
+    double theta = 0.0;
+    if (piece.source == CPiece::Source::line_offset) {
+        theta = angle_of(-piece.n);
+    } else if (piece.source == CPiece::Source::vertex) {
+        theta = angle_of(piece.center - c);
+    } else {  // arc_offset: x_f lies on the ray from the arc's centre through the contact
+        const Vec2 r = c - piece.center;
+        theta = angle_of(piece.free_outside ? -r : r);
+    }
+    const double l = contact_location_at(finger, phi, theta);
+    // Numerically the angle can stray a hair past the pad's end: keep l on the pad.
+    if (finger.kind == FingerKind::arc_pad) {
+        return std::clamp(l, -0.5 * finger.length, 0.5 * finger.length);
+    }
+    return l;
+}
+
+}  // namespace contactlab

@@ -1,0 +1,126 @@
+// environment.cpp — compiles scene contours into EnvSegments and their BVH.
+#include "haptics/environment.hpp"
+
+#include <algorithm>
+
+namespace contactlab {
+namespace {
+
+// Below this |sin(turn)| two segments meet tangentially (a G1 joint): no vertex piece is needed
+// because the free-side normals agree there.
+constexpr double kG1SinTolerance = 1e-12;
+
+EnvSegment compile_segment(const Segment& seg, int contour) {
+    EnvSegment e;
+    e.contour = contour;
+    e.start = segment_start(seg);
+    e.end = segment_end(seg);
+    if (const auto* l = std::get_if<LineSegment>(&seg)) {
+        e.kind = EnvSegment::Kind::line;
+        e.length = glm::length(l->to - l->from);
+        e.dir = (l->to - l->from) / e.length;
+        e.normal = perp_left(e.dir);  // solid on the right of travel, free on the left
+        e.box.grow(e.start);
+        e.box.grow(e.end);
+        return e;
+    }
+    const auto& a = std::get<ArcSegment>(seg);
+    e.kind = EnvSegment::Kind::arc;
+    e.center = a.center;
+    e.radius = a.radius;
+    const double sweep = a.end_angle - a.start_angle;
+    // Counter-clockwise travel keeps the solid on the right = outside the circle: free inside.
+    e.free_outside = sweep < 0.0;
+    e.angles = sweep >= 0.0 ? AngleSpan{wrap_2pi(a.start_angle), std::min(sweep, kTwoPi)}
+                            : AngleSpan{wrap_2pi(a.end_angle), std::min(-sweep, kTwoPi)};
+    e.length = a.radius * e.angles.width;
+    e.box.grow(e.start);
+    e.box.grow(e.end);
+    for (int k = 0; k < 4; ++k) {  // the circle's extreme points inside the span
+        const double ang = k * 0.5 * kPi;
+        if (span_contains(e.angles, ang)) e.box.grow(a.center + a.radius * unit_at(ang));
+    }
+    return e;
+}
+
+Vec2 start_normal(const EnvSegment& s) { return env_normal_at(s, s.start); }
+Vec2 end_normal(const EnvSegment& s) { return env_normal_at(s, s.end); }
+Vec2 start_tangent(const EnvSegment& s) { return -perp_left(start_normal(s)); }
+Vec2 end_tangent(const EnvSegment& s) { return -perp_left(end_normal(s)); }
+
+// Cone of normals at the vertex between a (ending) and b (starting): the normal turns clockwise
+// from a's to b's at a convex corner (a right turn for solid-on-the-right contours).
+AngleSpan convex_cone(const EnvSegment& a, const EnvSegment& b) {
+    const Vec2 t1 = end_tangent(a);
+    const Vec2 t2 = start_tangent(b);
+    const double turn_sin = cross(t1, t2);
+    const double turn_cos = glm::dot(t1, t2);
+    const bool reversal = std::abs(turn_sin) <= kG1SinTolerance && turn_cos < 0.0;
+    if (turn_sin >= -kG1SinTolerance && !reversal) return {};  // concave or G1: no vertex piece
+    const double from = angle_of(start_normal(b));
+    const double width = reversal ? kPi : wrap_2pi(angle_of(end_normal(a)) - from);
+    return {wrap_2pi(from), width};
+}
+
+}  // namespace
+
+double distance_to_segment(const EnvSegment& s, Vec2 p) {
+    if (s.kind == EnvSegment::Kind::line) {
+        const double t = std::clamp(glm::dot(p - s.start, s.dir), 0.0, s.length);
+        return glm::length(p - (s.start + t * s.dir));
+    }
+    const Vec2 d = p - s.center;
+    if (span_contains(s.angles, angle_of(d))) return std::abs(glm::length(d) - s.radius);
+    return std::min(glm::length(p - s.start), glm::length(p - s.end));
+}
+
+int intersect_spans(const AngleSpan& a, const AngleSpan& b, AngleSpan out[2]) {
+    if (a.width >= kTwoPi) { out[0] = b; return b.width > 0.0 ? 1 : 0; }
+    if (b.width >= kTwoPi) { out[0] = a; return a.width > 0.0 ? 1 : 0; }
+    // Work relative to a.start: a = [0, wa]; b = [s, s + wb] and its copy shifted by -2 pi.
+    const double s = wrap_2pi(b.start - a.start);
+    int n = 0;
+    for (double shift : {s, s - kTwoPi}) {
+        const double lo = std::max(0.0, shift);
+        const double hi = std::min(a.width, shift + b.width);
+        if (hi > lo) out[n++] = {wrap_2pi(a.start + lo), hi - lo};
+    }
+    return n;
+}
+
+Environment build_environment(const Scene& scene) {
+    Environment env;
+    for (int c = 0; c < static_cast<int>(scene.contours.size()); ++c) {
+        const Contour& contour = scene.contours[c];
+        const int first = static_cast<int>(env.segments.size());
+        const int count = static_cast<int>(contour.segments.size());
+        for (const Segment& s : contour.segments) env.segments.push_back(compile_segment(s, c));
+        for (int i = 0; i < count; ++i) {
+            EnvSegment& e = env.segments[first + i];
+            const bool last = i + 1 == count;
+            e.prev = i > 0 ? first + i - 1 : (contour.closed ? first + count - 1 : -1);
+            e.next = !last ? first + i + 1 : (contour.closed ? first : -1);
+        }
+        for (int i = 0; i < count; ++i) {
+            EnvSegment& e = env.segments[first + i];
+            if (e.next >= 0) {
+                e.end_cone = convex_cone(e, env.segments[e.next]);
+            } else {
+                // Open end: the profile is capped as if a cliff fell away into the solid, so the
+                // normal turns a quarter turn clockwise from the segment's normal to its tangent.
+                e.end_cone = {wrap_2pi(angle_of(end_tangent(e))), 0.5 * kPi};
+            }
+            if (e.prev < 0) e.start_cone = {wrap_2pi(angle_of(start_normal(e))), 0.5 * kPi};
+        }
+    }
+    std::vector<Aabb> boxes;
+    boxes.reserve(env.segments.size());
+    for (const EnvSegment& e : env.segments) {
+        boxes.push_back(e.box);
+        env.bounds.grow(e.box);
+    }
+    env.tree = AabbTree(boxes);
+    return env;
+}
+
+}  // namespace contactlab

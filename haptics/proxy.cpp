@@ -1,0 +1,368 @@
+// proxy.cpp — the swept, sliding god-object update (see proxy.hpp for the model).
+//
+// Index
+//   tolerances
+//   Proxy::update            one tick: gather pieces, re-project after a phi change, walk, force
+//   Proxy::walk              straight motion, sliding along pieces, corners
+//   first_entry_line/_arc    where a path first enters the obstacle through some piece
+//   collect_contacts         the pieces the final proxy touches and presses against
+//   anticipate               free space: l_d from the nearest c-space piece (seed 000 §3.2)
+#include "haptics/proxy.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace contactlab {
+namespace {
+
+// ---- tolerances ---------------------------------------------------------------------------------
+// A point within this distance (m) of a piece counts as on it. Far above the rounding of
+// coordinates a kilometre from the origin (~1e-13 m), far below any physical scale (1 um).
+constexpr double kOnTolerance = 1e-9;
+// Sines/cosines below this are "tangential": grazing a piece is not entering it.
+constexpr double kTangentTolerance = 1e-12;
+// Iterations of the constrained motion per tick: each either ends the motion or adds/drops a
+// constraint, so real cases finish in 2-5; the bound keeps the tick's cost fixed.
+constexpr int kMaxWalkIterations = 24;
+constexpr int kMaxDepenetrationIterations = 4;
+
+Vec2 arc_tangent(const CPiece& piece, double param, double direction) {
+    return direction * perp_left(unit_at(piece.span.start + param));
+}
+
+// Intersections of the line through p with direction v (|v| > 0) and the circle (c, r):
+// parameters t along v. Returns how many (0-2), ascending.
+int line_circle(Vec2 p, Vec2 v, Vec2 c, double r, double t[2]) {
+    const Vec2 f = p - c;
+    const double a = glm::dot(v, v);
+    const double b = glm::dot(f, v);
+    const double cc = glm::dot(f, f) - r * r;
+    const double disc = b * b - a * cc;
+    if (disc < 0.0 || a <= 0.0) return 0;
+    const double sq = std::sqrt(disc);
+    t[0] = (-b - sq) / a;
+    t[1] = (-b + sq) / a;
+    return 2;
+}
+
+// Intersections of circles (c0, r0) and (c1, r1): up to two points.
+int circle_circle(Vec2 c0, double r0, Vec2 c1, double r1, Vec2 pts[2]) {
+    const Vec2 d = c1 - c0;
+    const double dist = glm::length(d);
+    if (dist <= 0.0 || dist > r0 + r1 || dist < std::abs(r0 - r1)) return 0;
+    const double a = (r0 * r0 - r1 * r1 + dist * dist) / (2.0 * dist);
+    const double h = std::sqrt(std::max(0.0, r0 * r0 - a * a));
+    const Vec2 u = d / dist;
+    const Vec2 m = c0 + a * u;
+    pts[0] = m + h * perp_left(u);
+    pts[1] = m - h * perp_left(u);
+    return 2;
+}
+
+}  // namespace
+
+Proxy::Proxy(const Environment& env, const ProxyDef& def) : env_(&env), def_(def) {
+    segment_ids_.reserve(1024);
+    pieces_.reserve(4096);
+}
+
+void Proxy::reset(Vec2 finger, double phi) {
+    proxy_ = finger;
+    phi_ = phi;
+    initialised_ = true;
+    active_count_ = 0;
+}
+
+// ---- Proxy::update ------------------------------------------------------------------------------
+const ProxyOutput& Proxy::update(Vec2 finger, double phi) {
+    if (!initialised_) reset(finger, phi);
+    const double R = def_.finger.radius;
+    // How far any c-space piece can have moved since the last tick: only pieces made by the pad's
+    // ends move with phi, by the chord their end swept.
+    const double dphi = std::min(std::abs(phi - phi_), kPi);
+    const double max_push = dphi > 0.0 ? 2.0 * R * std::sin(0.5 * dphi) * (1.0 + 1e-9) + kOnTolerance
+                                        : 0.0;
+    // Every position the motion can visit lies within |proxy - finger| of the finger, and every
+    // piece lies within R of its segment: those segments are all we need.
+    const double reach = glm::length(proxy_ - finger) + max_push;
+    gather_pieces(finger, reach + R + kOnTolerance, phi);
+
+    if (max_push > 0.0) depenetrate(max_push);
+    proxy_ = walk(proxy_, finger);
+    phi_ = phi;
+
+    out_ = ProxyOutput{};
+    out_.finger = finger;
+    out_.phi = phi;
+    out_.proxy = proxy_;
+    if (proxy_ != finger) {
+        collect_contacts(finger);
+        out_.contact = true;
+        out_.depth = glm::length(proxy_ - finger);
+        Vec2 force = def_.stiffness * (proxy_ - finger);
+        const double magnitude = glm::length(force);
+        if (magnitude > def_.max_force) force *= def_.max_force / magnitude;
+        out_.force = force;
+        double sum = 0.0;
+        for (int i = 0; i < out_.contact_count; ++i) sum += out_.contacts[i].l;
+        out_.l_d = out_.contact_count > 0 ? sum / out_.contact_count : 0.0;
+    } else {
+        anticipate(finger, phi);
+    }
+    return out_;
+}
+
+void Proxy::gather_pieces(Vec2 center, double half_size, double phi) {
+    segment_ids_.clear();
+    pieces_.clear();
+    Aabb box;
+    box.grow(center - Vec2(half_size));
+    box.grow(center + Vec2(half_size));
+    env_->tree.query(box, segment_ids_);
+    // The BVH returns leaves in tree order; sort so the pieces' order (and thus tie-breaks) does
+    // not depend on the query box.
+    std::sort(segment_ids_.begin(), segment_ids_.end());
+    for (int id : segment_ids_) append_cspace_pieces(*env_, id, def_.finger, phi, pieces_);
+    active_count_ = 0;
+}
+
+// After phi changed, pieces made by the pad's ends moved by at most `max_push` (m). If the proxy
+// ended up inside the obstacle, push it back out along the normal of the piece it is deepest
+// behind, repeatedly (a corner needs two pushes).
+void Proxy::depenetrate(double max_push) {
+    for (int it = 0; it < kMaxDepenetrationIterations; ++it) {
+        int deepest = -1;
+        double deepest_d = -kOnTolerance;
+        for (int i = 0; i < static_cast<int>(pieces_.size()); ++i) {
+            const CPiece& piece = pieces_[i];
+            const double d = piece_signed_distance(piece, proxy_);
+            if (d >= deepest_d || d < -max_push) continue;
+            const double param = piece_param(piece, proxy_);
+            const double slack = piece.kind == CPiece::Kind::line ? kOnTolerance
+                                                                  : kOnTolerance / piece.radius;
+            if (!piece_param_inside(piece, param, slack)) continue;
+            deepest = i;
+            deepest_d = d;
+        }
+        if (deepest < 0) return;
+        const CPiece& piece = pieces_[deepest];
+        proxy_ += (-deepest_d) * piece_normal_at(piece, proxy_);
+    }
+}
+
+// ---- Proxy::walk --------------------------------------------------------------------------------
+Vec2 Proxy::walk(Vec2 p, Vec2 goal) {
+    active_count_ = 0;
+    int excluded = -1;     // the piece just slid off the end of (not re-entered at its end)
+    int idle_steps = 0;    // consecutive steps that did not move the proxy
+    proxy_ = p;
+    for (int it = 0; it < kMaxWalkIterations; ++it) {
+        if (active_count_ == 0) {
+            const Hit hit = first_entry_line(proxy_, goal, excluded, -1);
+            excluded = -1;
+            if (!hit.found) return goal;  // free motion all the way
+            proxy_ = hit.point;
+            active_[0] = hit.piece;
+            active_count_ = 1;
+            continue;
+        }
+        if (active_count_ == 2) {
+            if (!try_release_corner(goal)) return proxy_;  // resting in a corner: two contacts
+            continue;
+        }
+        const int current = active_[0];
+        const CPiece& piece = pieces_[current];
+        if (piece_signed_distance(piece, goal) >= 0.0) {  // the finger left this piece's obstacle
+            active_count_ = 0;
+            continue;
+        }
+        const PieceFoot foot = piece_foot(piece, goal);
+        const double hi = piece.kind == CPiece::Kind::line ? piece.len : piece.span.width;
+        const double s0 = std::clamp(piece_param(piece, proxy_), 0.0, hi);
+        Hit hit;
+        if (piece.kind == CPiece::Kind::line) {
+            hit = first_entry_line(proxy_, foot.point, current, -1);
+        } else {
+            hit = first_entry_arc(piece, s0, foot.param, current);
+        }
+        if (hit.found) {  // slid into another piece: a corner
+            proxy_ = hit.point;
+            active_[1] = hit.piece;
+            active_count_ = 2;
+            continue;
+        }
+        const double step = glm::length(foot.point - proxy_);
+        proxy_ = foot.point;
+        if (!foot.clamped) return proxy_;  // resting on this piece: one contact
+        // Reached the piece's end: the boundary continues on a neighbouring piece, which a
+        // straight move toward the finger now enters at once.
+        idle_steps = step <= kOnTolerance ? idle_steps + 1 : 0;
+        if (idle_steps >= 3) return proxy_;  // the nearest point is this junction itself
+        active_count_ = 0;
+        excluded = current;
+    }
+    return proxy_;
+}
+
+// In a corner between pieces P and Q: keep sliding along one of them if that does not enter the
+// other; return false when both block (the proxy rests in the corner).
+bool Proxy::try_release_corner(Vec2 goal) {
+    const int ids[2] = {active_[0], active_[1]};
+    const double d0 = piece_signed_distance(pieces_[ids[0]], goal);
+    const double d1 = piece_signed_distance(pieces_[ids[1]], goal);
+    if (d0 >= 0.0 && d1 >= 0.0) { active_count_ = 0; return true; }
+    if (d0 >= 0.0) { active_[0] = ids[1]; active_count_ = 1; return true; }
+    if (d1 >= 0.0) { active_count_ = 1; return true; }
+    for (int k = 0; k < 2; ++k) {
+        const CPiece& along = pieces_[ids[k]];
+        const CPiece& other = pieces_[ids[1 - k]];
+        const PieceFoot foot = piece_foot(along, goal);
+        const double s0 = piece_param(along, proxy_);
+        const double ds = foot.param - s0;
+        if (std::abs(ds) <= kTangentTolerance) continue;
+        const Vec2 t = along.kind == CPiece::Kind::line ? (ds > 0 ? along.dir : -along.dir)
+                                                        : arc_tangent(along, s0, ds > 0 ? 1.0 : -1.0);
+        if (glm::dot(t, piece_normal_at(other, proxy_)) > kTangentTolerance) {
+            active_[0] = ids[k];
+            active_count_ = 1;
+            return true;
+        }
+    }
+    return false;
+}
+
+// ---- first_entry_line / first_entry_arc --------------------------------------------------------
+Proxy::Hit Proxy::first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b) const {
+    Hit best;
+    const Vec2 v = q - p;
+    const double len = glm::length(v);
+    if (len <= 0.0) return best;
+    const double t_slack = kOnTolerance / len;
+    for (int i = 0; i < static_cast<int>(pieces_.size()); ++i) {
+        if (i == exclude_a || i == exclude_b) continue;
+        const CPiece& piece = pieces_[i];
+        if (piece.kind == CPiece::Kind::line) {
+            const double den = glm::dot(v, piece.n);
+            if (den >= -kTangentTolerance * len) continue;  // parallel or leaving
+            const double d0 = piece_signed_distance(piece, p);
+            if (d0 < -kOnTolerance) continue;                // started behind it: not entering
+            if (d0 + den >= 0.0) continue;                   // does not reach it
+            const double t = std::clamp(d0 / -den, 0.0, 1.0);
+            if (t >= best.s) continue;
+            const Vec2 x = p + t * v;
+            if (!piece_param_inside(piece, piece_param(piece, x), kOnTolerance)) continue;
+            best = {true, t, x, i};
+        } else {
+            double roots[2];
+            const int n = line_circle(p, v, piece.center, piece.radius, roots);
+            for (int k = 0; k < n; ++k) {
+                const double t = roots[k];
+                if (t < -t_slack || t > 1.0 || t >= best.s) continue;
+                const Vec2 x = p + t * v;
+                const Vec2 radial = (x - piece.center) / piece.radius;
+                const double along = glm::dot(v, radial) / len;
+                const bool entering = piece.free_outside ? along < -kTangentTolerance
+                                                         : along > kTangentTolerance;
+                if (!entering) continue;
+                if (!piece_param_inside(piece, piece_param(piece, x), kOnTolerance / piece.radius)) {
+                    continue;
+                }
+                best = {true, std::max(t, 0.0), t < 0.0 ? p : x, i};
+            }
+        }
+    }
+    return best;
+}
+
+Proxy::Hit Proxy::first_entry_arc(const CPiece& on, double s0, double s1, int exclude) const {
+    Hit best;
+    const double ds = s1 - s0;
+    if (std::abs(ds) * on.radius <= 0.0) return best;
+    const double direction = ds > 0.0 ? 1.0 : -1.0;
+    const double s_slack = kOnTolerance / (on.radius * std::abs(ds));
+    auto consider = [&](int i, Vec2 x) {
+        const CPiece& piece = pieces_[i];
+        const double slack = piece.kind == CPiece::Kind::line ? kOnTolerance
+                                                              : kOnTolerance / piece.radius;
+        if (!piece_param_inside(piece, piece_param(piece, x), slack)) return;
+        const double s_on = piece_param(on, x);
+        const double s = (s_on - s0) / ds;
+        if (s < -s_slack || s > 1.0 || s >= best.s) return;
+        const Vec2 t = arc_tangent(on, s_on, direction);
+        if (glm::dot(t, piece_normal_at(piece, x)) >= -kTangentTolerance) return;  // not entering
+        best = {true, std::max(s, 0.0), s < 0.0 ? proxy_ : x, i};
+    };
+    for (int i = 0; i < static_cast<int>(pieces_.size()); ++i) {
+        if (i == exclude) continue;
+        const CPiece& piece = pieces_[i];
+        if (piece.kind == CPiece::Kind::line) {
+            double roots[2];
+            const int n = line_circle(piece.a, piece.dir, on.center, on.radius, roots);
+            for (int k = 0; k < n; ++k) consider(i, piece.a + roots[k] * piece.dir);
+        } else {
+            Vec2 pts[2];
+            const int n = circle_circle(on.center, on.radius, piece.center, piece.radius, pts);
+            for (int k = 0; k < n; ++k) consider(i, pts[k]);
+        }
+    }
+    return best;
+}
+
+// ---- collect_contacts ---------------------------------------------------------------------------
+// Every piece through the final proxy that the finger presses into is a contact (a corner gives
+// two); l_d is their centroid (seed 000). If rounding hides them all, the piece the walk ended
+// on stands in.
+void Proxy::collect_contacts(Vec2 goal) {
+    auto add = [&](const CPiece& piece) {
+        if (out_.contact_count >= static_cast<int>(out_.contacts.size())) return;
+        ProxyContact c;
+        c.point = piece_contact_point(piece, def_.finger, proxy_);
+        c.l = piece_contact_location(piece, def_.finger, phi_, proxy_);
+        c.segment = piece.segment;
+        c.source = piece.source;
+        // The same touch can be represented by two pieces meeting at a junction: count it once.
+        for (int i = 0; i < out_.contact_count; ++i) {
+            if (glm::length(out_.contacts[i].point - c.point) <= kOnTolerance &&
+                std::abs(out_.contacts[i].l - c.l) <= kOnTolerance) {
+                return;
+            }
+        }
+        out_.contacts[out_.contact_count++] = c;
+    };
+    for (const CPiece& piece : pieces_) {
+        if (std::abs(piece_signed_distance(piece, proxy_)) > kOnTolerance) continue;
+        if (piece_signed_distance(piece, goal) >= 0.0) continue;
+        const double slack = piece.kind == CPiece::Kind::line ? kOnTolerance
+                                                              : kOnTolerance / piece.radius;
+        if (!piece_param_inside(piece, piece_param(piece, proxy_), slack)) continue;
+        add(piece);
+    }
+    if (out_.contact_count == 0) {
+        for (int i = 0; i < active_count_; ++i) add(pieces_[active_[i]]);
+    }
+}
+
+// ---- anticipate ---------------------------------------------------------------------------------
+// Free space: drive l_d to the contact the finger would make with the nearest c-space piece,
+// found by projecting x_f perpendicularly onto it (seed 000 §3.2, Fig. 6).
+void Proxy::anticipate(Vec2 finger, double phi) {
+    if (env_->segments.empty()) return;
+    const double R = def_.finger.radius;
+    const double nearest_segment = env_->tree.nearest_distance(
+        finger, [&](int i) { return distance_to_segment(env_->segments[i], finger); });
+    // Pieces lie within R of their segment, so the nearest piece comes from a segment no farther
+    // than nearest_segment + 2R.
+    gather_pieces(finger, nearest_segment + 2.0 * R + kOnTolerance, phi);
+    double best = std::numeric_limits<double>::infinity();
+    for (const CPiece& piece : pieces_) {
+        const PieceFoot foot = piece_foot(piece, finger);
+        const double d = glm::length(foot.point - finger);
+        if (d >= best) continue;
+        best = d;
+        out_.anticipating = true;
+        out_.l_d = piece_contact_location(piece, def_.finger, phi, foot.point);
+        out_.anticipated_point = piece_contact_point(piece, def_.finger, foot.point);
+    }
+}
+
+}  // namespace contactlab

@@ -1,0 +1,93 @@
+// proxy.hpp — the virtual finger (god-object proxy) for the arc pad against lines and arcs.
+//
+// Seed 000 §3: the proxy tracks the finger in free space and stays on the c-space boundary in
+// contact. Each update is a constrained motion from the previous proxy toward the measured finger
+// centre x_f: straight until a c-space piece is entered, then sliding along it (frictionless)
+// toward the nearest point, from piece to piece, until it rests on one piece (one contact) or in
+// a corner between two (two contacts). Because the motion is swept, the proxy never crosses a
+// feature between ticks, however far the finger jumps. The finger angle phi is driven: when it
+// changes, the proxy is first pushed out of the obstacle by at most the distance the pad's ends
+// moved (continuous re-projection), then moves as above.
+#pragma once
+
+#include "haptics/cspace.hpp"
+#include "haptics/environment.hpp"
+#include "haptics/finger.hpp"
+
+#include <array>
+#include <vector>
+
+namespace contactlab {
+
+struct ProxyDef {
+    FingerShape finger;        // pad radius R (m) and length L (m)
+    double stiffness = 1000.0; // Ke, N/m: F = Ke (x_fd - x_f), seed 000 eq. 1
+    double max_force = 1.5;    // N: |F| is clamped here with its direction kept
+};
+
+// One contact between the proxy's pad and the contour.
+struct ProxyContact {
+    Vec2 point{0.0};          // on the contour, m
+    double l = 0.0;           // contact location on the pad, m
+    int segment = -1;         // EnvSegment index
+    CPiece::Source source = CPiece::Source::line_offset;
+};
+
+struct ProxyOutput {
+    Vec2 finger{0.0};         // x_f as measured, m
+    double phi = 0.0;         // rad
+    Vec2 proxy{0.0};          // x_fd, m
+    bool contact = false;
+    double depth = 0.0;       // |x_fd - x_f| in contact, else 0 (m)
+    Vec2 force{0.0};          // on the finger, N (clamped)
+    double l_d = 0.0;         // desired contact location (m): centroid of contacts, or anticipated
+    int contact_count = 0;
+    std::array<ProxyContact, 4> contacts{};
+    // Free space: the c-space piece the finger is nearest to (seed 000 §3.2), if any.
+    bool anticipating = false;
+    Vec2 anticipated_point{0.0};  // on the contour, m
+};
+
+class Proxy {
+public:
+    // `env` must outlive the proxy (the servo swaps in a new proxy with a new environment).
+    Proxy(const Environment& env, const ProxyDef& def);
+
+    // Places the proxy at the finger (no history), e.g. when a device connects.
+    void reset(Vec2 finger, double phi);
+    // One servo tick: measured finger centre x_f (m) and angle phi (rad).
+    const ProxyOutput& update(Vec2 finger, double phi);
+    const ProxyOutput& output() const { return out_; }
+    const ProxyDef& def() const { return def_; }
+    void set_def(const ProxyDef& def) { def_ = def; }
+
+private:
+    struct Hit {
+        bool found = false;
+        double s = 2.0;    // path parameter in [0, 1]
+        Vec2 point{0.0};
+        int piece = -1;
+    };
+    void gather_pieces(Vec2 center, double half_size, double phi);
+    void depenetrate(double max_push);
+    Vec2 walk(Vec2 from, Vec2 goal);
+    Hit first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b) const;
+    Hit first_entry_arc(const CPiece& on, double s0, double s1, int exclude) const;
+    bool try_release_corner(Vec2 goal);
+    void collect_contacts(Vec2 goal);
+    void anticipate(Vec2 finger, double phi);
+
+    const Environment* env_;
+    ProxyDef def_;
+    Vec2 proxy_{0.0};
+    double phi_ = 0.0;
+    bool initialised_ = false;
+    int active_[2] = {-1, -1};
+    int active_count_ = 0;
+    ProxyOutput out_;
+    // Scratch space reused every tick (capacity kept: no allocation in steady state).
+    std::vector<int> segment_ids_;
+    std::vector<CPiece> pieces_;
+};
+
+}  // namespace contactlab

@@ -1,0 +1,363 @@
+// scene_io.cpp — scene files: JSON text <-> Scene, with validation and atomic saves.
+//
+// Index
+//   [SECTION] Error paths       — building "contours[1].segments[4]" style locations
+//   [SECTION] Reading           — typed field readers that throw SceneError with the path
+//   [SECTION] Validation        — the rules shared by the parser and validate_scene()
+//   [SECTION] Writing           — Scene -> JSON, lossless, and the atomic file save
+#include "haptics/scene_io.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fcntl.h>
+#include <fstream>
+#include <sstream>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace contactlab {
+namespace {
+
+using nlohmann::json;
+
+//-------------------------------------------------------------------------------------------------
+// [SECTION] Error paths
+//-------------------------------------------------------------------------------------------------
+
+[[noreturn]] void fail(const std::string& path, const std::string& problem) {
+    throw SceneError(path.empty() ? problem : path + ": " + problem);
+}
+
+std::string join(const std::string& path, const std::string& key) {
+    return path.empty() ? key : path + "." + key;
+}
+std::string index(const std::string& path, std::size_t i) {
+    return path + "[" + std::to_string(i) + "]";
+}
+
+std::string fmt(double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.6g", v);
+    return buf;
+}
+
+// Limits on the finger (m). The lower bound keeps c-space pieces well conditioned; the upper
+// bound catches values typed in millimetres by mistake (26 instead of 0.026).
+constexpr double kMinFingerRadius = 1e-4;
+constexpr double kMaxFingerRadius = 1.0;
+constexpr double kMinSegmentLength = 1e-9;   // m: shorter lines/arcs are "zero-length"
+constexpr double kMaxCoordinate = 1e6;       // m: beyond this, double spacing > 1e-10 m
+constexpr double kMaxStiffness = 1e7;        // N/m: far above any device's stable stiffness
+constexpr double kMaxForceLimit = 1e4;       // N
+
+//-------------------------------------------------------------------------------------------------
+// [SECTION] Reading
+//-------------------------------------------------------------------------------------------------
+
+const char* type_name(const json& j) {
+    switch (j.type()) {
+        case json::value_t::null: return "null";
+        case json::value_t::object: return "an object";
+        case json::value_t::array: return "an array";
+        case json::value_t::string: return "a string";
+        case json::value_t::boolean: return "a boolean";
+        case json::value_t::binary: return "binary data";
+        case json::value_t::discarded: return "nothing";
+        default: return "a number";
+    }
+}
+
+void expect_object(const json& j, const std::string& path) {
+    if (!j.is_object()) fail(path, std::string("expected an object, found ") + type_name(j));
+}
+
+// Rejects keys the format does not define (a misspelt key would otherwise be silently ignored).
+void reject_unknown_keys(const json& j, const std::string& path,
+                         std::initializer_list<const char*> known) {
+    for (auto it = j.begin(); it != j.end(); ++it) {
+        bool ok = false;
+        for (const char* k : known) ok = ok || it.key() == k;
+        if (!ok) fail(join(path, it.key()), "unknown key");
+    }
+}
+
+const json& require(const json& j, const std::string& path, const char* key) {
+    auto it = j.find(key);
+    if (it == j.end()) fail(join(path, key), "missing");
+    return *it;
+}
+
+double read_number(const json& j, const std::string& path) {
+    if (!j.is_number()) fail(path, std::string("expected a number, found ") + type_name(j));
+    const double v = j.get<double>();
+    if (!std::isfinite(v)) fail(path, "not a finite number");
+    return v;
+}
+
+double read_number(const json& obj, const std::string& path, const char* key) {
+    return read_number(require(obj, path, key), join(path, key));
+}
+
+Vec2 read_point(const json& obj, const std::string& path, const char* key) {
+    const json& j = require(obj, path, key);
+    const std::string p = join(path, key);
+    if (!j.is_array() || j.size() != 2) fail(p, "expected a point [x, y] (m)");
+    const Vec2 v{read_number(j[0], index(p, 0)), read_number(j[1], index(p, 1))};
+    if (std::abs(v.x) > kMaxCoordinate || std::abs(v.y) > kMaxCoordinate)
+        fail(p, "coordinate beyond +-" + fmt(kMaxCoordinate) + " m");
+    return v;
+}
+
+std::string read_string(const json& obj, const std::string& path, const char* key) {
+    const json& j = require(obj, path, key);
+    if (!j.is_string()) fail(join(path, key), std::string("expected a string, found ") + type_name(j));
+    return j.get<std::string>();
+}
+
+Segment read_segment(const json& j, const std::string& path) {
+    expect_object(j, path);
+    const std::string type = read_string(j, path, "type");
+    if (type == "line") {
+        reject_unknown_keys(j, path, {"type", "from", "to"});
+        return LineSegment{read_point(j, path, "from"), read_point(j, path, "to")};
+    }
+    if (type == "arc") {
+        reject_unknown_keys(j, path, {"type", "center", "radius", "start_angle", "end_angle"});
+        ArcSegment a;
+        a.center = read_point(j, path, "center");
+        a.radius = read_number(j, path, "radius");
+        a.start_angle = read_number(j, path, "start_angle");
+        a.end_angle = read_number(j, path, "end_angle");
+        return a;
+    }
+    fail(join(path, "type"), "unknown segment type \"" + type + "\" (expected \"line\" or \"arc\")");
+}
+
+Contour read_contour(const json& j, const std::string& path) {
+    expect_object(j, path);
+    reject_unknown_keys(j, path, {"closed", "segments"});
+    Contour c;
+    const json& closed = require(j, path, "closed");
+    if (!closed.is_boolean()) fail(join(path, "closed"), "expected true or false");
+    c.closed = closed.get<bool>();
+    const json& segs = require(j, path, "segments");
+    const std::string sp = join(path, "segments");
+    if (!segs.is_array()) fail(sp, std::string("expected an array, found ") + type_name(segs));
+    for (std::size_t i = 0; i < segs.size(); ++i) c.segments.push_back(read_segment(segs[i], index(sp, i)));
+    return c;
+}
+
+Scene read_scene(const json& root) {
+    Scene s;
+    expect_object(root, "");
+    reject_unknown_keys(root, "", {"version", "description", "finger", "contours", "force",
+                                   "contact_location"});
+    const json& version = require(root, "", "version");
+    if (!version.is_number_integer() || version.get<long long>() != kSceneFormatVersion)
+        fail("version", "unsupported format version " + version.dump() + " (this build reads " +
+                            std::to_string(kSceneFormatVersion) + ")");
+    if (auto it = root.find("description"); it != root.end() && !it->is_string())
+        fail("description", "expected a string");
+
+    if (auto it = root.find("finger"); it != root.end()) {
+        expect_object(*it, "finger");
+        reject_unknown_keys(*it, "finger", {"radius", "length"});
+        s.finger.radius = read_number(*it, "finger", "radius");
+        s.finger.length = read_number(*it, "finger", "length");
+    }
+
+    const json& contours = require(root, "", "contours");
+    if (!contours.is_array()) fail("contours", std::string("expected an array, found ") + type_name(contours));
+    for (std::size_t i = 0; i < contours.size(); ++i)
+        s.contours.push_back(read_contour(contours[i], index("contours", i)));
+
+    if (auto it = root.find("force"); it != root.end()) {
+        expect_object(*it, "force");
+        reject_unknown_keys(*it, "force", {"model", "stiffness", "max_force"});
+        const std::string model = read_string(*it, "force", "model");
+        if (model != "spring") fail("force.model", "unknown force model \"" + model + "\" (expected \"spring\")");
+        s.force.model = ForceModel::spring;
+        s.force.stiffness = read_number(*it, "force", "stiffness");
+        s.force.max_force = read_number(*it, "force", "max_force");
+    }
+
+    if (auto it = root.find("contact_location"); it != root.end()) {
+        expect_object(*it, "contact_location");
+        reject_unknown_keys(*it, "contact_location", {"rule"});
+        const std::string rule = read_string(*it, "contact_location", "rule");
+        if (rule != "centroid")
+            fail("contact_location.rule", "unknown rule \"" + rule + "\" (expected \"centroid\")");
+        s.contact_location.rule = ContactRule::centroid;
+    }
+    return s;
+}
+
+//-------------------------------------------------------------------------------------------------
+// [SECTION] Validation
+//-------------------------------------------------------------------------------------------------
+
+void validate_segment(const Segment& seg, const std::string& path) {
+    auto finite = [](Vec2 v) { return is_finite(v); };
+    if (auto* l = std::get_if<LineSegment>(&seg)) {
+        if (!finite(l->from) || !finite(l->to)) fail(path, "not a finite number");
+        if (glm::length(l->to - l->from) < kMinSegmentLength) fail(path, "zero-length line");
+        return;
+    }
+    const auto& a = std::get<ArcSegment>(seg);
+    if (!finite(a.center) || !std::isfinite(a.radius) || !std::isfinite(a.start_angle) ||
+        !std::isfinite(a.end_angle))
+        fail(path, "not a finite number");
+    if (!(a.radius > 0.0)) fail(join(path, "radius"), "arc radius must be > 0 m, got " + fmt(a.radius));
+    if (a.radius > kMaxCoordinate) fail(join(path, "radius"), "arc radius beyond " + fmt(kMaxCoordinate) + " m");
+    if (std::abs(a.start_angle) > 64.0 * kPi || std::abs(a.end_angle) > 64.0 * kPi)
+        fail(path, "arc angles must lie within +-64 pi rad");
+    const double sweep = std::abs(a.end_angle - a.start_angle);
+    if (a.radius * sweep < kMinSegmentLength) fail(path, "zero-length arc");
+    if (sweep > kTwoPi * (1.0 + 1e-12)) fail(path, "arc sweeps more than 2 pi rad (" + fmt(sweep) + ")");
+}
+
+void validate_contour(const Contour& c, const std::string& path) {
+    const std::string sp = join(path, "segments");
+    if (c.segments.empty()) fail(sp, "a contour needs at least one segment");
+    for (std::size_t i = 0; i < c.segments.size(); ++i) validate_segment(c.segments[i], index(sp, i));
+    const std::size_t n = c.segments.size();
+    // Consecutive segments must join: the end of one is the start of the next.
+    for (std::size_t i = 0; i + 1 < n + (c.closed ? 1 : 0); ++i) {
+        const std::size_t j = (i + 1) % n;
+        const double gap = glm::length(segment_start(c.segments[j]) - segment_end(c.segments[i]));
+        if (gap > kSceneJoinTolerance)
+            fail(index(sp, j), "gap of " + fmt(gap) + " m after segments[" + std::to_string(i) +
+                                   "] (segments must join end to start)");
+    }
+}
+
+//-------------------------------------------------------------------------------------------------
+// [SECTION] Writing
+//-------------------------------------------------------------------------------------------------
+
+json point_json(Vec2 p) { return json::array({p.x, p.y}); }
+
+json segment_json(const Segment& seg) {
+    if (auto* l = std::get_if<LineSegment>(&seg))
+        return {{"type", "line"}, {"from", point_json(l->from)}, {"to", point_json(l->to)}};
+    const auto& a = std::get<ArcSegment>(seg);
+    return {{"type", "arc"},
+            {"center", point_json(a.center)},
+            {"radius", a.radius},
+            {"start_angle", a.start_angle},
+            {"end_angle", a.end_angle}};
+}
+
+}  // namespace
+
+void validate_scene(const Scene& s) {
+    if (s.version != kSceneFormatVersion) fail("version", "unsupported format version " + std::to_string(s.version));
+    const FingerDef& f = s.finger;
+    if (!std::isfinite(f.radius) || f.radius < kMinFingerRadius || f.radius > kMaxFingerRadius)
+        fail("finger.radius", "must lie in [" + fmt(kMinFingerRadius) + ", " + fmt(kMaxFingerRadius) +
+                                  "] m, got " + fmt(f.radius));
+    if (!std::isfinite(f.length) || !(f.length > 0.0))
+        fail("finger.length", "pad length must be > 0 m, got " + fmt(f.length));
+    if (f.length >= kTwoPi * f.radius)
+        fail("finger.length", "pad (" + fmt(f.length) + " m) is longer than its circle (2 pi R = " +
+                                  fmt(kTwoPi * f.radius) + " m)");
+    for (std::size_t i = 0; i < s.contours.size(); ++i) validate_contour(s.contours[i], index("contours", i));
+    if (!std::isfinite(s.force.stiffness) || !(s.force.stiffness > 0.0) || s.force.stiffness > kMaxStiffness)
+        fail("force.stiffness", "must lie in (0, " + fmt(kMaxStiffness) + "] N/m, got " + fmt(s.force.stiffness));
+    if (!std::isfinite(s.force.max_force) || !(s.force.max_force > 0.0) || s.force.max_force > kMaxForceLimit)
+        fail("force.max_force", "must lie in (0, " + fmt(kMaxForceLimit) + "] N, got " + fmt(s.force.max_force));
+}
+
+Scene parse_scene(std::string_view text, const std::string& origin) {
+    try {
+        json root;
+        try {
+            root = json::parse(text.begin(), text.end());
+        } catch (const json::parse_error& e) {
+            // Translate nlohmann's byte offset into a line and column a user can find.
+            std::size_t line = 1, col = 1;
+            const std::size_t upto = std::min<std::size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
+            for (std::size_t i = 0; i < upto; ++i) {
+                if (text[i] == '\n') { ++line; col = 1; } else { ++col; }
+            }
+            std::string what = e.what();
+            if (auto p = what.find("syntax error"); p != std::string::npos) what = what.substr(p);
+            throw SceneError("line " + std::to_string(line) + ", column " + std::to_string(col) +
+                             ": invalid JSON (" + what + ")");
+        }
+        Scene s = read_scene(root);
+        validate_scene(s);
+        return s;
+    } catch (const SceneError& e) {
+        throw SceneError(origin + ": " + e.what());
+    } catch (const std::exception& e) {  // anything nlohmann throws that we did not foresee
+        throw SceneError(origin + ": " + e.what());
+    }
+}
+
+Scene load_scene_file(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw SceneError(path + ": cannot open (" + std::strerror(errno) + ")");
+    std::ostringstream buf;
+    buf << in.rdbuf();
+    if (in.bad()) throw SceneError(path + ": read error");
+    return parse_scene(buf.str(), path);
+}
+
+std::string scene_to_json_text(const Scene& s) {
+    json root;
+    root["version"] = s.version;
+    root["finger"] = {{"radius", s.finger.radius}, {"length", s.finger.length}};
+    json contours = json::array();
+    for (const Contour& c : s.contours) {
+        json segs = json::array();
+        for (const Segment& seg : c.segments) segs.push_back(segment_json(seg));
+        contours.push_back({{"closed", c.closed}, {"segments", std::move(segs)}});
+    }
+    root["contours"] = std::move(contours);
+    root["force"] = {{"model", "spring"}, {"stiffness", s.force.stiffness}, {"max_force", s.force.max_force}};
+    root["contact_location"] = {{"rule", "centroid"}};
+    // nlohmann writes doubles with the shortest text that reads back to the same value.
+    return root.dump(2) + "\n";
+}
+
+void save_scene_file(const Scene& s, const std::string& path) {
+    validate_scene(s);
+    const std::string text = scene_to_json_text(s);
+    // Write beside the target, flush to disk, then rename: readers see the old file or the new
+    // one, never a torn one, even if the process dies mid-write.
+    std::string tmp = path + ".tmp-XXXXXX";
+    const int fd = ::mkstemp(tmp.data());
+    if (fd < 0) throw SceneError(path + ": cannot create temporary file (" + std::strerror(errno) + ")");
+    const char* p = text.data();
+    std::size_t left = text.size();
+    while (left > 0) {
+        const ssize_t n = ::write(fd, p, left);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) {
+            const int err = errno;
+            ::close(fd);
+            ::unlink(tmp.c_str());
+            throw SceneError(path + ": write failed (" + std::strerror(err) + ")");
+        }
+        p += n;
+        left -= static_cast<std::size_t>(n);
+    }
+    ::fchmod(fd, 0644);
+    if (::fsync(fd) != 0 || ::close(fd) != 0) {
+        const int err = errno;
+        ::unlink(tmp.c_str());
+        throw SceneError(path + ": flush failed (" + std::strerror(err) + ")");
+    }
+    if (::rename(tmp.c_str(), path.c_str()) != 0) {
+        const int err = errno;
+        ::unlink(tmp.c_str());
+        throw SceneError(path + ": cannot replace file (" + std::strerror(err) + ")");
+    }
+}
+
+}  // namespace contactlab

@@ -1,0 +1,62 @@
+// scene_builders.hpp — small helpers for building scenes and running a proxy in tests.
+#pragma once
+
+#include "haptics/environment.hpp"
+#include "haptics/proxy.hpp"
+#include "haptics/scene.hpp"
+
+#include <initializer_list>
+#include <memory>
+
+namespace contactlab::test {
+
+inline Segment line(Vec2 a, Vec2 b) { return LineSegment{a, b}; }
+inline Segment arc(Vec2 c, double r, double a0, double a1) { return ArcSegment{c, r, a0, a1}; }
+
+// An open chain through the given points (a polyline profile, solid on the right).
+inline Contour polyline(std::initializer_list<Vec2> pts, bool closed = false) {
+    Contour c;
+    c.closed = closed;
+    const Vec2* prev = nullptr;
+    for (const Vec2& p : pts) {
+        if (prev) c.segments.push_back(line(*prev, p));
+        prev = &p;
+    }
+    if (closed) c.segments.push_back(line(*prev, *pts.begin()));
+    return c;
+}
+
+inline Scene scene_of(std::initializer_list<Contour> contours) {
+    Scene s;
+    s.contours = contours;
+    return s;
+}
+
+// A proxy together with the environment it reads (kept alive together).
+struct ProxyRig {
+    Environment env;
+    std::unique_ptr<Proxy> proxy;
+    explicit ProxyRig(const Scene& scene, ProxyDef def = {}) : env(build_environment(scene)) {
+        def.finger = finger_from_def(scene.finger);
+        def.stiffness = scene.force.stiffness;
+        def.max_force = scene.force.max_force;
+        proxy = std::make_unique<Proxy>(env, def);
+    }
+    ProxyRig(const Scene& scene, const FingerShape& finger) : env(build_environment(scene)) {
+        ProxyDef def;
+        def.finger = finger;
+        def.stiffness = scene.force.stiffness;
+        def.max_force = scene.force.max_force;
+        proxy = std::make_unique<Proxy>(env, def);
+    }
+    const ProxyOutput& at(Vec2 x, double phi) { return proxy->update(x, phi); }
+};
+
+// The block scene of seed 000 as used in tests: floor, a block of height h and width w centred at
+// x = 0, floor again.
+inline Scene block_scene(double h = 0.06, double w = 0.10) {
+    return scene_of({polyline({{-0.3, 0.0}, {-w / 2, 0.0}, {-w / 2, h}, {w / 2, h}, {w / 2, 0.0},
+                               {0.3, 0.0}})});
+}
+
+}  // namespace contactlab::test
