@@ -118,6 +118,7 @@ Environment build_environment(const Scene& scene) {
     for (const EnvSegment& e : env.segments) {
         boxes.push_back(e.box);
         env.bounds.grow(e.box);
+        env.min_feature = std::min(env.min_feature, e.length);
     }
     env.tree = AabbTree(boxes);
     return env;

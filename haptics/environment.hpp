@@ -8,6 +8,7 @@
 #include "haptics/aabb_tree.hpp"
 #include "haptics/scene.hpp"
 
+#include <limits>
 #include <vector>
 
 namespace contactlab {
@@ -64,6 +65,9 @@ struct Environment {
     std::vector<EnvSegment> segments;
     AabbTree tree;
     Aabb bounds;
+    // Length (m) of the shortest segment: the scale of the thinnest feature (a wall's top), which
+    // bounds how far one re-projection sub-step may move the pad (proxy.cpp).
+    double min_feature = std::numeric_limits<double>::infinity();
 };
 
 // Compiles a validated scene (see scene_io.hpp) into an Environment.

@@ -25,6 +25,13 @@ constexpr double kTangentTolerance = 1e-12;
 // constraint, so real cases finish in 2-5; the bound keeps the tick's cost fixed.
 constexpr int kMaxWalkIterations = 24;
 constexpr int kMaxDepenetrationIterations = 4;
+// Sub-steps of a finger-angle change (see Proxy::update): the pad end's chord per sub-step (m) is
+// a quarter of the scene's smallest feature, within these bounds, and the count is capped so a
+// wild jump of phi costs a bounded time (at the cap a feature thinner than
+// 4 * 2R / kMaxRotationSteps ~ 0.2 mm could be crossed by a half-turn jump in one tick).
+constexpr double kMinRotationChord = 1e-6;
+constexpr double kMaxRotationChord = 2.5e-4;
+constexpr int kMaxRotationSteps = 1024;
 
 Vec2 arc_tangent(const CPiece& piece, double param, double direction) {
     return direction * perp_left(unit_at(piece.span.start + param));
@@ -85,11 +92,29 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi) {
     // Every position the motion can visit lies within |proxy - finger| of the finger, and every
     // piece lies within R of its segment: those segments are all we need.
     const double reach = glm::length(proxy_ - finger) + max_push;
-    gather_pieces(finger, reach + R + kOnTolerance, phi);
+    gather_segments(finger, reach + R + kOnTolerance);
 
-    if (max_push > 0.0) depenetrate(max_push);
+    // Re-project continuously: rotate in sub-steps whose pad-end chord is at most a quarter of
+    // the scene's smallest feature, pushing the proxy out after each. A push is only ever as deep
+    // as one sub-step's chord, so it always exits through the face the pad was touching and never
+    // through the far side of a thin wall (which a single large rotation could reach).
+    if (max_push > 0.0) {
+        const double chord_step = std::clamp(0.25 * env_->min_feature, kMinRotationChord, kMaxRotationChord);
+        const int steps = std::clamp(static_cast<int>(std::ceil(max_push / chord_step)), 1, kMaxRotationSteps);
+        const double sub_push = 2.0 * R * std::sin(0.5 * dphi / steps) * (1.0 + 1e-9) + kOnTolerance;
+        for (int k = 1; k <= steps; ++k) {
+            build_pieces(phi_ + (phi - phi_) * k / steps);
+            depenetrate(sub_push);
+        }
+    } else {
+        build_pieces(phi);
+    }
     proxy_ = walk(proxy_, finger);
     phi_ = phi;
+    // A finger within rounding of the boundary is touching, not pressing: call it free, so that
+    // contact does not flicker with the frame's rounding (at 1 km from the origin coordinates
+    // carry ~1e-13 m of error; kOnTolerance is 1e-9 m, a force of 1e-6 N at 1000 N/m).
+    if (glm::length(proxy_ - finger) <= kOnTolerance) proxy_ = finger;
 
     out_ = ProxyOutput{};
     out_.finger = finger;
@@ -112,9 +137,8 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi) {
     return out_;
 }
 
-void Proxy::gather_pieces(Vec2 center, double half_size, double phi) {
+void Proxy::gather_segments(Vec2 center, double half_size) {
     segment_ids_.clear();
-    pieces_.clear();
     Aabb box;
     box.grow(center - Vec2(half_size));
     box.grow(center + Vec2(half_size));
@@ -122,6 +146,10 @@ void Proxy::gather_pieces(Vec2 center, double half_size, double phi) {
     // The BVH returns leaves in tree order; sort so the pieces' order (and thus tie-breaks) does
     // not depend on the query box.
     std::sort(segment_ids_.begin(), segment_ids_.end());
+}
+
+void Proxy::build_pieces(double phi) {
+    pieces_.clear();
     for (int id : segment_ids_) append_cspace_pieces(*env_, id, def_.finger, phi, pieces_);
     active_count_ = 0;
 }
@@ -137,10 +165,7 @@ void Proxy::depenetrate(double max_push) {
             const CPiece& piece = pieces_[i];
             const double d = piece_signed_distance(piece, proxy_);
             if (d >= deepest_d || d < -max_push) continue;
-            const double param = piece_param(piece, proxy_);
-            const double slack = piece.kind == CPiece::Kind::line ? kOnTolerance
-                                                                  : kOnTolerance / piece.radius;
-            if (!piece_param_inside(piece, param, slack)) continue;
+            if (!inside_or_past_concave_end(piece, piece_param(piece, proxy_), max_push)) continue;
             deepest = i;
             deepest_d = d;
         }
@@ -148,6 +173,36 @@ void Proxy::depenetrate(double max_push) {
         const CPiece& piece = pieces_[deepest];
         proxy_ += (-deepest_d) * piece_normal_at(piece, proxy_);
     }
+}
+
+// True when `param` lies on the piece, or beyond one of its ends by at most `reach` (m) where
+// that end sits at a concave junction of the contour. Near a concave corner the solid is the
+// union of both sides' half-planes, so a pad end rotated into the corner is behind both pieces'
+// extensions and within neither piece: it must still be pushed out.
+bool Proxy::inside_or_past_concave_end(const CPiece& piece, double param, double reach) const {
+    const bool line = piece.kind == CPiece::Kind::line;
+    const double on_slack = line ? kOnTolerance : kOnTolerance / piece.radius;
+    if (piece_param_inside(piece, param, on_slack)) return true;
+    if (piece.source == CPiece::Source::vertex) return false;  // vertices are convex by definition
+    const EnvSegment& seg = env_->segments[static_cast<std::size_t>(piece.segment)];
+    auto concave_at_start = [&] { return seg.prev >= 0 && env_->segments[seg.prev].end_cone.width <= 0.0; };
+    auto concave_at_end = [&] { return seg.next >= 0 && seg.end_cone.width <= 0.0; };
+    if (line) {
+        if (param < 0.0) return param >= -reach && concave_at_start();
+        return param <= piece.len + reach && concave_at_end();
+    }
+    // Circle pieces of an arc: the span's ends are the segment's ends only where the piece was
+    // not trimmed there; the low angle is the travel start for a bowl (counter-clockwise travel).
+    const double angular_reach = reach / piece.radius;
+    const double tol = 1e-12;
+    const double span_end = piece.span.start + piece.span.width;
+    const double seg_end = seg.angles.start + seg.angles.width;
+    if (param < 0.0) {
+        if (param < -angular_reach || std::abs(wrap_pi(piece.span.start - seg.angles.start)) > tol) return false;
+        return seg.free_outside ? concave_at_end() : concave_at_start();
+    }
+    if (param > piece.span.width + angular_reach || std::abs(wrap_pi(span_end - seg_end)) > tol) return false;
+    return seg.free_outside ? concave_at_start() : concave_at_end();
 }
 
 // ---- Proxy::walk --------------------------------------------------------------------------------
@@ -352,7 +407,8 @@ void Proxy::anticipate(Vec2 finger, double phi) {
         finger, [&](int i) { return distance_to_segment(env_->segments[i], finger); });
     // Pieces lie within R of their segment, so the nearest piece comes from a segment no farther
     // than nearest_segment + 2R.
-    gather_pieces(finger, nearest_segment + 2.0 * R + kOnTolerance, phi);
+    gather_segments(finger, nearest_segment + 2.0 * R + kOnTolerance);
+    build_pieces(phi);
     double best = std::numeric_limits<double>::infinity();
     for (const CPiece& piece : pieces_) {
         const PieceFoot foot = piece_foot(piece, finger);

@@ -68,8 +68,10 @@ private:
         Vec2 point{0.0};
         int piece = -1;
     };
-    void gather_pieces(Vec2 center, double half_size, double phi);
+    void gather_segments(Vec2 center, double half_size);  // segment_ids_: those in the box
+    void build_pieces(double phi);                         // pieces_ of segment_ids_ at phi
     void depenetrate(double max_push);
+    bool inside_or_past_concave_end(const CPiece& piece, double param, double reach) const;
     Vec2 walk(Vec2 from, Vec2 goal);
     Hit first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b) const;
     Hit first_entry_arc(const CPiece& on, double s0, double s1, int exclude) const;

@@ -5,6 +5,9 @@
 #include "haptics/proxy.hpp"
 #include "haptics/scene.hpp"
 
+#include <doctest/doctest.h>
+
+#include <cstdio>
 #include <initializer_list>
 #include <memory>
 
@@ -60,3 +63,14 @@ inline Scene block_scene(double h = 0.06, double w = 0.10) {
 }
 
 }  // namespace contactlab::test
+
+// Prints Vec2 in doctest messages as (x, y) with full precision.
+namespace doctest {
+template <> struct StringMaker<contactlab::Vec2> {
+    static String convert(const contactlab::Vec2& v) {
+        char buf[96];
+        std::snprintf(buf, sizeof buf, "(%.17g, %.17g)", v.x, v.y);
+        return buf;
+    }
+};
+}  // namespace doctest

@@ -1,0 +1,247 @@
+// test_proxy_properties.cpp — properties of the proxy that hold for any scene: invariance under
+// rigid motions, continuity of the anticipated contact location, no tunnelling, and the other
+// finger models (point, full circle) against their analytic answers.
+#include "scene_builders.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <vector>
+
+using namespace contactlab;
+using namespace contactlab::test;
+
+namespace {
+
+constexpr double R = 0.026;  // m, seed 000's pad radius
+constexpr double L = 0.020;  // m, seed 000's pad length
+constexpr double kTol = 1e-9;
+
+// A rigid motion: rotate by `angle` (rad) about the origin, then translate by `shift` (m).
+struct Motion {
+    double angle = 0.0;
+    Vec2 shift{0.0};
+    Vec2 rotate(Vec2 v) const {
+        const double c = std::cos(angle), s = std::sin(angle);
+        return {c * v.x - s * v.y, s * v.x + c * v.y};
+    }
+    Vec2 apply(Vec2 p) const { return rotate(p) + shift; }
+};
+
+Scene moved(const Scene& scene, const Motion& m) {
+    Scene out = scene;
+    for (Contour& c : out.contours)
+        for (Segment& seg : c.segments) {
+            if (auto* l = std::get_if<LineSegment>(&seg)) {
+                l->from = m.apply(l->from);
+                l->to = m.apply(l->to);
+            } else {
+                auto& a = std::get<ArcSegment>(seg);
+                a.center = m.apply(a.center);
+                a.start_angle += m.angle;
+                a.end_angle += m.angle;
+            }
+        }
+    return out;
+}
+
+// A scene with every kind of feature: floor, convex corners, a concave corner, a convex arc bump
+// (clockwise arc) and a bowl (counter-clockwise arc).
+Scene mixed_scene() {
+    Contour c;
+    auto add = [&](Segment s) { c.segments.push_back(s); };
+    add(line({-0.30, 0.0}, {-0.20, 0.0}));
+    add(line({-0.20, 0.0}, {-0.20, 0.03}));       // concave corner at its foot, convex at its top
+    add(line({-0.20, 0.03}, {-0.12, 0.03}));
+    add(line({-0.12, 0.03}, {-0.12, 0.0}));
+    add(line({-0.12, 0.0}, {-0.06, 0.0}));
+    add(arc({-0.03, 0.0}, 0.03, kPi, 0.0));         // convex bump, radius 3 cm, clockwise
+    add(line({0.0, 0.0}, {0.04, 0.0}));
+    add(arc({0.08, 0.0}, 0.04, kPi, 2.0 * kPi));    // bowl, radius 4 cm, counter-clockwise
+    add(line({0.12, 0.0}, {0.30, 0.0}));
+    return scene_of({c});
+}
+
+// A finger path over the mixed scene: descend, then slide along at roughly 1 mm depth under
+// a wavy height with a swinging finger angle. Not a contour follower: it pushes in and out.
+std::vector<std::pair<Vec2, double>> wandering_path() {
+    std::vector<std::pair<Vec2, double>> path;
+    for (int i = 0; i < 300; ++i) path.push_back({{-0.28, 0.08 - 0.0002 * i}, 0.0});
+    for (int i = 0; i <= 5600; ++i) {
+        const double x = -0.28 + 1e-4 * i;  // 0.1 mm per tick
+        const double y = 0.022 + 0.012 * std::sin(40.0 * x);
+        const double phi = 0.5 * std::sin(25.0 * x);
+        path.push_back({{x, y}, phi});
+    }
+    return path;
+}
+
+double relative_gap(double a, double b, double scale) { return std::abs(a - b) / std::max(std::abs(a), scale); }
+
+}  // namespace
+
+TEST_CASE("rigid motion: translating by (1000 m, -1000 m) and rotating changes nothing but the frame") {
+    const Scene scene = mixed_scene();
+    const auto path = wandering_path();
+    for (const double angle : {0.0, 0.7853981633974483, 2.345, -1.1}) {
+        const Motion m{angle, {1000.0, -1000.0}};
+        CAPTURE(angle);
+        ProxyRig a(scene), b(moved(scene, m));
+        int contacts = 0, two_contacts = 0;
+        double worst_depth = 0.0, worst_l = 0.0, worst_force = 0.0;
+        int tick = 0;
+        for (const auto& [x, phi] : path) {
+            const ProxyOutput oa = a.at(x, phi);
+            const ProxyOutput& ob = b.at(m.apply(x), phi + angle);
+            CAPTURE(tick);
+            CAPTURE(x);
+            CAPTURE(phi);
+            CAPTURE(oa.proxy);
+            CAPTURE(oa.depth);
+            CAPTURE(oa.contact_count);
+            CAPTURE(ob.depth);
+            ++tick;
+            REQUIRE(oa.contact == ob.contact);
+            REQUIRE(oa.contact_count == ob.contact_count);
+            contacts += oa.contact ? 1 : 0;
+            two_contacts += oa.contact_count == 2 ? 1 : 0;
+            // Relative to the value, with a floor at the scale the quantity lives on (1 mm depth,
+            // 1 cm contact location, 1 N force): 1e-9 of those is far below any sensing threshold.
+            worst_depth = std::max(worst_depth, relative_gap(oa.depth, ob.depth, 1e-3));
+            worst_l = std::max(worst_l, relative_gap(oa.l_d, ob.l_d, 1e-2));
+            const Vec2 fa = m.rotate(oa.force);
+            worst_force = std::max(worst_force, glm::length(fa - ob.force) / std::max(glm::length(fa), 1.0));
+        }
+        CHECK(worst_depth <= 1e-9);
+        CHECK(worst_l <= 1e-9);
+        CHECK(worst_force <= 1e-9);
+        CHECK(contacts > 3000);      // the path really touches the scene...
+        CHECK(two_contacts > 0);     // ...including the concave corner and the bowl
+        MESSAGE("angle " << angle << ": worst relative gaps depth " << worst_depth << ", l_d " << worst_l
+                         << ", force " << worst_force);
+    }
+}
+
+TEST_CASE("no tunnelling: the finger never drags the proxy through the solid, whatever the jump") {
+    // Random jumps of up to 10 cm per tick over the thin-wall scene: the proxy always stays on the
+    // side of the wall it started on, and never inside the floor.
+    const double t = 0.001;  // m, wall thickness
+    const Scene scene = scene_of({polyline({{-0.2, 0.0}, {-t / 2, 0.0}, {-t / 2, 0.05}, {t / 2, 0.05},
+                                            {t / 2, 0.0}, {0.2, 0.0}})});
+    ProxyRig rig(scene);
+    rig.proxy->reset({-0.1, 0.03}, 0.0);
+    std::uint64_t state = 12345;
+    auto uniform = [&](double lo, double hi) {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return lo + (hi - lo) * static_cast<double>(state >> 11) / 9007199254740992.0;
+    };
+    int crossings_attempted = 0;
+    Vec2 prev_x = rig.proxy->output().proxy;
+    double prev_phi = 0.0;
+    for (int i = 0; i < 20000; ++i) {
+        const Vec2 x{uniform(-0.1, 0.1), uniform(-0.02, 0.045)};  // always below the wall's top
+        const double phi = uniform(-1.2, 1.2);
+        crossings_attempted += x.x > 0.0 ? 1 : 0;
+        const Vec2 before = rig.proxy->output().proxy;
+        const ProxyOutput& o = rig.at(x, phi);
+        REQUIRE(is_finite(o.proxy));
+        CAPTURE(i);
+        CAPTURE(before);
+        CAPTURE(prev_phi);
+        CAPTURE(x);
+        CAPTURE(phi);
+        CAPTURE(o.proxy);
+        // Every pad point stays out of the solid (1e-9 m slack) and left of the wall: the pad is
+        // below the wall's top (finger centre <= 4.5 cm), so reaching the right side would need a
+        // pad point to pass through the wall.
+        const double h = L / (2 * R);
+        double max_x = -1e9, min_y = 1e9;
+        for (int k = 0; k <= 64; ++k) {
+            const Vec2 p = o.proxy + R * unit_at(phi - kPi / 2 - h + 2 * h * k / 64.0);
+            max_x = std::max(max_x, p.x);
+            min_y = std::min(min_y, p.y);
+        }
+        REQUIRE(max_x <= -t / 2 + 1e-9);
+        REQUIRE(min_y >= -1e-9);
+        prev_x = o.proxy;
+        prev_phi = phi;
+    }
+    (void)prev_x;
+    CHECK(crossings_attempted > 5000);
+}
+
+TEST_CASE("anticipation: in free space over a convex scene l_d varies continuously") {
+    // A convex block (closed contour drawn clockwise) with a convex arc cap. The finger passes
+    // 1 cm above it; l_d is the contact location of the nearest c-space point.
+    Contour c;
+    c.closed = true;
+    c.segments.push_back(line({-0.05, 0.0}, {-0.05, 0.04}));
+    c.segments.push_back(arc({0.0, 0.04}, 0.05, kPi, 0.0));  // clockwise over the top: convex cap
+    c.segments.push_back(line({0.05, 0.04}, {0.05, 0.0}));
+    c.segments.push_back(line({0.05, 0.0}, {-0.05, 0.0}));
+    ProxyRig rig(scene_of({c}));
+    const double step = 1e-5;  // m per tick
+    double prev = 0.0, worst = 0.0;
+    bool have_prev = false;
+    int anticipating = 0;
+    for (double s = 0.0; s <= 1.0; s += 1e-4) {
+        // A circle of radius 9 cm around the cap's centre, swept from left to right, phi tilting.
+        const double a = kPi * (1.0 - s);
+        const Vec2 x = Vec2{0.0, 0.04} + (0.05 + R + 0.01) * unit_at(a);
+        const double phi = 0.3 * std::sin(3.0 * s);
+        const ProxyOutput& o = rig.at(x, phi);
+        REQUIRE_FALSE(o.contact);
+        REQUIRE(o.anticipating);
+        ++anticipating;
+        if (have_prev) worst = std::max(worst, std::abs(o.l_d - prev));
+        prev = o.l_d;
+        have_prev = true;
+        CHECK(std::abs(o.l_d) <= L / 2 + kTol);
+    }
+    // Path step ~ 0.087 m * pi * 1e-4 = 2.7e-5 m and phi step <= 1e-4 rad: the contact location
+    // of the nearest point moves by about R * (phi step + angle step) ~ 2e-5 m per step. A jump
+    // (switching to a far piece) would be millimetres.
+    CHECK(worst <= 1e-4);
+    CHECK(anticipating > 9000);
+    (void)step;
+}
+
+TEST_CASE("point finger: the proxy is the god-object on the contour itself, l = 0") {
+    FingerShape point{FingerKind::point, 0.0, 0.0};
+    ProxyRig rig(block_scene(), point);
+    rig.proxy->reset({-0.2, 0.05}, 0.0);
+    const ProxyOutput& o = rig.at({-0.2, -0.001}, 0.3);
+    REQUIRE(o.contact);
+    CHECK(std::abs(o.proxy.y) <= kTol);
+    CHECK(std::abs(o.proxy.x + 0.2) <= kTol);
+    CHECK(std::abs(o.depth - 0.001) <= kTol);
+    CHECK(std::abs(o.force.y - 1000.0 * 0.001) <= 1e-9);
+    CHECK(o.l_d == 0.0);
+    // Sliding up against the block's left face (x = -0.05) the point stops on it.
+    const ProxyOutput& w = rig.at({-0.04, 0.01}, 0.0);
+    REQUIRE(w.contact);
+    CHECK(std::abs(w.proxy.x + 0.05) <= kTol);
+    CHECK(std::abs(w.proxy.y - 0.01) <= kTol);
+}
+
+TEST_CASE("full-circle finger: a disc of radius R touches a convex corner from any side") {
+    FingerShape disc{FingerKind::full_circle, R, 0.0};
+    ProxyRig rig(block_scene(), disc);
+    const Vec2 corner{0.05, 0.06};
+    // Come down over the corner, then push diagonally into it from several directions: the proxy
+    // is the radial projection of the finger onto the circle of radius R about the corner, and l
+    // runs round the whole circle (no pad ends).
+    for (const double deg : {10.0, 30.0, 45.0, 60.0, 80.0}) {
+        const double a = deg * kPi / 180.0;
+        rig.proxy->reset(corner + 0.05 * unit_at(a), 0.0);
+        const Vec2 x = corner + (R - 0.001) * unit_at(a);
+        const ProxyOutput& o = rig.at(x, 0.0);
+        CAPTURE(deg);
+        REQUIRE(o.contact);
+        CHECK(std::abs(glm::length(o.proxy - corner) - R) <= kTol);
+        CHECK(std::abs(angle_of(o.proxy - corner) - a) <= 1e-9);
+        CHECK(std::abs(o.depth - 0.001) <= kTol);
+        // The disc touches the corner at angle a - pi from its centre; l = R (a - pi - (-pi/2)).
+        CHECK(std::abs(o.l_d - R * wrap_pi(a - kPi / 2)) <= kTol);
+    }
+}
