@@ -21,6 +21,21 @@ namespace {
 constexpr double kOnTolerance = 1e-9;
 // Sines/cosines below this are "tangential": grazing a piece is not entering it.
 constexpr double kTangentTolerance = 1e-12;
+// Cosines (between a unit direction of motion and a piece's normal) below this are a graze where
+// two pieces meet tangentially (an offset line running into its vertex circle). Moving a distance s
+// at such an angle enters by at most s * 1e-9 along a line and r * 1e-18 / 2 into a convex circle:
+// far below kOnTolerance for any motion inside the workspace.
+constexpr double kGrazeTolerance = 1e-9;
+
+// The graze tolerance for motion against `piece`. A convex circle's normal turns by 1/r per metre,
+// so a proxy kOnTolerance away from a tangential junction sees the circle's normal tilted by
+// kOnTolerance / r against the line's; moving tangentially into a convex circle at that angle
+// enters it by only r * angle^2 / 2.
+double graze_tolerance(const CPiece& piece) {
+    if (piece.kind == CPiece::Kind::circle && piece.free_outside)
+        return std::max(kGrazeTolerance, 4.0 * kOnTolerance / piece.radius);
+    return kGrazeTolerance;
+}
 // Iterations of the constrained motion per tick: each either ends the motion or adds/drops a
 // constraint, so real cases finish in 2-5; the bound keeps the tick's cost fixed.
 constexpr int kMaxWalkIterations = 24;
@@ -32,6 +47,31 @@ constexpr int kMaxDepenetrationIterations = 4;
 constexpr double kMinRotationChord = 1e-6;
 constexpr double kMaxRotationChord = 2.5e-4;
 constexpr int kMaxRotationSteps = 1024;
+
+// True when the straight motion from `at` (on the piece) toward `goal` heads into the obstacle
+// across this piece. For a line that is "goal behind the line"; for a circle it is not the same as
+// "goal inside the circle": a chord toward a goal outside a convex circle still cuts through it.
+bool pressing(const CPiece& piece, Vec2 at, Vec2 goal) {
+    const Vec2 v = goal - at;
+    return glm::dot(v, piece_normal_at(piece, at)) < -kTangentTolerance * glm::length(v);
+}
+
+// True when `at` is at one end of the piece and moving along direction t takes it off that end:
+// the motion cannot enter the piece there, whatever the piece's normal says.
+// Motion across the piece's end direction (a cosine within kGrazeTolerance of 0) does not leave:
+// sliding along a floor into the foot of a wall must still meet the wall.
+bool leaves_range(const CPiece& piece, Vec2 at, Vec2 t) {
+    const double param = piece_param(piece, at);
+    if (piece.kind == CPiece::Kind::line) {
+        const double d = glm::dot(t, piece.dir);
+        return (param <= kOnTolerance && d < -kGrazeTolerance) ||
+               (param >= piece.len - kOnTolerance && d > kGrazeTolerance);
+    }
+    // Rate of turning about the centre, as a cosine: > 0 is counter-clockwise.
+    const double w = cross(glm::normalize(at - piece.center), t);
+    const double tol = kOnTolerance / piece.radius;
+    return (param <= tol && w < -kGrazeTolerance) || (param >= piece.span.width - tol && w > kGrazeTolerance);
+}
 
 Vec2 arc_tangent(const CPiece& piece, double param, double direction) {
     return direction * perp_left(unit_at(piece.span.start + param));
@@ -205,6 +245,24 @@ bool Proxy::inside_or_past_concave_end(const CPiece& piece, double param, double
     return seg.free_outside ? concave_at_start() : concave_at_end();
 }
 
+// At a junction the obstacle's boundary passes from one piece to the next. A motion from `at` (on
+// piece i) along unit direction t that leaves piece i off its end is judged by the piece it moves
+// onto, if any piece through `at` keeps t within its extent (a convex junction, or a tangential
+// one). If none does, t points into the wedge beyond both ends: at a concave junction that wedge
+// is solid, so piece i's own normal still decides (returns false).
+bool Proxy::handed_over(int i, Vec2 at, Vec2 t) const {
+    if (!leaves_range(pieces_[i], at, t)) return false;
+    for (int j = 0; j < static_cast<int>(pieces_.size()); ++j) {
+        if (j == i) continue;
+        const CPiece& other = pieces_[j];
+        if (std::abs(piece_signed_distance(other, at)) > kOnTolerance) continue;
+        const double slack = other.kind == CPiece::Kind::line ? kOnTolerance : kOnTolerance / other.radius;
+        if (!piece_param_inside(other, piece_param(other, at), slack)) continue;
+        if (!leaves_range(other, at, t)) return true;
+    }
+    return false;
+}
+
 // ---- Proxy::walk --------------------------------------------------------------------------------
 Vec2 Proxy::walk(Vec2 p, Vec2 goal) {
     active_count_ = 0;
@@ -227,7 +285,7 @@ Vec2 Proxy::walk(Vec2 p, Vec2 goal) {
         }
         const int current = active_[0];
         const CPiece& piece = pieces_[current];
-        if (piece_signed_distance(piece, goal) >= 0.0) {  // the finger left this piece's obstacle
+        if (!pressing(piece, proxy_, goal)) {  // the motion toward the finger leaves this piece
             active_count_ = 0;
             continue;
         }
@@ -263,11 +321,11 @@ Vec2 Proxy::walk(Vec2 p, Vec2 goal) {
 // other; return false when both block (the proxy rests in the corner).
 bool Proxy::try_release_corner(Vec2 goal) {
     const int ids[2] = {active_[0], active_[1]};
-    const double d0 = piece_signed_distance(pieces_[ids[0]], goal);
-    const double d1 = piece_signed_distance(pieces_[ids[1]], goal);
-    if (d0 >= 0.0 && d1 >= 0.0) { active_count_ = 0; return true; }
-    if (d0 >= 0.0) { active_[0] = ids[1]; active_count_ = 1; return true; }
-    if (d1 >= 0.0) { active_count_ = 1; return true; }
+    const bool p0 = pressing(pieces_[ids[0]], proxy_, goal);
+    const bool p1 = pressing(pieces_[ids[1]], proxy_, goal);
+    if (!p0 && !p1) { active_count_ = 0; return true; }
+    if (!p0) { active_[0] = ids[1]; active_count_ = 1; return true; }
+    if (!p1) { active_count_ = 1; return true; }
     for (int k = 0; k < 2; ++k) {
         const CPiece& along = pieces_[ids[k]];
         const CPiece& other = pieces_[ids[1 - k]];
@@ -277,7 +335,9 @@ bool Proxy::try_release_corner(Vec2 goal) {
         if (std::abs(ds) <= kTangentTolerance) continue;
         const Vec2 t = along.kind == CPiece::Kind::line ? (ds > 0 ? along.dir : -along.dir)
                                                         : arc_tangent(along, s0, ds > 0 ? 1.0 : -1.0);
-        if (glm::dot(t, piece_normal_at(other, proxy_)) > kTangentTolerance) {
+        // Either piece's rounding tilts the comparison: take the looser of the two tolerances.
+        const double tol = std::max(graze_tolerance(other), graze_tolerance(along));
+        if (glm::dot(t, piece_normal_at(other, proxy_)) > -tol || handed_over(ids[1 - k], proxy_, t)) {
             active_[0] = ids[k];
             active_count_ = 1;
             return true;
@@ -306,8 +366,21 @@ Proxy::Hit Proxy::first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b)
             if (t >= best.s) continue;
             const Vec2 x = p + t * v;
             if (!piece_param_inside(piece, piece_param(piece, x), kOnTolerance)) continue;
+            if (t <= t_slack && handed_over(i, x, v / len)) continue;
             best = {true, t, x, i};
         } else {
+            if (piece.free_outside && std::abs(piece_signed_distance(piece, p)) <= kOnTolerance) {
+                // Starting on a convex circle, the path enters only if it heads inward here; it
+                // cannot come back to the circle later. (The roots are useless here: a start
+                // 1e-13 m inside turns a tangent path into a 1e-7 m chord with a steep "entry".)
+                if (0.0 >= best.s) continue;
+                const Vec2 radial = glm::normalize(p - piece.center);
+                if (glm::dot(v, radial) / len >= -graze_tolerance(piece)) continue;
+                if (handed_over(i, p, v / len)) continue;
+                if (!piece_param_inside(piece, piece_param(piece, p), kOnTolerance / piece.radius)) continue;
+                best = {true, 0.0, p, i};
+                continue;
+            }
             double roots[2];
             const int n = line_circle(p, v, piece.center, piece.radius, roots);
             for (int k = 0; k < n; ++k) {
@@ -316,12 +389,13 @@ Proxy::Hit Proxy::first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b)
                 const Vec2 x = p + t * v;
                 const Vec2 radial = (x - piece.center) / piece.radius;
                 const double along = glm::dot(v, radial) / len;
-                const bool entering = piece.free_outside ? along < -kTangentTolerance
+                const bool entering = piece.free_outside ? along < -graze_tolerance(piece)
                                                          : along > kTangentTolerance;
                 if (!entering) continue;
                 if (!piece_param_inside(piece, piece_param(piece, x), kOnTolerance / piece.radius)) {
                     continue;
                 }
+                if (t <= t_slack && handed_over(i, x, v / len)) continue;
                 best = {true, std::max(t, 0.0), t < 0.0 ? p : x, i};
             }
         }
@@ -344,7 +418,9 @@ Proxy::Hit Proxy::first_entry_arc(const CPiece& on, double s0, double s1, int ex
         const double s = (s_on - s0) / ds;
         if (s < -s_slack || s > 1.0 || s >= best.s) return;
         const Vec2 t = arc_tangent(on, s_on, direction);
-        if (glm::dot(t, piece_normal_at(piece, x)) >= -kTangentTolerance) return;  // not entering
+        const double tol = std::max(graze_tolerance(piece), graze_tolerance(on));
+        if (glm::dot(t, piece_normal_at(piece, x)) >= -tol) return;  // not entering
+        if (handed_over(i, x, t)) return;
         best = {true, std::max(s, 0.0), s < 0.0 ? proxy_ : x, i};
     };
     for (int i = 0; i < static_cast<int>(pieces_.size()); ++i) {
@@ -386,7 +462,7 @@ void Proxy::collect_contacts(Vec2 goal) {
     };
     for (const CPiece& piece : pieces_) {
         if (std::abs(piece_signed_distance(piece, proxy_)) > kOnTolerance) continue;
-        if (piece_signed_distance(piece, goal) >= 0.0) continue;
+        if (!pressing(piece, proxy_, goal)) continue;
         const double slack = piece.kind == CPiece::Kind::line ? kOnTolerance
                                                               : kOnTolerance / piece.radius;
         if (!piece_param_inside(piece, piece_param(piece, proxy_), slack)) continue;

@@ -71,6 +71,7 @@ private:
     void gather_segments(Vec2 center, double half_size);  // segment_ids_: those in the box
     void build_pieces(double phi);                         // pieces_ of segment_ids_ at phi
     void depenetrate(double max_push);
+    bool handed_over(int i, Vec2 at, Vec2 t) const;
     bool inside_or_past_concave_end(const CPiece& piece, double param, double reach) const;
     Vec2 walk(Vec2 from, Vec2 goal);
     Hit first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b) const;

@@ -18,7 +18,7 @@ const double kHalf = L / (2 * R);  // pad half-angle (rad)
 Scene floor_scene() { return scene_of({polyline({{-1.0, 0.0}, {1.0, 0.0}})}); }
 }  // namespace
 
-TEST_CASE("flat floor: pad interior contact at l = -R phi, exact depth and force") {
+TEST_CASE("flat floor: pad interior contact at l = -R phi with exact depth and force") {
     ProxyRig rig(floor_scene());
     const double depth = 0.001;  // m: Ke depth = 1 N, under the 1.5 N clamp
     for (double phi = -0.99 * kHalf; phi <= 0.99 * kHalf; phi += kHalf / 20) {
@@ -36,7 +36,7 @@ TEST_CASE("flat floor: pad interior contact at l = -R phi, exact depth and force
     }
 }
 
-TEST_CASE("flat floor: beyond the pad's span the pad's end touches, centre lowered to R cos(phi - h)") {
+TEST_CASE("flat floor: beyond the pad's span the pad end touches and the centre drops to R cos(phi - h)") {
     ProxyRig rig(floor_scene());
     for (double phi : {kHalf + 0.05, kHalf + 0.4, 1.2, -(kHalf + 0.05), -1.2}) {
         rig.proxy->reset({0.0, 0.1}, phi);
@@ -115,7 +115,7 @@ TEST_CASE("bowl wider than the pad: the pad interior rests on the concentric arc
     }
 }
 
-TEST_CASE("bowl narrower than the pad: both pad ends rest on the rim walls, centroid l = 0") {
+TEST_CASE("bowl narrower than the pad: both pad ends rest on the rim walls with centroid l = 0") {
     const double rho = 0.015;  // < R: the pad cannot reach the bottom
     const Vec2 C{0.0, 0.0};
     Scene s = scene_of({Contour{false,

@@ -80,7 +80,7 @@ double relative_gap(double a, double b, double scale) { return std::abs(a - b) /
 
 }  // namespace
 
-TEST_CASE("rigid motion: translating by (1000 m, -1000 m) and rotating changes nothing but the frame") {
+TEST_CASE("rigid motion: translating by 1000 m and -1000 m and rotating changes nothing but the frame") {
     const Scene scene = mixed_scene();
     const auto path = wandering_path();
     for (const double angle : {0.0, 0.7853981633974483, 2.345, -1.1}) {
@@ -122,7 +122,7 @@ TEST_CASE("rigid motion: translating by (1000 m, -1000 m) and rotating changes n
     }
 }
 
-TEST_CASE("no tunnelling: the finger never drags the proxy through the solid, whatever the jump") {
+TEST_CASE("no tunnelling: the finger never drags the proxy through the solid whatever the jump") {
     // Random jumps of up to 10 cm per tick over the thin-wall scene: the proxy always stays on the
     // side of the wall it started on, and never inside the floor.
     const double t = 0.001;  // m, wall thickness
@@ -206,7 +206,7 @@ TEST_CASE("anticipation: in free space over a convex scene l_d varies continuous
     (void)step;
 }
 
-TEST_CASE("point finger: the proxy is the god-object on the contour itself, l = 0") {
+TEST_CASE("point finger: the proxy is the god-object on the contour itself with l = 0") {
     FingerShape point{FingerKind::point, 0.0, 0.0};
     ProxyRig rig(block_scene(), point);
     rig.proxy->reset({-0.2, 0.05}, 0.0);
@@ -244,4 +244,39 @@ TEST_CASE("full-circle finger: a disc of radius R touches a convex corner from a
         // The disc touches the corner at angle a - pi from its centre; l = R (a - pi - (-pi/2)).
         CHECK(std::abs(o.l_d - R * wrap_pi(a - kPi / 2)) <= kTol);
     }
+}
+
+TEST_CASE("bumpy terrain stroke: the frictionless proxy never lags behind the surface above the finger") {
+    // 1000 line segments 5 mm wide following two sinusoids (amplitude 8 mm, slopes up to 0.8), so
+    // the pad rests on slopes, wraps vertices and bridges valleys. The finger slides 4 m at 0.1 mm
+    // per tick, 1 mm below the terrain point under it, with a swinging finger angle.
+    // Bound: some boundary point lies straight above the finger no higher than the highest terrain
+    // within R (every pad point is within R of the centre and below it), so the nearest boundary
+    // point, where a slowly moving frictionless proxy rests, is at most
+    //   depth <= max(terrain over [x - R, x + R]) - terrain(x) + 1 mm
+    // away. A proxy that snags on a junction lags by centimetres.
+    auto height = [](double x) { return 0.005 * std::sin(60.0 * x) + 0.003 * std::sin(170.0 * x + 1.0); };
+    const double w = 0.005;  // m, segment width
+    Contour c;
+    for (int i = 0; i < 1000; ++i) c.segments.push_back(line({i * w, height(i * w)}, {(i + 1) * w, height((i + 1) * w)}));
+    ProxyRig rig(scene_of({c}));
+    rig.proxy->reset({0.5, 0.1}, 0.3 * std::sin(3.5));  // lowered onto the terrain from above
+    double worst = -1.0;
+    int contacts = 0, vertex_contacts = 0;
+    for (int k = 0; k < 40000; ++k) {
+        const double x = 0.5 + 1e-4 * k;
+        const double phi = 0.3 * std::sin(7.0 * x);
+        const ProxyOutput& o = rig.at({x, height(x) + R - 0.001}, phi);
+        double highest = -1.0;
+        for (int i = static_cast<int>((x - R) / w); i <= static_cast<int>((x + R) / w) + 1; ++i)
+            highest = std::max(highest, height(i * w));
+        worst = std::max(worst, o.depth - (highest - height(x) + 0.001));
+        contacts += o.contact ? 1 : 0;
+        for (int i = 0; i < o.contact_count; ++i)
+            vertex_contacts += o.contacts[i].source == CPiece::Source::vertex ? 1 : 0;
+    }
+    CHECK(worst <= 1e-9);
+    CHECK(contacts == 40000);
+    CHECK(vertex_contacts > 1000);
+    MESSAGE("worst excess over the bound: " << worst << " m; ticks on a vertex: " << vertex_contacts);
 }

@@ -1,0 +1,81 @@
+// bench_proxy.cpp — cost of one proxy tick (Proxy::update) against scenes of 10, 1,000 and
+// 100,000 line segments.
+//
+// The scene is a terrain of N segments, each 5 mm wide, with a height profile of two sinusoids
+// (amplitude 8 mm), so longer scenes add content, not density: with a working spatial index the
+// tick cost stays flat as N grows. The finger slides along the middle of the terrain at 1 mm per
+// tick pressing ~1 mm in, with a swinging finger angle, so most ticks are in contact and many
+// cross vertices. One benchmark iteration = one tick; the path is precomputed.
+#include "haptics/environment.hpp"
+#include "haptics/proxy.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <vector>
+
+namespace {
+
+using namespace contactlab;
+
+constexpr double kSegmentWidth = 0.005;  // m
+
+double terrain_height(double x) { return 0.005 * std::sin(60.0 * x) + 0.003 * std::sin(170.0 * x + 1.0); }
+
+Scene terrain_scene(int segments) {
+    Scene scene;
+    Contour c;
+    for (int i = 0; i < segments; ++i) {
+        const double x0 = i * kSegmentWidth, x1 = (i + 1) * kSegmentWidth;
+        c.segments.push_back(LineSegment{{x0, terrain_height(x0)}, {x1, terrain_height(x1)}});
+    }
+    scene.contours.push_back(c);
+    return scene;
+}
+
+struct Sample {
+    Vec2 x;
+    double phi;
+};
+
+// 4000 ticks along the middle of the terrain, as in a slow contour-following stroke.
+std::vector<Sample> stroke(int segments) {
+    const double mid = 0.5 * segments * kSegmentWidth;
+    const double span = std::min(2.0, 0.4 * segments * kSegmentWidth);  // m travelled
+    std::vector<Sample> path;
+    const int n = 4000;
+    for (int k = 0; k < n; ++k) {
+        const double x = mid - 0.5 * span + span * k / n;
+        const double phi = 0.3 * std::sin(7.0 * x);
+        path.push_back({{x, terrain_height(x) + 0.026 - 0.001}, phi});
+    }
+    return path;
+}
+
+void BM_ProxyTick(benchmark::State& state) {
+    const int segments = static_cast<int>(state.range(0));
+    const Scene scene = terrain_scene(segments);
+    const Environment env = build_environment(scene);
+    Proxy proxy(env, ProxyDef{});
+    const auto path = stroke(segments);
+    proxy.reset(path[0].x + Vec2{0.0, 0.05}, path[0].phi);
+    std::size_t k = 0, contacts = 0, ticks = 0;
+    for (auto _ : state) {
+        const Sample& s = path[k];
+        const ProxyOutput& o = proxy.update(s.x, s.phi);
+        benchmark::DoNotOptimize(o.force);
+        contacts += o.contact ? 1 : 0;
+        ++ticks;
+        if (++k == path.size()) {  // back to the start from above, as a user lifting the finger
+            k = 0;
+            proxy.reset(path[0].x + Vec2{0.0, 0.05}, path[0].phi);
+        }
+    }
+    state.counters["contact_fraction"] = ticks ? static_cast<double>(contacts) / ticks : 0.0;
+    state.SetLabel(std::to_string(segments) + " line segments");
+}
+BENCHMARK(BM_ProxyTick)->Arg(10)->Arg(1000)->Arg(100000);
+
+}  // namespace
+
+BENCHMARK_MAIN();
