@@ -1,6 +1,7 @@
 // trace_csv.cpp — reading finger samples and writing proxy states as CSV.
 #include "engine/app/trace_csv.hpp"
 
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -15,6 +16,13 @@ constexpr const char* kColumns[4] = {"t", "x", "y", "phi"};
 
 std::string where(const std::string& origin, std::size_t line) {
     return origin + ":" + std::to_string(line);
+}
+
+// Shortest text that reads back to the same double (std::to_string prints 1e-7 as "0.000000").
+std::string exact(double v) {
+    char buf[32];
+    const auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, v);
+    return ec == std::errc() ? std::string(buf, ptr) : std::string("?");
 }
 
 // Parses one field (already split at commas, surrounding spaces allowed) as a finite double.
@@ -74,8 +82,8 @@ std::vector<FingerSample> read_finger_samples(std::istream& in, const std::strin
         }
         const FingerSample s{values[0], {values[1], values[2]}, values[3]};
         if (!samples.empty() && !(s.t > samples.back().t))
-            throw CsvError(where(origin, line) + " (column 1, t): time " + std::to_string(s.t) +
-                           " s does not increase (previous " + std::to_string(samples.back().t) + " s)");
+            throw CsvError(where(origin, line) + " (column 1, t): time " + exact(s.t) +
+                           " s does not increase (previous " + exact(samples.back().t) + " s)");
         samples.push_back(s);
     }
     if (in.bad()) throw CsvError(origin + ": read error");
