@@ -15,7 +15,7 @@ namespace contactlab::app {
 void apply_overrides(Scene& scene, const SceneOverrides& o) {
     std::string given;
     auto note = [&](const char* name, std::optional<double> v) {
-        if (v) given += std::string(given.empty() ? "" : ", ") + name + " " + std::to_string(*v);
+        if (v) given += std::string(given.empty() ? "" : ", ") + name + " " + exact(*v);
     };
     note("--stiffness", o.stiffness);
     note("--radius", o.radius);

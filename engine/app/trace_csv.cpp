@@ -18,13 +18,6 @@ std::string where(const std::string& origin, std::size_t line) {
     return origin + ":" + std::to_string(line);
 }
 
-// Shortest text that reads back to the same double (std::to_string prints 1e-7 as "0.000000").
-std::string exact(double v) {
-    char buf[32];
-    const auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, v);
-    return ec == std::errc() ? std::string(buf, ptr) : std::string("?");
-}
-
 // Parses one field (already split at commas, surrounding spaces allowed) as a finite double.
 double parse_field(std::string_view field, const std::string& origin, std::size_t line, int column) {
     while (!field.empty() && (field.front() == ' ' || field.front() == '\t')) field.remove_prefix(1);
@@ -45,6 +38,12 @@ double parse_field(std::string_view field, const std::string& origin, std::size_
 }
 
 }  // namespace
+
+std::string exact(double v) {
+    char buf[32];
+    const auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, v);
+    return ec == std::errc() ? std::string(buf, ptr) : std::string("?");
+}
 
 std::vector<FingerSample> read_finger_samples(std::istream& in, const std::string& origin) {
     std::vector<FingerSample> samples;

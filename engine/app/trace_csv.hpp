@@ -29,6 +29,10 @@ struct FingerSample {
 inline constexpr const char* kTraceInputHeader = "t,x,y,phi";
 inline constexpr const char* kTraceOutputHeader = "t,x,y,phi,proxy_x,proxy_y,contact,depth,fx,fy,l_d";
 
+// Shortest text that reads back to the same double, for messages (std::to_string prints 1e-7
+// as "0.000000").
+std::string exact(double v);
+
 // Reads samples from `in`; `origin` (the file name) prefixes error messages.
 std::vector<FingerSample> read_finger_samples(std::istream& in, const std::string& origin);
 std::vector<FingerSample> read_finger_samples_file(const std::string& path);
