@@ -1,0 +1,28 @@
+// subcommands.hpp — how subcommand files plug into `contactlab` (engine/app/main.cpp).
+//
+// Each subcommand file defines one register_* function that adds its CLI11 subcommand(s) to the
+// app; the callback stores its exit code in `rc`. Errors: throw BadInput (or SceneError /
+// CsvError) for anything the user can fix (exit 2); other exceptions exit 1.
+#pragma once
+
+#include "engine/app/trace_command.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <stdexcept>
+
+namespace contactlab::app {
+
+inline constexpr int kExitBadInput = 2;
+
+// A bad option value or input file not covered by SceneError/CsvError: exit code 2.
+struct BadInput : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// --stiffness --radius --length --max-force, replacing the scene's values (trace_command.hpp).
+void add_override_options(CLI::App* cmd, SceneOverrides& o);
+
+void register_trace_commands(CLI::App& app, int& rc);  // trace, demo (trace_cli.cpp)
+
+}  // namespace contactlab::app
