@@ -16,6 +16,7 @@
 #include <fcntl.h>
 #include <fstream>
 #include <sstream>
+#include <vector>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -157,9 +158,12 @@ Scene read_scene(const json& root) {
     reject_unknown_keys(root, "", {"version", "description", "finger", "contours", "force",
                                    "contact_location"});
     const json& version = require(root, "", "version");
+    // Only scalars are echoed back: dump() recurses, and a version nested 100000 arrays deep
+    // would overflow the stack.
     if (!version.is_number_integer() || version.get<long long>() != kSceneFormatVersion)
-        fail("version", "unsupported format version " + version.dump() + " (this build reads " +
-                            std::to_string(kSceneFormatVersion) + ")");
+        fail("version", "unsupported format version " +
+                            (version.is_structured() ? std::string(type_name(version)) : version.dump()) +
+                            " (this build reads " + std::to_string(kSceneFormatVersion) + ")");
     if (auto it = root.find("description"); it != root.end() && !it->is_string())
         fail("description", "expected a string");
 
@@ -196,14 +200,77 @@ Scene read_scene(const json& root) {
     return s;
 }
 
+// Finds the JSON path of the value nlohmann's parser stopped at. A number that overflows a double
+// ("1e999") is refused inside the parser (out_of_range.406) with neither a path nor a position;
+// replaying the text through this SAX handler tracks the path up to that point, so the message can
+// say where the number is, like every other problem. Used only after a parse has failed.
+struct ErrorLocator : json::json_sax_t {
+    struct Level {
+        bool array = false;
+        std::size_t count = 0;  // arrays: values begun so far
+        std::string key;        // objects: the last key read
+    };
+    std::vector<Level> levels;
+
+    bool begin_value() {
+        if (!levels.empty() && levels.back().array) ++levels.back().count;
+        return true;
+    }
+    bool open(bool array) {
+        begin_value();
+        levels.push_back(Level{array, 0, {}});
+        return true;
+    }
+    bool close() {
+        levels.pop_back();
+        return true;
+    }
+    bool null() override { return begin_value(); }
+    bool boolean(bool) override { return begin_value(); }
+    bool number_integer(json::number_integer_t) override { return begin_value(); }
+    bool number_unsigned(json::number_unsigned_t) override { return begin_value(); }
+    bool number_float(json::number_float_t, const json::string_t&) override { return begin_value(); }
+    bool string(json::string_t&) override { return begin_value(); }
+    bool binary(json::binary_t&) override { return begin_value(); }
+    bool start_object(std::size_t) override { return open(false); }
+    bool key(json::string_t& k) override {
+        levels.back().key = k;
+        return true;
+    }
+    bool end_object() override { return close(); }
+    bool start_array(std::size_t) override { return open(true); }
+    bool end_array() override { return close(); }
+    bool parse_error(std::size_t, const std::string&, const json::exception&) override { return false; }
+
+    // The failing value has not begun: in the innermost array its index is `count`; in the outer
+    // ones the open container is the last value begun, `count - 1`.
+    std::string path() const {
+        std::string p;
+        for (std::size_t i = 0; i < levels.size(); ++i) {
+            const Level& l = levels[i];
+            p = l.array ? index(p, i + 1 == levels.size() ? l.count : l.count - 1) : join(p, l.key);
+        }
+        return p;
+    }
+};
+
 //-------------------------------------------------------------------------------------------------
 // [SECTION] Validation
 //-------------------------------------------------------------------------------------------------
+
+// The coordinate bound read_point() applies, repeated here so that a scene built in memory cannot
+// be saved into a file that load_scene_file() would then refuse.
+void check_point_bound(Vec2 p, const std::string& path) {
+    if (std::abs(p.x) > kMaxCoordinate || std::abs(p.y) > kMaxCoordinate)
+        fail(path, "coordinate beyond +-" + fmt(kMaxCoordinate) + " m");
+}
 
 void validate_segment(const Segment& seg, const std::string& path) {
     auto finite = [](Vec2 v) { return is_finite(v); };
     if (auto* l = std::get_if<LineSegment>(&seg)) {
         if (!finite(l->from) || !finite(l->to)) fail(path, "not a finite number");
+        check_point_bound(l->from, join(path, "from"));
+        check_point_bound(l->to, join(path, "to"));
         if (glm::length(l->to - l->from) < kMinSegmentLength) fail(path, "zero-length line");
         return;
     }
@@ -211,6 +278,7 @@ void validate_segment(const Segment& seg, const std::string& path) {
     if (!finite(a.center) || !std::isfinite(a.radius) || !std::isfinite(a.start_angle) ||
         !std::isfinite(a.end_angle))
         fail(path, "not a finite number");
+    check_point_bound(a.center, join(path, "center"));
     if (!(a.radius > 0.0)) fail(join(path, "radius"), "arc radius must be > 0 m, got " + fmt(a.radius));
     if (a.radius > kMaxCoordinate) fail(join(path, "radius"), "arc radius beyond " + fmt(kMaxCoordinate) + " m");
     if (std::abs(a.start_angle) > 64.0 * kPi || std::abs(a.end_angle) > 64.0 * kPi)
@@ -275,19 +343,33 @@ void validate_scene(const Scene& s) {
 Scene parse_scene(std::string_view text, const std::string& origin) {
     try {
         json root;
-        try {
-            root = json::parse(text.begin(), text.end());
-        } catch (const json::parse_error& e) {
-            // Translate nlohmann's byte offset into a line and column a user can find.
+        // Translates a byte offset (0-based) into a line and column a user can find.
+        auto invalid_json_at = [&](std::size_t offset, const std::string& what) {
             std::size_t line = 1, col = 1;
-            const std::size_t upto = std::min<std::size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
+            const std::size_t upto = std::min(offset, text.size());
             for (std::size_t i = 0; i < upto; ++i) {
                 if (text[i] == '\n') { ++line; col = 1; } else { ++col; }
             }
-            std::string what = e.what();
-            if (auto p = what.find("syntax error"); p != std::string::npos) what = what.substr(p);
             throw SceneError("line " + std::to_string(line) + ", column " + std::to_string(col) +
                              ": invalid JSON (" + what + ")");
+        };
+        // nlohmann's lexer reads a NUL byte as the end of the input, so "{...}\0junk" would pass.
+        // JSON allows no raw NUL anywhere (not even inside strings): refuse it where it stands.
+        if (const std::size_t nul = text.find('\0'); nul != std::string_view::npos)
+            invalid_json_at(nul, "NUL byte");
+        try {
+            root = json::parse(text.begin(), text.end());
+        } catch (const json::parse_error& e) {
+            std::string what = e.what();
+            if (auto p = what.find("syntax error"); p != std::string::npos) what = what.substr(p);
+            invalid_json_at(e.byte > 0 ? e.byte - 1 : 0, what);
+        } catch (const json::out_of_range& e) {
+            if (e.id != 406) throw;
+            ErrorLocator where;
+            json::sax_parse(text.begin(), text.end(), &where);
+            std::string what = e.what();
+            if (auto p = what.find("number overflow"); p != std::string::npos) what = what.substr(p);
+            fail(where.path(), "not a finite number (" + what + ")");
         }
         Scene s = read_scene(root);
         validate_scene(s);
@@ -348,8 +430,12 @@ void save_scene_file(const Scene& s, const std::string& path) {
         left -= static_cast<std::size_t>(n);
     }
     ::fchmod(fd, 0644);
-    if (::fsync(fd) != 0 || ::close(fd) != 0) {
-        const int err = errno;
+    // close() must run even when fsync() fails, or every failed save leaks a descriptor.
+    const int sync_rc = ::fsync(fd);
+    const int sync_err = errno;
+    const int close_rc = ::close(fd);
+    if (sync_rc != 0 || close_rc != 0) {
+        const int err = sync_rc != 0 ? sync_err : errno;
         ::unlink(tmp.c_str());
         throw SceneError(path + ": flush failed (" + std::strerror(err) + ")");
     }

@@ -471,11 +471,17 @@ TEST_CASE("scene io error: invalid JSON syntax reports line and column") {
     // Line 3, column 16 is the stray comma.
     CHECK(error_of("{\n  \"version\": 1,\n  \"contours\": [,]\n}").rfind(
               "t.json: line 3, column 16: invalid JSON (syntax error", 0) == 0);
-    check_error("", "line 1, column 1", "invalid JSON");
-    check_error(kFloorDoc.substr(0, kFloorDoc.size() / 2), "line 1, column", "unexpected end of input");
-    check_error(kFloorDoc + " x", "line 1, column", "invalid JSON");
-    check_error(std::string("{\"version\": 1,\0 \"contours\": []}", 31), "line 1, column 15", "invalid JSON");
-    check_error("{\"version\": 1, \"contours\": [], \"description\": \"\xff\"}", "line 1, column", "invalid JSON");
+    check_error("", "line 1, column 1", "unexpected end of input");
+    check_error("{\"version\": 1,\n\"contours\": [", "line 2, column 14", "unexpected end of input");
+    check_error(kFloorDoc + " x", "line 1, column " + std::to_string(kFloorDoc.size() + 2), "invalid JSON");
+    // JSON allows no raw NUL; nlohmann alone would stop reading at one and accept what came before.
+    check_error(std::string("{\"version\": 1,\0 \"contours\": []}", 31), "line 1, column 15",
+                "invalid JSON (NUL byte)");
+    check_error(kFloorDoc + std::string(1, '\0') + "junk", "line 1, column " + std::to_string(kFloorDoc.size() + 1),
+                "invalid JSON (NUL byte)");
+    // Column 48 is the byte 0xff, which is not UTF-8.
+    check_error("{\"version\": 1, \"contours\": [], \"description\": \"\xff\"}", "line 1, column 48",
+                "ill-formed UTF-8");
 }
 
 TEST_CASE("scene io error: arc with zero or negative radius") {
