@@ -1,6 +1,8 @@
 // environment.cpp — compiles scene contours into EnvSegments and their BVH.
 #include "haptics/environment.hpp"
 
+#include "haptics/bezier.hpp"
+
 #include <algorithm>
 
 namespace contactlab {
@@ -90,11 +92,44 @@ int intersect_spans(const AngleSpan& a, const AngleSpan& b, AngleSpan out[2]) {
 
 Environment build_environment(const Scene& scene) {
     Environment env;
+    std::vector<CurvePiece> curve_pieces;
     for (int c = 0; c < static_cast<int>(scene.contours.size()); ++c) {
         const Contour& contour = scene.contours[c];
         const int first = static_cast<int>(env.segments.size());
-        const int count = static_cast<int>(contour.segments.size());
-        for (const Segment& s : contour.segments) env.segments.push_back(compile_segment(s, c));
+        for (int k = 0; k < static_cast<int>(contour.segments.size()); ++k) {
+            const Segment& s = contour.segments[k];
+            env.min_feature = std::min(env.min_feature, segment_length(s));
+            if (!segment_is_curve(s)) {
+                env.segments.push_back(compile_segment(s, c));
+                env.segments.back().scene_segment = k;
+                continue;
+            }
+            // A curve becomes a G1 chain of arcs (exact mode) or chords (flatten mode).
+            curve_pieces.clear();
+            const Bezier b = segment_bezier(s);
+            const int curve_index = static_cast<int>(env.curves.size());
+            env.curves.push_back(b);
+            if (scene.curves.mode == CurveMode::exact) {
+                bezier_to_arcs(b, kExactCurveTolerance, curve_pieces);
+            } else {
+                bezier_to_lines(b, scene.curves.tolerance, curve_pieces);
+            }
+            for (std::size_t i = 0; i < curve_pieces.size(); ++i) {
+                const CurvePiece& p = curve_pieces[i];
+                const Segment piece = p.is_arc ? Segment{ArcSegment{p.center, p.radius, p.start_angle, p.end_angle}}
+                                               : Segment{LineSegment{p.from, p.to}};
+                env.segments.push_back(compile_segment(piece, c));
+                env.segments.back().scene_segment = k;
+                // Exact mode only: the proxy refines contacts on the true curve. Flatten mode is the
+                // user's chosen approximation and stays as flattened.
+                if (scene.curves.mode == CurveMode::exact) env.segments.back().curve = curve_index;
+                // Inside an exact curve the joints are smooth by construction: rounding must not
+                // turn them into tiny vertices.
+                env.segments.back().smooth_end =
+                    scene.curves.mode == CurveMode::exact && i + 1 < curve_pieces.size() && !p.corner_after;
+            }
+        }
+        const int count = static_cast<int>(env.segments.size()) - first;
         for (int i = 0; i < count; ++i) {
             EnvSegment& e = env.segments[first + i];
             const bool last = i + 1 == count;
@@ -103,7 +138,9 @@ Environment build_environment(const Scene& scene) {
         }
         for (int i = 0; i < count; ++i) {
             EnvSegment& e = env.segments[first + i];
-            if (e.next >= 0) {
+            if (e.smooth_end) {
+                e.end_cone = {};
+            } else if (e.next >= 0) {
                 e.end_cone = convex_cone(e, env.segments[e.next]);
             } else {
                 // Open end: the profile is capped as if a cliff fell away into the solid, so the
@@ -118,7 +155,6 @@ Environment build_environment(const Scene& scene) {
     for (const EnvSegment& e : env.segments) {
         boxes.push_back(e.box);
         env.bounds.grow(e.box);
-        env.min_feature = std::min(env.min_feature, e.length);
     }
     env.tree = AabbTree(boxes);
     return env;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "haptics/aabb_tree.hpp"
+#include "haptics/bezier.hpp"
 #include "haptics/scene.hpp"
 
 #include <limits>
@@ -41,6 +42,9 @@ struct EnvSegment {
     int prev = -1;
     int next = -1;
     int contour = 0;
+    int scene_segment = 0;    // index of the scene segment (in its contour) this piece comes from
+    bool smooth_end = false;  // the joint to `next` is inside one curve: G1 by construction
+    int curve = -1;           // exact mode: index into Environment::curves of the curve it approximates
 
     // The vertex at this segment's end: a convex corner (or the end of an open chain) gets the
     // cone of free-side normals the finger may press along there. Empty width: no vertex piece.
@@ -63,9 +67,12 @@ double distance_to_segment(const EnvSegment& s, Vec2 p);
 
 struct Environment {
     std::vector<EnvSegment> segments;
+    // The scene's Bezier segments, kept exact: the proxy refines contacts on them (proxy.cpp).
+    std::vector<Bezier> curves;
     AabbTree tree;
     Aabb bounds;
-    // Length (m) of the shortest segment: the scale of the thinnest feature (a wall's top), which
+    // Length (m) of the shortest scene segment (a curve counts whole, not its arc pieces): the
+    // scale of the thinnest feature (a wall's top), which
     // bounds how far one re-projection sub-step may move the pad (proxy.cpp).
     double min_feature = std::numeric_limits<double>::infinity();
 };

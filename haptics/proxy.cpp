@@ -162,6 +162,8 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi) {
     out_.proxy = proxy_;
     if (proxy_ != finger) {
         collect_contacts(finger);
+        refine_on_curves(finger);
+        out_.proxy = proxy_;
         out_.contact = true;
         out_.depth = glm::length(proxy_ - finger);
         Vec2 force = def_.stiffness * (proxy_ - finger);
@@ -470,6 +472,99 @@ void Proxy::collect_contacts(Vec2 goal) {
     }
     if (out_.contact_count == 0) {
         for (int i = 0; i < active_count_; ++i) add(pieces_[active_[i]]);
+    }
+}
+
+// ---- refine_on_curves ---------------------------------------------------------------------------
+// Curves reach the walk as arc splines within 1e-10 m, good for finding where the proxy rests but
+// with normals off by up to ~1e-7 rad, which would put l a few nm off and could report one touch as
+// two (on neighbouring arcs). Here contacts on a curve are re-solved on the exact Bezier: the same
+// touch is merged, a single contact is moved onto the exact offset (interior) or translated (pad
+// end) curve, and every interior contact takes its normal from the exact foot point.
+namespace {
+
+// Foot of q on the curve near parameter s (Newton on (B(s) - q) . B'(s) = 0, kept in [0, 1]).
+double local_foot(const Bezier& b, Vec2 q, double s) {
+    for (int k = 0; k < 12; ++k) {
+        const Vec2 d1 = bezier_derivative(b, s);
+        const Vec2 r = bezier_point(b, s) - q;
+        const double f = glm::dot(r, d1);
+        const double df = glm::dot(d1, d1) + glm::dot(r, bezier_second_derivative(b, s));
+        if (!(std::abs(df) > 0.0)) break;
+        const double next = std::clamp(s - f / df, 0.0, 1.0);
+        if (std::abs(next - s) <= 1e-17) { s = next; break; }
+        s = next;
+    }
+    return s;
+}
+
+// Free-side unit normal of the curve at s (solid on the right of travel); zero at a cusp.
+Vec2 curve_normal(const Bezier& b, double s) {
+    const Vec2 d = bezier_derivative(b, s);
+    const double len = glm::length(d);
+    return len > 0.0 ? perp_left(d) / len : Vec2{0.0};
+}
+
+// How far (m) a refinement may move the proxy: the arc spline is within 1e-10 m of the curve, so
+// anything larger means Newton found another branch; keep the walk's answer then.
+constexpr double kMaxRefinement = 1e-7;
+// Contacts on one curve closer than this (m) are one touch.
+constexpr double kSameTouchDistance = 1e-4;
+
+}  // namespace
+
+void Proxy::refine_on_curves(Vec2 goal) {
+    auto curve_of = [&](const ProxyContact& c) { return env_->segments[static_cast<std::size_t>(c.segment)].curve; };
+    bool any = false;
+    for (int i = 0; i < out_.contact_count; ++i) any = any || curve_of(out_.contacts[i]) >= 0;
+    if (!any) return;
+    // The same touch seen on two neighbouring arcs of one curve: keep one. The arc spline wiggles
+    // by up to 1e-10 m about the curve, enough for a pad whose radius is close to the curve's to
+    // rest on two arcs a few micrometres apart; genuinely separate touches on one curve (the pad
+    // bridging a valley) lie millimetres apart.
+    for (int i = 0; i < out_.contact_count; ++i) {
+        for (int j = i + 1; j < out_.contact_count;) {
+            const ProxyContact& a = out_.contacts[i];
+            const ProxyContact& b = out_.contacts[j];
+            const bool same = curve_of(a) >= 0 && curve_of(a) == curve_of(b) && a.source == b.source &&
+                              glm::length(a.point - b.point) <= kSameTouchDistance;
+            if (!same) { ++j; continue; }
+            for (int k = j; k + 1 < out_.contact_count; ++k) out_.contacts[k] = out_.contacts[k + 1];
+            --out_.contact_count;
+        }
+    }
+    const double R = def_.finger.radius;
+    for (int i = 0; i < out_.contact_count; ++i) {
+        ProxyContact& c = out_.contacts[i];
+        const int ci = curve_of(c);
+        if (ci < 0) continue;
+        const Bezier& b = env_->curves[static_cast<std::size_t>(ci)];
+        const double s0 = bezier_nearest(b, c.point).s;
+        const bool interior = c.source != CPiece::Source::endpoint;
+        if (out_.contact_count == 1) {
+            // One contact: the proxy is the exact nearest point of the c-space curve to the finger.
+            if (interior) {
+                const double s = local_foot(b, goal, s0);
+                const Vec2 n = curve_normal(b, s);
+                const Vec2 refined = bezier_point(b, s) + R * n;
+                if (glm::length(n) > 0.0 && glm::length(refined - proxy_) <= kMaxRefinement) proxy_ = refined;
+            } else {
+                const Vec2 u = unit_at(pad_mid_angle(phi_) + c.l / R);  // the pad end's direction
+                const double s = local_foot(b, goal + R * u, s0);
+                const Vec2 refined = bezier_point(b, s) - R * u;
+                if (glm::length(refined - proxy_) <= kMaxRefinement) {
+                    proxy_ = refined;
+                    c.point = bezier_point(b, s);
+                }
+                continue;
+            }
+        }
+        if (!interior) continue;
+        const double s = local_foot(b, proxy_, s0);
+        const Vec2 n = curve_normal(b, s);
+        if (glm::length(n) <= 0.0) continue;
+        c.point = bezier_point(b, s);
+        c.l = contact_location_at(def_.finger, phi_, angle_of(-n));
     }
 }
 

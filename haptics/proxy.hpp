@@ -78,6 +78,7 @@ private:
     Hit first_entry_arc(const CPiece& on, double s0, double s1, int exclude) const;
     bool try_release_corner(Vec2 goal);
     void collect_contacts(Vec2 goal);
+    void refine_on_curves(Vec2 goal);
     void anticipate(Vec2 finger, double phi);
 
     const Environment* env_;

@@ -30,7 +30,20 @@ struct ArcSegment {
     double end_angle = 0.0;
 };
 
-using Segment = std::variant<LineSegment, ArcSegment>;
+// A quadratic Bezier curve through p0 and p2, pulled toward p1 (m). Travel from p0 to p2.
+struct QuadSegment {
+    Vec2 p0{0.0}, p1{0.0}, p2{0.0};
+};
+
+// A cubic Bezier curve from p0 to p3 with control points p1, p2 (m).
+struct CubicSegment {
+    Vec2 p0{0.0}, p1{0.0}, p2{0.0}, p3{0.0};
+};
+
+using Segment = std::variant<LineSegment, ArcSegment, QuadSegment, CubicSegment>;
+
+// True for the Bezier segment types; bezier_of converts them (bezier.hpp).
+bool segment_is_curve(const Segment& s);
 
 Vec2 segment_start(const Segment& s);
 Vec2 segment_end(const Segment& s);
@@ -38,6 +51,10 @@ Vec2 segment_end(const Segment& s);
 Vec2 segment_start_tangent(const Segment& s);
 Vec2 segment_end_tangent(const Segment& s);
 double segment_length(const Segment& s);  // m
+
+struct Bezier;
+// The Bezier curve of a quad or cubic segment (segment_is_curve(s) must hold).
+Bezier segment_bezier(const Segment& s);
 
 struct Contour {
     // A closed contour returns from its last segment to the first; drawn clockwise it is solid
@@ -61,6 +78,16 @@ struct ForceDef {
     double max_force = 1.5;     // N; the magnitude is clamped here, direction kept (seed 000)
 };
 
+// How curves (quad, cubic) become the lines and arcs the proxy touches (bezier.hpp):
+//   exact   — an arc spline within 1e-10 m of the curve (G1, so force and l_d stay continuous);
+//   flatten — chords within `tolerance` m: cheaper to build and to touch, error up to tolerance.
+enum class CurveMode { exact, flatten };
+
+struct CurveDef {
+    CurveMode mode = CurveMode::exact;
+    double tolerance = 1e-4;  // m, used by flatten only
+};
+
 enum class ContactRule { centroid };
 
 struct ContactLocationDef {
@@ -75,6 +102,7 @@ struct Scene {
     std::vector<Contour> contours;
     ForceDef force;
     ContactLocationDef contact_location;
+    CurveDef curves;
 };
 
 }  // namespace contactlab

@@ -90,7 +90,10 @@ TEST_CASE("rigid motion: translating by 1000 m and -1000 m and rotating changes 
         int contacts = 0, two_contacts = 0;
         double worst_depth = 0.0, worst_l = 0.0, worst_force = 0.0;
         int tick = 0;
-        for (const auto& [x, phi] : path) {
+        for (const auto& sample : path) {
+            // (Named copies, not structured bindings: clang 14 cannot capture those in CAPTURE.)
+            const Vec2 x = sample.first;
+            const double phi = sample.second;
             const ProxyOutput oa = a.at(x, phi);
             const ProxyOutput& ob = b.at(m.apply(x), phi + angle);
             CAPTURE(tick);
