@@ -7,6 +7,8 @@
 //   [SECTION] Writing           — Scene -> JSON, lossless, and the atomic file save
 #include "haptics/scene_io.hpp"
 
+#include "haptics/bezier.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <cerrno>
@@ -54,6 +56,8 @@ constexpr double kMinSegmentLength = 1e-9;   // m: shorter lines/arcs are "zero-
 constexpr double kMaxCoordinate = 1e6;       // m: beyond this, double spacing > 1e-10 m
 constexpr double kMaxStiffness = 1e7;        // N/m: far above any device's stable stiffness
 constexpr double kMaxForceLimit = 1e4;       // N
+constexpr double kMinCurveTolerance = 1e-9;  // m, flatten mode's chord tolerance
+constexpr double kMaxCurveTolerance = 1e-2;  // m
 
 //-------------------------------------------------------------------------------------------------
 // [SECTION] Reading
@@ -135,7 +139,17 @@ Segment read_segment(const json& j, const std::string& path) {
         a.end_angle = read_number(j, path, "end_angle");
         return a;
     }
-    fail(join(path, "type"), "unknown segment type \"" + type + "\" (expected \"line\" or \"arc\")");
+    if (type == "quad") {
+        reject_unknown_keys(j, path, {"type", "p0", "p1", "p2"});
+        return QuadSegment{read_point(j, path, "p0"), read_point(j, path, "p1"), read_point(j, path, "p2")};
+    }
+    if (type == "cubic") {
+        reject_unknown_keys(j, path, {"type", "p0", "p1", "p2", "p3"});
+        return CubicSegment{read_point(j, path, "p0"), read_point(j, path, "p1"), read_point(j, path, "p2"),
+                            read_point(j, path, "p3")};
+    }
+    fail(join(path, "type"),
+         "unknown segment type \"" + type + "\" (expected \"line\", \"arc\", \"quad\" or \"cubic\")");
 }
 
 Contour read_contour(const json& j, const std::string& path) {
@@ -156,7 +170,7 @@ Scene read_scene(const json& root) {
     Scene s;
     expect_object(root, "");
     reject_unknown_keys(root, "", {"version", "description", "finger", "contours", "force",
-                                   "contact_location"});
+                                   "contact_location", "curves"});
     const json& version = require(root, "", "version");
     // Only scalars are echoed back: dump() recurses, and a version nested 100000 arrays deep
     // would overflow the stack.
@@ -196,6 +210,20 @@ Scene read_scene(const json& root) {
         if (rule != "centroid")
             fail("contact_location.rule", "unknown rule \"" + rule + "\" (expected \"centroid\")");
         s.contact_location.rule = ContactRule::centroid;
+    }
+
+    if (auto it = root.find("curves"); it != root.end()) {
+        expect_object(*it, "curves");
+        reject_unknown_keys(*it, "curves", {"mode", "tolerance"});
+        const std::string mode = read_string(*it, "curves", "mode");
+        if (mode == "exact") {
+            s.curves.mode = CurveMode::exact;
+        } else if (mode == "flatten") {
+            s.curves.mode = CurveMode::flatten;
+        } else {
+            fail("curves.mode", "unknown curve mode \"" + mode + "\" (expected \"exact\" or \"flatten\")");
+        }
+        if (it->contains("tolerance")) s.curves.tolerance = read_number(*it, "curves", "tolerance");
     }
     return s;
 }
@@ -274,6 +302,18 @@ void validate_segment(const Segment& seg, const std::string& path) {
         if (glm::length(l->to - l->from) < kMinSegmentLength) fail(path, "zero-length line");
         return;
     }
+    if (segment_is_curve(seg)) {
+        const Bezier b = segment_bezier(seg);
+        static const char* const names[4] = {"p0", "p1", "p2", "p3"};
+        for (int i = 0; i <= b.degree; ++i) {
+            if (!finite(b.p[i])) fail(join(path, names[i]), "not a finite number");
+            check_point_bound(b.p[i], join(path, names[i]));
+        }
+        // Coincident or collinear control points are fine (the proxy handles cusps and
+        // reversals); a curve that goes nowhere is not.
+        if (segment_length(seg) < kMinSegmentLength) fail(path, "zero-length curve");
+        return;
+    }
     const auto& a = std::get<ArcSegment>(seg);
     if (!finite(a.center) || !std::isfinite(a.radius) || !std::isfinite(a.start_angle) ||
         !std::isfinite(a.end_angle))
@@ -312,6 +352,14 @@ json point_json(Vec2 p) { return json::array({p.x, p.y}); }
 json segment_json(const Segment& seg) {
     if (auto* l = std::get_if<LineSegment>(&seg))
         return {{"type", "line"}, {"from", point_json(l->from)}, {"to", point_json(l->to)}};
+    if (auto* q = std::get_if<QuadSegment>(&seg))
+        return {{"type", "quad"}, {"p0", point_json(q->p0)}, {"p1", point_json(q->p1)}, {"p2", point_json(q->p2)}};
+    if (auto* c = std::get_if<CubicSegment>(&seg))
+        return {{"type", "cubic"},
+                {"p0", point_json(c->p0)},
+                {"p1", point_json(c->p1)},
+                {"p2", point_json(c->p2)},
+                {"p3", point_json(c->p3)}};
     const auto& a = std::get<ArcSegment>(seg);
     return {{"type", "arc"},
             {"center", point_json(a.center)},
@@ -338,6 +386,12 @@ void validate_scene(const Scene& s) {
         fail("force.stiffness", "must lie in (0, " + fmt(kMaxStiffness) + "] N/m, got " + fmt(s.force.stiffness));
     if (!std::isfinite(s.force.max_force) || !(s.force.max_force > 0.0) || s.force.max_force > kMaxForceLimit)
         fail("force.max_force", "must lie in (0, " + fmt(kMaxForceLimit) + "] N, got " + fmt(s.force.max_force));
+    // Flattening finer than 1e-9 m would need millions of chords for a centimetre curve (and the
+    // exact mode is better there); coarser than 1 cm is not the curve any more.
+    if (!std::isfinite(s.curves.tolerance) || s.curves.tolerance < kMinCurveTolerance ||
+        s.curves.tolerance > kMaxCurveTolerance)
+        fail("curves.tolerance", "must lie in [" + fmt(kMinCurveTolerance) + ", " + fmt(kMaxCurveTolerance) +
+                                     "] m, got " + fmt(s.curves.tolerance));
 }
 
 Scene parse_scene(std::string_view text, const std::string& origin) {
@@ -403,6 +457,8 @@ std::string scene_to_json_text(const Scene& s) {
     root["contours"] = std::move(contours);
     root["force"] = {{"model", "spring"}, {"stiffness", s.force.stiffness}, {"max_force", s.force.max_force}};
     root["contact_location"] = {{"rule", "centroid"}};
+    root["curves"] = {{"mode", s.curves.mode == CurveMode::exact ? "exact" : "flatten"},
+                      {"tolerance", s.curves.tolerance}};
     // nlohmann writes doubles with the shortest text that reads back to the same value.
     return root.dump(2) + "\n";
 }

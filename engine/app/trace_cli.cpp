@@ -16,6 +16,9 @@ void add_override_options_impl(CLI::App* cmd, SceneOverrides& o) {
     cmd->add_option("--radius", o.radius, "Finger pad radius R (m); replaces finger.radius");
     cmd->add_option("--length", o.length, "Finger pad arc length L (m); replaces finger.length");
     cmd->add_option("--max-force", o.max_force, "Force magnitude clamp (N); replaces force.max_force");
+    cmd->add_option("--curve-mode", o.curve_mode,
+                    "Curves: exact (arc spline within 1e-10 m, refined on the curve) or flatten (chords)");
+    cmd->add_option("--tolerance", o.tolerance, "Chord tolerance (m) of --curve-mode flatten; replaces curves.tolerance");
 }
 
 int trace_main(const std::string& scene_path, const std::string& input, const std::string& output,

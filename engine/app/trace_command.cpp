@@ -21,6 +21,18 @@ void apply_overrides(Scene& scene, const SceneOverrides& o) {
     note("--radius", o.radius);
     note("--length", o.length);
     note("--max-force", o.max_force);
+    note("--tolerance", o.tolerance);
+    if (o.curve_mode) {
+        given += std::string(given.empty() ? "" : ", ") + "--curve-mode " + *o.curve_mode;
+        if (*o.curve_mode == "exact") {
+            scene.curves.mode = CurveMode::exact;
+        } else if (*o.curve_mode == "flatten") {
+            scene.curves.mode = CurveMode::flatten;
+        } else {
+            throw SceneError("command-line options (" + given + "): expected exact or flatten");
+        }
+    }
+    if (o.tolerance) scene.curves.tolerance = *o.tolerance;
     if (o.stiffness) scene.force.stiffness = *o.stiffness;
     if (o.radius) scene.finger.radius = *o.radius;
     if (o.length) scene.finger.length = *o.length;

@@ -16,6 +16,8 @@ struct SceneOverrides {
     std::optional<double> radius;     // m     (--radius)
     std::optional<double> length;     // m     (--length)
     std::optional<double> max_force;  // N     (--max-force)
+    std::optional<std::string> curve_mode;  // exact | flatten (--curve-mode)
+    std::optional<double> tolerance;        // m, flatten chord tolerance (--tolerance)
 };
 
 // Applies the overrides and re-validates; a bad value throws SceneError naming the option.

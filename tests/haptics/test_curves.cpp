@@ -3,6 +3,7 @@
 #include "scene_builders.hpp"
 
 #include "haptics/bezier.hpp"
+#include "haptics/scene_io.hpp"
 
 #include <doctest/doctest.h>
 
@@ -202,4 +203,43 @@ TEST_CASE("flatten mode: the proxy's error is bounded by the chord tolerance") {
         CHECK(worst > 0.0);
         MESSAGE("flatten tolerance " << tol << " m: worst proxy difference from exact " << worst << " m");
     }
+}
+
+TEST_CASE("scene files hold quad and cubic segments and the curve mode") {
+    Scene s;
+    Contour c;
+    c.segments.push_back(QuadSegment{{-0.1, 0.0}, {-0.05, 0.03}, {0.0, 0.0}});
+    c.segments.push_back(CubicSegment{{0.0, 0.0}, {0.1 / 3.0, -0.02}, {0.2 / 3.0, 0.02}, {0.1, 0.0}});
+    s.contours.push_back(c);
+    s.curves = {CurveMode::flatten, 2.5e-5};
+    const Scene back = parse_scene(scene_to_json_text(s), "curves.json");
+    REQUIRE(back.contours.size() == 1);
+    REQUIRE(back.contours[0].segments.size() == 2);
+    const auto& q = std::get<QuadSegment>(back.contours[0].segments[0]);
+    const auto& k = std::get<CubicSegment>(back.contours[0].segments[1]);
+    CHECK(q.p1 == Vec2{-0.05, 0.03});
+    CHECK(k.p1 == Vec2{0.1 / 3.0, -0.02});
+    CHECK(k.p2 == Vec2{0.2 / 3.0, 0.02});
+    CHECK(back.curves.mode == CurveMode::flatten);
+    CHECK(back.curves.tolerance == 2.5e-5);
+
+    auto error_of = [](const std::string& text) {
+        try {
+            parse_scene(text, "t.json");
+        } catch (const SceneError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    const std::string head = R"({"version": 1, "contours": [{"closed": false, "segments": [)";
+    CHECK(error_of(head + R"({"type": "quad", "p0": [0, 0], "p1": [1, 1e999], "p2": [2, 0]}]}]})")
+              .find("t.json: contours[0].segments[0].p1[1]: not a finite number") != std::string::npos);
+    CHECK(error_of(head + R"({"type": "quad", "p0": [0, 0], "p1": [0, 0], "p2": [0, 0]}]}]})")
+              .find("t.json: contours[0].segments[0]: zero-length curve") != std::string::npos);
+    CHECK(error_of(head + R"({"type": "cubic", "p0": [0, 0], "p1": [0, 1], "p2": [1, 1]}]}]})")
+              .find("t.json: contours[0].segments[0].p3: missing") != std::string::npos);
+    CHECK(error_of(head + R"({"type": "line", "from": [0, 0], "to": [1, 0]}]}], "curves": {"mode": "fast"}})")
+              .find("t.json: curves.mode: unknown curve mode \"fast\"") != std::string::npos);
+    CHECK(error_of(head + R"({"type": "line", "from": [0, 0], "to": [1, 0]}]}], "curves": {"mode": "flatten", "tolerance": 0}})")
+              .find("t.json: curves.tolerance: must lie in") != std::string::npos);
 }
