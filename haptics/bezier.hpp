@@ -2,10 +2,10 @@
 // the lines and arcs the proxy works with.
 //
 // Two conversions, one exact-by-default and one fast (issue #3's accuracy modes):
-//   * arc spline (mode `exact`): G1 chains of biarcs whose distance to the curve is below
-//     kExactCurveTolerance (1e-10 m, far below the 1e-9 m the proxy resolves). The pad's contact
-//     with an arc is solved in closed form, so the proxy stays on the same robust footing as for
-//     scene arcs, and force and l_d stay continuous along the curve (G1: no spurious vertices).
+//   * arc spline (mode `exact`): G1 chains of biarcs within kExactCurveTolerance of the curve. The
+//     pad's contact with an arc is solved in closed form, so the proxy's walk stays on the same
+//     robust footing as for scene arcs, with force and l_d continuous along the curve (G1: no
+//     spurious vertices); the proxy then re-solves the contacts it found on the exact curve.
 //   * polyline (mode `flatten`): chords within a user tolerance (m); cheaper, with kinks at
 //     every joint (small vertex pieces) and an error up to the tolerance.
 // Degenerate control points (coincident, collinear with a reversal, a cubic's cusp) are handled by
@@ -50,8 +50,11 @@ struct CurvePiece {
     bool corner_after = false;  // the curve has a cusp or reversal where this piece ends
 };
 
-// Distance below which a biarc piece counts as the curve (m).
-inline constexpr double kExactCurveTolerance = 1e-10;
+// Distance (m) within which the arc spline of exact mode follows the curve. The walk finds where
+// the proxy rests on the arc spline; the proxy then re-solves its contacts on the true curve
+// (proxy.cpp, refine_on_curves), so this only has to be fine enough to find the right place:
+// 0.1 um keeps a 20 cm stimulus to a few hundred arcs (a finer spline costs time every tick).
+inline constexpr double kExactCurveTolerance = 1e-7;
 
 // Arc spline of the curve, G1 along each piece between stationary points, within `tolerance` (m).
 void bezier_to_arcs(const Bezier& b, double tolerance, std::vector<CurvePiece>& out);

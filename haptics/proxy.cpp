@@ -162,11 +162,10 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi) {
     out_.proxy = proxy_;
     if (proxy_ != finger) {
         collect_contacts(finger);
-        refine_on_curves(finger);
-        out_.proxy = proxy_;
+        refine_on_curves(finger);  // may move out_.proxy onto the exact curve
         out_.contact = true;
-        out_.depth = glm::length(proxy_ - finger);
-        Vec2 force = def_.stiffness * (proxy_ - finger);
+        out_.depth = glm::length(out_.proxy - finger);
+        Vec2 force = def_.stiffness * (out_.proxy - finger);
         const double magnitude = glm::length(force);
         if (magnitude > def_.max_force) force *= def_.max_force / magnitude;
         out_.force = force;
@@ -460,6 +459,7 @@ void Proxy::collect_contacts(Vec2 goal) {
                 return;
             }
         }
+        contact_pieces_[out_.contact_count] = static_cast<int>(&piece - pieces_.data());
         out_.contacts[out_.contact_count++] = c;
     };
     for (const CPiece& piece : pieces_) {
@@ -480,7 +480,8 @@ void Proxy::collect_contacts(Vec2 goal) {
 // with normals off by up to ~1e-7 rad, which would put l a few nm off and could report one touch as
 // two (on neighbouring arcs). Here contacts on a curve are re-solved on the exact Bezier: the same
 // touch is merged, a single contact is moved onto the exact offset (interior) or translated (pad
-// end) curve, and every interior contact takes its normal from the exact foot point.
+// end) curve, and every interior contact takes its normal from the exact foot point. Only the
+// output moves: the walk keeps its own proxy on the arc spline, where its next tick starts.
 namespace {
 
 // Foot of q on the curve near parameter s (Newton on (B(s) - q) . B'(s) = 0, kept in [0, 1]).
@@ -505,11 +506,11 @@ Vec2 curve_normal(const Bezier& b, double s) {
     return len > 0.0 ? perp_left(d) / len : Vec2{0.0};
 }
 
-// How far (m) a refinement may move the proxy: the arc spline is within 1e-10 m of the curve, so
-// anything larger means Newton found another branch; keep the walk's answer then.
-constexpr double kMaxRefinement = 1e-7;
+// How far (m) a refinement may move the proxy: the arc spline is within kExactCurveTolerance of
+// the curve, so anything much larger means Newton found another branch; keep the walk's answer.
+constexpr double kMaxRefinement = 100.0 * kExactCurveTolerance;
 // Contacts on one curve closer than this (m) are one touch.
-constexpr double kSameTouchDistance = 1e-4;
+constexpr double kSameTouchDistance = 1e-3;
 
 }  // namespace
 
@@ -519,9 +520,9 @@ void Proxy::refine_on_curves(Vec2 goal) {
     for (int i = 0; i < out_.contact_count; ++i) any = any || curve_of(out_.contacts[i]) >= 0;
     if (!any) return;
     // The same touch seen on two neighbouring arcs of one curve: keep one. The arc spline wiggles
-    // by up to 1e-10 m about the curve, enough for a pad whose radius is close to the curve's to
-    // rest on two arcs a few micrometres apart; genuinely separate touches on one curve (the pad
-    // bridging a valley) lie millimetres apart.
+    // by up to kExactCurveTolerance about the curve, enough for a pad whose radius is close to the
+    // curve's to rest on two arcs a fraction of a millimetre apart; touches closer than 1 mm on one
+    // curve are one contact patch.
     for (int i = 0; i < out_.contact_count; ++i) {
         for (int j = i + 1; j < out_.contact_count;) {
             const ProxyContact& a = out_.contacts[i];
@@ -529,11 +530,15 @@ void Proxy::refine_on_curves(Vec2 goal) {
             const bool same = curve_of(a) >= 0 && curve_of(a) == curve_of(b) && a.source == b.source &&
                               glm::length(a.point - b.point) <= kSameTouchDistance;
             if (!same) { ++j; continue; }
-            for (int k = j; k + 1 < out_.contact_count; ++k) out_.contacts[k] = out_.contacts[k + 1];
+            for (int k = j; k + 1 < out_.contact_count; ++k) {
+                out_.contacts[k] = out_.contacts[k + 1];
+                contact_pieces_[k] = contact_pieces_[k + 1];
+            }
             --out_.contact_count;
         }
     }
     const double R = def_.finger.radius;
+    if (out_.contact_count == 2) refine_corner();
     for (int i = 0; i < out_.contact_count; ++i) {
         ProxyContact& c = out_.contacts[i];
         const int ci = curve_of(c);
@@ -547,24 +552,107 @@ void Proxy::refine_on_curves(Vec2 goal) {
                 const double s = local_foot(b, goal, s0);
                 const Vec2 n = curve_normal(b, s);
                 const Vec2 refined = bezier_point(b, s) + R * n;
-                if (glm::length(n) > 0.0 && glm::length(refined - proxy_) <= kMaxRefinement) proxy_ = refined;
+                if (glm::length(n) > 0.0 && glm::length(refined - proxy_) <= kMaxRefinement) out_.proxy = refined;
             } else {
                 const Vec2 u = unit_at(pad_mid_angle(phi_) + c.l / R);  // the pad end's direction
                 const double s = local_foot(b, goal + R * u, s0);
                 const Vec2 refined = bezier_point(b, s) - R * u;
                 if (glm::length(refined - proxy_) <= kMaxRefinement) {
-                    proxy_ = refined;
+                    out_.proxy = refined;
                     c.point = bezier_point(b, s);
                 }
                 continue;
             }
         }
         if (!interior) continue;
-        const double s = local_foot(b, proxy_, s0);
+        const double s = local_foot(b, out_.proxy, s0);
         const Vec2 n = curve_normal(b, s);
         if (glm::length(n) <= 0.0) continue;
         c.point = bezier_point(b, s);
         c.l = contact_location_at(def_.finger, phi_, angle_of(-n));
+    }
+}
+
+// Two contacts, at least one on a curve: the proxy is where the two exact c-space curves cross.
+// Each contact's c-space curve is parametrised exactly (a line or circle piece as it is; a curve's
+// interior contact as the offset B(s) + R n(s); a pad end on a curve as B(s) - R u) and the
+// crossing near the walk's corner is found by Newton's method on C1(p1) - C2(p2) = 0.
+void Proxy::refine_corner() {
+    struct Param {
+        const CPiece* piece = nullptr;
+        const Bezier* curve = nullptr;
+        Vec2 pad_end{0.0};  // R u for a pad end on a curve
+        bool interior = true;
+        double p = 0.0;
+    };
+    const double R = def_.finger.radius;
+    Param k[2];
+    bool any_curve = false;
+    for (int i = 0; i < 2; ++i) {
+        const ProxyContact& c = out_.contacts[i];
+        k[i].piece = &pieces_[static_cast<std::size_t>(contact_pieces_[i])];
+        const int ci = env_->segments[static_cast<std::size_t>(c.segment)].curve;
+        if (ci >= 0) {
+            any_curve = true;
+            k[i].curve = &env_->curves[static_cast<std::size_t>(ci)];
+            k[i].interior = c.source != CPiece::Source::endpoint;
+            k[i].pad_end = R * unit_at(pad_mid_angle(phi_) + c.l / R);
+            k[i].p = bezier_nearest(*k[i].curve, c.point).s;
+        } else {
+            k[i].p = piece_param(*k[i].piece, proxy_);
+        }
+    }
+    if (!any_curve) return;
+    // Point and derivative of a contact's c-space curve at parameter p.
+    auto eval = [&](const Param& q, double p, Vec2& d) -> Vec2 {
+        if (q.curve) {
+            const Vec2 b1 = bezier_derivative(*q.curve, p);
+            if (!q.interior) {
+                d = b1;
+                return bezier_point(*q.curve, p) - q.pad_end;
+            }
+            const Vec2 b2 = bezier_second_derivative(*q.curve, p);
+            const double len = glm::length(b1);
+            const Vec2 dt = (b2 * (len * len) - b1 * glm::dot(b1, b2)) / (len * len * len);  // d(unit tangent)/ds
+            d = b1 + R * perp_left(dt);
+            return bezier_point(*q.curve, p) + R * perp_left(b1 / len);
+        }
+        const CPiece& pc = *q.piece;
+        if (pc.kind == CPiece::Kind::line) {
+            d = pc.dir;
+            return pc.a + p * pc.dir;
+        }
+        const Vec2 u = unit_at(pc.span.start + p);
+        d = pc.radius * perp_left(u);
+        return pc.center + pc.radius * u;
+    };
+    double p0 = k[0].p, p1 = k[1].p;
+    Vec2 x{0.0};
+    bool converged = false;
+    for (int it = 0; it < 12; ++it) {
+        Vec2 d0, d1;
+        const Vec2 a = eval(k[0], p0, d0), b = eval(k[1], p1, d1);
+        const Vec2 f = a - b;
+        x = a;
+        if (glm::length(f) <= 1e-13) { converged = true; break; }
+        // Solve [d0, -d1] (dp0, dp1) = -f by Cramer's rule.
+        const double det = cross(d0, -d1);
+        if (!(std::abs(det) > 1e-300)) break;
+        p0 += cross(-f, -d1) / det;
+        p1 += cross(d0, -f) / det;
+        if (!std::isfinite(p0) || !std::isfinite(p1)) break;
+    }
+    if (!converged || glm::length(x - proxy_) > kMaxRefinement) return;
+    out_.proxy = x;
+    for (int i = 0; i < 2; ++i) {
+        ProxyContact& c = out_.contacts[i];
+        if (k[i].curve == nullptr) {
+            c.point = piece_contact_point(*k[i].piece, def_.finger, x);
+            c.l = piece_contact_location(*k[i].piece, def_.finger, phi_, x);
+        } else if (!k[i].interior) {
+            c.point = bezier_point(*k[i].curve, i == 0 ? p0 : p1);
+        }
+        // Interior contacts on curves take their exact foot in refine_on_curves' loop.
     }
 }
 

@@ -79,6 +79,7 @@ private:
     bool try_release_corner(Vec2 goal);
     void collect_contacts(Vec2 goal);
     void refine_on_curves(Vec2 goal);
+    void refine_corner();
     void anticipate(Vec2 finger, double phi);
 
     const Environment* env_;
@@ -92,6 +93,7 @@ private:
     // Scratch space reused every tick (capacity kept: no allocation in steady state).
     std::vector<int> segment_ids_;
     std::vector<CPiece> pieces_;
+    int contact_pieces_[4] = {-1, -1, -1, -1};  // the piece behind each reported contact
 };
 
 }  // namespace contactlab

@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
     int rc = 0;
     // One line per subcommand file.
     register_trace_commands(app, rc);
+    register_generate_command(app, rc);
 
     try {
         app.parse(argc, argv);

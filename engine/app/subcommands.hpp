@@ -24,5 +24,6 @@ struct BadInput : std::runtime_error {
 void add_override_options(CLI::App* cmd, SceneOverrides& o);
 
 void register_trace_commands(CLI::App& app, int& rc);  // trace, demo (trace_cli.cpp)
+void register_generate_command(CLI::App& app, int& rc);  // generate (generate_cli.cpp)
 
 }  // namespace contactlab::app
