@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
     // One line per subcommand file.
     register_trace_commands(app, rc);
     register_generate_command(app, rc);
+    register_simulate_command(app, rc);
 
     try {
         app.parse(argc, argv);

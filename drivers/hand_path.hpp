@@ -1,0 +1,50 @@
+// hand_path.hpp — the scripted hand's intended path: samples (t, x, y, phi), linearly
+// interpolated; read from a CSV with the header `t,x,y,phi` (s, m, m, rad), or generated.
+#pragma once
+
+#include "haptics/vec2.hpp"
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace contactlab::drivers {
+
+struct PathSample {
+    double t = 0.0;    // s
+    Vec2 x{0.0};       // m, intended finger centre
+    double phi = 0.0;  // rad
+};
+
+// A bad path file; the message names the file, line and column.
+struct HandPathError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+struct PathPoint {
+    Vec2 x{0.0};       // m
+    Vec2 v{0.0};       // m/s, slope of the segment in use
+    double phi = 0.0;  // rad
+};
+
+class HandPath {
+public:
+    HandPath() = default;
+    // Times must strictly increase; at least one sample.
+    explicit HandPath(std::vector<PathSample> samples);
+
+    // Linear interpolation; before the first sample holds the first, after the last holds the
+    // last (with zero velocity). Amortised O(1) for increasing t (a cursor), no allocation.
+    PathPoint at(double t) const noexcept;
+    double start() const { return samples_.front().t; }
+    double end() const { return samples_.back().t; }
+    const std::vector<PathSample>& samples() const { return samples_; }
+
+private:
+    std::vector<PathSample> samples_;
+    mutable std::size_t cursor_ = 0;
+};
+
+HandPath read_hand_path_file(const std::string& path);
+
+}  // namespace contactlab::drivers

@@ -1,0 +1,180 @@
+// servo_loop.cpp — device adapter, virtual-time runner, real-time thread (see servo_loop.hpp).
+#include "drivers/servo_loop.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <ctime>
+#include <pthread.h>
+#include <sched.h>
+#include <sys/mman.h>
+
+namespace contactlab::drivers {
+
+ServoConfig servo_config_for(const Device& dev, double rate) {
+    const DeviceLimits lim = dev.limits();
+    ServoConfig c;
+    c.period = 1.0 / rate;
+    c.device_max_force = lim.max_force;
+    c.axis_max = lim.axis_max_force;
+    c.device_damping = lim.damping;
+    c.has_roller = dev.capabilities().roller;
+    c.roller_travel = {lim.roller_min, lim.roller_max};
+    return c;
+}
+
+ServoLoop::ServoLoop(Device& dev, ServoTick& tick, double period, SpscRing<TickRecord>* ring)
+    : dev_(dev), tick_(tick), period_(period), ring_(ring) {}
+
+bool ServoLoop::start() {
+    if (!dev_.open()) return false;
+    DeviceReading r;
+    dev_.read(r);
+    tick_.connect(r.t);
+    return true;
+}
+
+void ServoLoop::step(double wall_period, bool wait_for_ring) noexcept {
+    const bool ok = dev_.read(reading_);
+    ServoInput in;
+    in.t = reading_.t;
+    in.finger = reading_.finger;
+    in.phi = reading_.phi;
+    in.roller_l = reading_.roller_l;
+    in.device_fault = !ok || !reading_.valid || dev_.state() == DeviceState::fault;
+    const ServoCommand& c = tick_.tick(in);
+    command_.force = c.force;
+    command_.roller_drive = c.roller_drive;
+    command_.roller_target = c.roller_target;
+    dev_.write(command_);
+    dev_.set_engaged(tick_.state() == ServoState::engaged || tick_.state() == ServoState::ramping);
+    ++ticks_;
+
+    if (ring_ != nullptr) {
+        const ProxyOutput& o = tick_.proxy_output();
+        TickRecord rec;
+        rec.tick = ticks_;
+        rec.t = in.t;
+        rec.period = wall_period;
+        rec.finger = in.finger;
+        rec.phi = in.phi;
+        rec.roller_l = in.roller_l;
+        rec.proxy = o.proxy;
+        rec.contact = o.contact;
+        rec.depth = o.depth;
+        rec.force = c.force;
+        rec.l_d = o.l_d;
+        rec.roller_target = c.roller_target;
+        rec.roller_drive = c.roller_drive;
+        rec.state = tick_.state();
+        rec.fault = tick_.fault();
+        if (!ring_->try_push(rec)) {
+            if (wait_for_ring) {
+                while (!ring_->try_push(rec)) std::this_thread::yield();
+            } else {
+                dropped_.fetch_add(1, std::memory_order_relaxed);
+            }
+        }
+    }
+    dev_.advance(period_);
+}
+
+void ServoLoop::run_virtual(std::uint64_t ticks) noexcept {
+    for (std::uint64_t k = 0; k < ticks; ++k) step(period_, true);
+}
+
+void ServoLoop::stall(double seconds) noexcept {
+    const long n = std::lround(seconds / period_);
+    for (long k = 0; k < n; ++k) dev_.advance(period_);
+}
+
+PeriodStats::PeriodStats() : bins_(static_cast<std::size_t>(20e-3 / kBin) + 1, 0) {}
+
+void PeriodStats::add(double s) noexcept {
+    const std::size_t i = std::min(bins_.size() - 1, static_cast<std::size_t>(std::max(0.0, s) / kBin));
+    ++bins_[i];
+    ++count_;
+    sum_ += s;
+    max_ = std::max(max_, s);
+}
+
+double PeriodStats::percentile(double p) const {
+    if (count_ == 0) return 0.0;
+    const double want = p / 100.0 * static_cast<double>(count_);
+    std::uint64_t acc = 0;
+    for (std::size_t i = 0; i < bins_.size(); ++i) {
+        acc += bins_[i];
+        if (static_cast<double>(acc) >= want) return (static_cast<double>(i) + 0.5) * kBin;
+    }
+    return max_;
+}
+
+namespace {
+
+double to_seconds(const timespec& t) { return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec); }
+
+void add_ns(timespec& t, long ns) {
+    t.tv_nsec += ns;
+    while (t.tv_nsec >= 1000000000L) {
+        t.tv_nsec -= 1000000000L;
+        ++t.tv_sec;
+    }
+}
+
+bool later(const timespec& a, const timespec& b) {
+    return a.tv_sec > b.tv_sec || (a.tv_sec == b.tv_sec && a.tv_nsec > b.tv_nsec);
+}
+
+}  // namespace
+
+RealtimeReport run_realtime(ServoLoop& loop, std::uint64_t ticks, int fifo_priority) {
+    RealtimeReport rep;
+    rep.rate = 1.0 / loop.period();
+    PeriodStats stats;  // allocated here, before the thread starts
+    std::thread th([&] {
+        sched_param sp{};
+        sp.sched_priority = fifo_priority;
+        const int err = pthread_setschedparam(pthread_self(), SCHED_FIFO, &sp);
+        if (err == 0) {
+            rep.scheduling = "SCHED_FIFO priority " + std::to_string(fifo_priority);
+        } else {
+            rep.scheduling = std::string("SCHED_OTHER (SCHED_FIFO refused: ") + std::strerror(err) + ")";
+        }
+        rep.memory_lock = ::mlockall(MCL_CURRENT | MCL_FUTURE) == 0
+                              ? "mlockall ok"
+                              : std::string("mlockall refused: ") + std::strerror(errno);
+        const long period_ns = std::lround(loop.period() * 1e9);
+        timespec next{};
+        clock_gettime(CLOCK_MONOTONIC, &next);
+        timespec prev = next;
+        for (std::uint64_t k = 0; k < ticks; ++k) {
+            timespec now{};
+            clock_gettime(CLOCK_MONOTONIC, &now);
+            const double period = k == 0 ? loop.period() : to_seconds(now) - to_seconds(prev);
+            prev = now;
+            if (k > 0) stats.add(period);
+            loop.step(period, false);
+            add_ns(next, period_ns);
+            timespec after{};
+            clock_gettime(CLOCK_MONOTONIC, &after);
+            if (later(after, next)) {
+                // Missed the next deadline: count it and re-align instead of bursting to catch up.
+                ++rep.overruns;
+                next = after;
+            }
+            while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &next, nullptr) == EINTR) {
+            }
+        }
+    });
+    th.join();
+    ::munlockall();
+    rep.ticks = stats.count() + 1;
+    rep.p50 = stats.percentile(50.0);
+    rep.p99 = stats.percentile(99.0);
+    rep.max = stats.max();
+    rep.mean = stats.mean();
+    return rep;
+}
+
+}  // namespace contactlab::drivers

@@ -1,0 +1,53 @@
+// cld_roller.hpp — simulated contact-location display actuator (seed 000 §2): a small DC motor on
+// the forearm turns a non-backdrivable leadscrew whose nut pushes the contact element along the
+// thimble through two sheathed push-pull wires.
+//
+// Model (nut coordinate x, m): armature current i = (V - k_e N v) / R with N = 2 pi / lead
+// (rad/m); drive force k_t N i; reflected mass J_m N^2 + m_nut; Coulomb friction with stiction
+// (the nut sticks while the drive is below the break-away force); hard stops at the travel ends.
+// The leadscrew is self-locking, so forces on the element never move the nut. The wires are a
+// spring-damper between the nut and the element (mass m_e), which is what the finger feels.
+// The motor encoder measures the nut (seed 000: "as measured by the motor's encoder").
+#pragma once
+
+namespace contactlab::drivers::sim {
+
+struct RollerParams {
+    double travel = 0.020;         // m, total travel (seed 000: about 2.0 cm; seed 002: 18 mm)
+    double lead = 0.002;           // m per motor revolution
+    double resistance = 10.0;      // ohm
+    double torque_constant = 0.005;  // N m/A (= back-EMF constant, V s/rad)
+    double rotor_inertia = 1e-7;   // kg m^2
+    double nut_mass = 0.005;       // kg
+    double coulomb = 1.0;          // N, sliding friction at the nut
+    double stiction = 1.5;         // N, break-away force
+    double viscous = 0.5;          // N s/m, at the nut
+    double wire_stiffness = 5000;  // N/m, push-pull wires
+    double wire_damping = 0.5;     // N s/m
+    double element_mass = 0.003;   // kg, contact cylinder + carriage
+    int encoder_counts = 2048;     // per motor revolution (512 lines x 4): lead/2048 ~ 1 um
+    double max_voltage = 12.0;     // V, amplifier rail
+};
+
+class CldRoller {
+public:
+    explicit CldRoller(const RollerParams& p) : p_(p) {}
+    void place_at(double l);                 // nut and element at l (m), at rest
+    void set_voltage(double v);              // V, clamped to the rail
+    void step(double h);                     // integrate h seconds
+    double nut() const { return x_; }        // m
+    double element() const { return xe_; }   // m, what the finger feels
+    double measured() const;                 // m, quantised encoder reading of the nut
+    double half_travel() const { return 0.5 * p_.travel; }
+    bool stuck() const { return stuck_; }
+    const RollerParams& params() const { return p_; }
+
+private:
+    RollerParams p_;
+    double x_ = 0.0, v_ = 0.0;    // nut, m and m/s
+    double xe_ = 0.0, ve_ = 0.0;  // element
+    double volts_ = 0.0;
+    bool stuck_ = true;
+};
+
+}  // namespace contactlab::drivers::sim

@@ -1,0 +1,131 @@
+// planar_arm.cpp — 2-link arm dynamics (see planar_arm.hpp).
+#include "drivers/sim/planar_arm.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace contactlab::drivers::sim {
+
+void PlanarArm::jacobian(double q1, double q2, double J[2][2]) const {
+    const double s1 = std::sin(q1), c1 = std::cos(q1);
+    const double s12 = std::sin(q1 + q2), c12 = std::cos(q1 + q2);
+    J[0][0] = -p_.l1 * s1 - p_.l2 * s12;
+    J[0][1] = -p_.l2 * s12;
+    J[1][0] = p_.l1 * c1 + p_.l2 * c12;
+    J[1][1] = p_.l2 * c12;
+}
+
+Vec2 PlanarArm::endpoint_of(double q1, double q2) const {
+    return p_.base + Vec2{p_.l1 * std::cos(q1) + p_.l2 * std::cos(q1 + q2),
+                          p_.l1 * std::sin(q1) + p_.l2 * std::sin(q1 + q2)};
+}
+
+bool PlanarArm::place_at(Vec2 x) {
+    const Vec2 d = x - p_.base;
+    const double r2 = glm::dot(d, d);
+    const double c2 = (r2 - p_.l1 * p_.l1 - p_.l2 * p_.l2) / (2.0 * p_.l1 * p_.l2);
+    if (!(std::abs(c2) < 1.0)) return false;
+    // Elbow bent to the left (q2 > 0): the shoulder sits below and the elbow away from the scene.
+    const double q2 = std::acos(c2);
+    const double q1 = std::atan2(d.y, d.x) - std::atan2(p_.l2 * std::sin(q2), p_.l1 + p_.l2 * std::cos(q2));
+    q1_ = q1;
+    q2_ = q2;
+    w1_ = w2_ = 0.0;
+    return true;
+}
+
+Vec2 PlanarArm::velocity() const {
+    double J[2][2];
+    jacobian(q1_, q2_, J);
+    return {J[0][0] * w1_ + J[0][1] * w2_, J[1][0] * w1_ + J[1][1] * w2_};
+}
+
+double PlanarArm::quantise(double q) const {
+    const double step = kTwoPi / p_.encoder_counts;
+    return std::floor(q / step) * step;
+}
+
+Vec2 PlanarArm::measured_endpoint() const { return endpoint_of(quantise(q1_), quantise(q2_)); }
+
+void PlanarArm::command_force(Vec2 f) {
+    // The controller only knows the measured angles, so J is taken there.
+    double J[2][2];
+    jacobian(quantise(q1_), quantise(q2_), J);
+    const double t1 = J[0][0] * f.x + J[1][0] * f.y;
+    const double t2 = J[0][1] * f.x + J[1][1] * f.y;
+    tau1_ = std::clamp(t1, -p_.max_torque, p_.max_torque);
+    tau2_ = std::clamp(t2, -p_.max_torque, p_.max_torque);
+}
+
+Vec2 PlanarArm::applied_force() const {
+    // F = J^-T tau at the true configuration.
+    double J[2][2];
+    jacobian(q1_, q2_, J);
+    const double det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+    if (std::abs(det) < 1e-12) return Vec2{0.0};
+    // Solve J^T F = tau.
+    const double fx = (J[1][1] * tau1_ - J[1][0] * tau2_) / det;
+    const double fy = (-J[0][1] * tau1_ + J[0][0] * tau2_) / det;
+    return {fx, fy};
+}
+
+void PlanarArm::step(double h, Vec2 ext) {
+    double J[2][2];
+    jacobian(q1_, q2_, J);
+    // J-dot q-dot: the endpoint's centripetal acceleration, for the endpoint mass.
+    const double c1 = std::cos(q1_), s1 = std::sin(q1_);
+    const double c12 = std::cos(q1_ + q2_), s12 = std::sin(q1_ + q2_);
+    const double w12 = w1_ + w2_;
+    const Vec2 jdqd{-p_.l1 * c1 * w1_ * w1_ - p_.l2 * c12 * w12 * w12,
+                    -p_.l1 * s1 * w1_ * w1_ - p_.l2 * s12 * w12 * w12};
+    const double m = p_.endpoint_mass;
+    // M = diag(I1, I2) + m J^T J
+    const double M00 = p_.inertia1 + m * (J[0][0] * J[0][0] + J[1][0] * J[1][0]);
+    const double M01 = m * (J[0][0] * J[0][1] + J[1][0] * J[1][1]);
+    const double M11 = p_.inertia2 + m * (J[0][1] * J[0][1] + J[1][1] * J[1][1]);
+    const Vec2 f = ext - m * jdqd;
+    auto friction = [&](double w) { return p_.friction * std::tanh(w / 1e-3); };
+    const double r0 = tau1_ + J[0][0] * f.x + J[1][0] * f.y - p_.damping * w1_ - friction(w1_);
+    const double r1 = tau2_ + J[0][1] * f.x + J[1][1] * f.y - p_.damping * w2_ - friction(w2_);
+    const double det = M00 * M11 - M01 * M01;
+    const double a1 = (M11 * r0 - M01 * r1) / det;
+    const double a2 = (-M01 * r0 + M00 * r1) / det;
+    // Semi-implicit Euler: velocities first, positions with the new velocities.
+    w1_ += a1 * h;
+    w2_ += a2 * h;
+    q1_ += w1_ * h;
+    q2_ += w2_ * h;
+}
+
+double PlanarArm::cartesian_damping(Vec2 n) const {
+    double J[2][2];
+    jacobian(q1_, q2_, J);
+    const double det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+    // J^-1 n: the joint speeds that move the endpoint along n at 1 m/s.
+    const double u1 = (J[1][1] * n.x - J[0][1] * n.y) / det;
+    const double u2 = (-J[1][0] * n.x + J[0][0] * n.y) / det;
+    return p_.damping * (u1 * u1 + u2 * u2);
+}
+
+double PlanarArm::min_cartesian_damping(Vec2 lo, Vec2 hi) const {
+    PlanarArm probe(p_);
+    double best = 1e300;
+    for (int i = 0; i <= 8; ++i) {
+        for (int j = 0; j <= 8; ++j) {
+            const Vec2 x{lo.x + (hi.x - lo.x) * i / 8.0, lo.y + (hi.y - lo.y) * j / 8.0};
+            if (!probe.place_at(x)) continue;
+            double J[2][2];
+            probe.jacobian(probe.q1_, probe.q2_, J);
+            // Cartesian damping D = B J^-T J^-1 = B (J J^T)^-1: smallest eigenvalue is
+            // B / (largest eigenvalue of J J^T).
+            const double a = J[0][0] * J[0][0] + J[0][1] * J[0][1];
+            const double b = J[0][0] * J[1][0] + J[0][1] * J[1][1];
+            const double c = J[1][0] * J[1][0] + J[1][1] * J[1][1];
+            const double lmax = 0.5 * (a + c) + std::sqrt(0.25 * (a - c) * (a - c) + b * b);
+            best = std::min(best, p_.damping / lmax);
+        }
+    }
+    return best;
+}
+
+}  // namespace contactlab::drivers::sim

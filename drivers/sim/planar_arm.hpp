@@ -1,0 +1,66 @@
+// planar_arm.hpp — simulated 2-link planar force arm (seed 000 used a Phantom in a vertical
+// plane): joint inertias plus the thimble/finger mass at the endpoint, viscous joint damping,
+// Coulomb joint friction, motor torque saturation, J^T force rendering and quantised encoders.
+//
+// Simplification (said once here): the arm's endpoint is the finger centre x_f. On the real device
+// the endpoint is the top of the contact element and x_f follows from it and the wire angle psi
+// (seed 000 Fig. 8) by a fixed rigid offset, which changes nothing the servo sees.
+// Gravity is taken as compensated (the Phantom is counter-balanced).
+#pragma once
+
+#include "haptics/vec2.hpp"
+
+namespace contactlab::drivers::sim {
+
+struct PlanarArmParams {
+    Vec2 base{0.0, -0.25};          // m, shoulder joint position in the world
+    double l1 = 0.20;               // m, upper arm
+    double l2 = 0.20;               // m, forearm
+    double inertia1 = 4e-3;         // kg m^2, shoulder link + motor rotor (reflected)
+    double inertia2 = 2e-3;         // kg m^2, elbow link + rotor
+    double endpoint_mass = 0.02;    // kg, thimble + contact element + finger segment
+    double damping = 0.05;          // N m s/rad, viscous, each joint
+    double friction = 2e-3;         // N m, Coulomb, each joint (smoothed below 1e-3 rad/s)
+    double max_torque = 0.35;       // N m, continuous motor torque (per-motor saturation)
+    int encoder_counts = 65536;     // counts per joint revolution (after the capstan drive)
+};
+
+class PlanarArm {
+public:
+    explicit PlanarArm(const PlanarArmParams& p) : p_(p) {}
+
+    // Elbow-up inverse kinematics; returns false when x is out of reach (state unchanged).
+    bool place_at(Vec2 x);
+    // Forward kinematics of joint angles (rad) and of the true state.
+    Vec2 endpoint_of(double q1, double q2) const;
+    Vec2 endpoint() const { return endpoint_of(q1_, q2_); }
+    Vec2 velocity() const;  // m/s, true endpoint velocity
+    // Endpoint from the quantised encoder angles (what the device reports).
+    Vec2 measured_endpoint() const;
+
+    // Force (N) the motors should put on the endpoint: tau = J^T F, each torque saturated.
+    void command_force(Vec2 f);
+    void zero_torque() { tau1_ = tau2_ = 0.0; }
+    // Integrates over h (s) with an external force (N) on the endpoint (the hand).
+    void step(double h, Vec2 external);
+
+    // The rendered endpoint force the saturated torques actually produce (N).
+    Vec2 applied_force() const;
+    // Effective Cartesian damping along unit direction n (N s/m): n^T J^-T B J^-1 n.
+    double cartesian_damping(Vec2 n) const;
+    // Smallest eigenvalue of the Cartesian damping matrix over a grid of reachable points in
+    // `lo..hi` (m): what the device declares as its damping.
+    double min_cartesian_damping(Vec2 lo, Vec2 hi) const;
+    const PlanarArmParams& params() const { return p_; }
+
+private:
+    void jacobian(double q1, double q2, double J[2][2]) const;
+    double quantise(double q) const;
+
+    PlanarArmParams p_;
+    double q1_ = 0.0, q2_ = 0.0;    // rad: shoulder absolute, elbow relative
+    double w1_ = 0.0, w2_ = 0.0;    // rad/s
+    double tau1_ = 0.0, tau2_ = 0.0;  // N m, motor torques held over the servo period
+};
+
+}  // namespace contactlab::drivers::sim

@@ -1,0 +1,43 @@
+// scripted_hand.hpp — a human finger as an impedance pulling the device toward a scripted path.
+//
+// The hand is a spring-damper (stiffness, damping) from the path's intended position to the
+// finger; the finger's mass rides on the device endpoint (PlanarArmParams::endpoint_mass). The
+// finger angle is driven by the hand (the device cannot push it back, DESIGN.md): it follows the
+// path's phi through a first-order lag.
+#pragma once
+
+#include "drivers/hand_path.hpp"
+
+namespace contactlab::drivers::sim {
+
+struct HandParams {
+    double stiffness = 300.0;   // N/m, finger + wrist (human fingertip impedance, light grip)
+    double damping = 2.0;       // N s/m
+    double phi_lag = 0.02;      // s, time constant of the finger angle following the path
+};
+
+class ScriptedHand {
+public:
+    ScriptedHand(const HandParams& p, HandPath path) : p_(p), path_(std::move(path)) {}
+    // Force (N) on the finger at time t (s) with finger position x (m) and velocity v (m/s).
+    Vec2 force(double t, Vec2 x, Vec2 v) const noexcept {
+        const PathPoint q = path_.at(t);
+        return p_.stiffness * (q.x - x) + p_.damping * (q.v - v);
+    }
+    // Advances the finger angle over h (s) toward the path's angle at time t (s).
+    void step_phi(double t, double h) noexcept {
+        const double goal = path_.at(t).phi;
+        phi_ += (goal - phi_) * (1.0 - std::exp(-h / p_.phi_lag));
+    }
+    void reset(double t) noexcept { phi_ = path_.at(t).phi; }
+    double phi() const noexcept { return phi_; }
+    const HandPath& path() const noexcept { return path_; }
+    const HandParams& params() const noexcept { return p_; }
+
+private:
+    HandParams p_;
+    HandPath path_;
+    double phi_ = 0.0;  // rad
+};
+
+}  // namespace contactlab::drivers::sim

@@ -1,0 +1,33 @@
+// simulate_cli.cpp — the `simulate` subcommand on the command line.
+#include "engine/app/simulate_command.hpp"
+#include "engine/app/subcommands.hpp"
+
+namespace contactlab::app {
+
+void register_simulate_command(CLI::App& app, int& rc) {
+    static SimulateOptions o;  // outlives parsing; one process, one parse
+    static bool virtual_time = false, real_time = false;
+    CLI::App* cmd = app.add_subcommand("simulate", "Run the servo loop against a simulated or replayed device");
+    cmd->add_option("scene", o.scene_path, "Scene file (JSON, scenes/README.md)")->required();
+    cmd->add_option("--device", o.device, "sim-cld (simulated CLD rig + scripted hand) or replay:FILE")
+        ->default_val("sim-cld");
+    cmd->add_option("--hand", o.hand, "Scripted hand path, header t,x,y,phi (s, m, m, rad), linearly interpolated");
+    cmd->add_option("--task", o.task, "Built-in hand path instead of --hand: contour-block (seed 000 Fig. 9)");
+    cmd->add_option("--task-speed", o.task_speed, "Hand speed on the built-in task (m/s)")->default_val(0.05);
+    cmd->add_option("--rate", o.rate, "Servo rate (Hz), 100..20000")->default_val(1000.0);
+    cmd->add_option("--duration", o.duration, "Simulated time (s); default: the path's or recording's length");
+    auto* v = cmd->add_flag("--virtual", virtual_time, "Virtual time: no sleeping, bit-identical runs (default)");
+    auto* r = cmd->add_flag("--realtime", real_time, "Real time: a servo thread at the rate, with period statistics");
+    v->excludes(r);
+    cmd->add_option("--output,-o", o.output,
+                    "Per-tick CSV: t,x,y,phi,proxy_x,proxy_y,contact,depth,fx,fy,l_d,roller_l,roller_target,period,roller_drive,state")
+        ->required();
+    cmd->add_option("--record", o.record, "Also record every tick (contactlab recording v1) for --device replay:FILE");
+    add_override_options(cmd, o.overrides);
+    cmd->callback([&rc] {
+        o.realtime = real_time;
+        rc = run_simulate(o);
+    });
+}
+
+}  // namespace contactlab::app

@@ -1,0 +1,28 @@
+// simulate_command.hpp — `contactlab simulate`: the servo loop against a device (simulated CLD rig
+// held by a scripted hand, or a replayed recording), in virtual or real time.
+#pragma once
+
+#include "engine/app/trace_command.hpp"
+
+#include <string>
+
+namespace contactlab::app {
+
+struct SimulateOptions {
+    std::string scene_path;
+    std::string device = "sim-cld";   // "sim-cld" or "replay:FILE"
+    std::string hand;                 // HAND.csv (t,x,y,phi), or empty with task
+    std::string task;                 // "contour-block"
+    double task_speed = 0.05;         // m/s, hand speed on the built-in task
+    double rate = 1000.0;             // Hz, 100..20000
+    double duration = -1.0;           // s; < 0: the path's (or recording's) length
+    bool realtime = false;
+    std::string output;               // OUT.csv
+    std::string record;               // recording file, optional
+    SceneOverrides overrides;
+};
+
+// Runs it; prints a summary to stderr. Throws BadInput for bad options.
+int run_simulate(const SimulateOptions& o);
+
+}  // namespace contactlab::app

@@ -1,0 +1,56 @@
+// roller_controller.cpp — discrete PID of seed 000 eq. 2 (see roller_controller.hpp).
+#include "haptics/roller_controller.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace contactlab {
+
+void RollerController::reset(double l) noexcept {
+    integral_ = 0.0;
+    rate_f_ = 0.0;
+    target_rate_f_ = 0.0;
+    prev_target_ = std::isfinite(l) ? l : 0.0;
+    prev_l_ = std::isfinite(l) ? l : 0.0;
+    primed_ = std::isfinite(l);
+    drive_ = 0.0;
+    saturated_ = false;
+}
+
+double RollerController::step(double l_d, double l, double dt) noexcept {
+    if (!std::isfinite(l_d) || !std::isfinite(l) || !(dt > 0.0) || !std::isfinite(dt)) {
+        reset(l);
+        return 0.0;
+    }
+    if (!primed_) reset(l);
+    target_ = std::clamp(l_d, travel_.min, travel_.max);
+    const double e = target_ - l;
+    const double target_rate = (target_ - prev_target_) / dt;
+    prev_target_ = target_;
+
+    // Derivative on measurement, first-order low-pass (exact discretisation of 1/(tau s + 1)).
+    const double raw_rate = (l - prev_l_) / dt;
+    prev_l_ = l;
+    const double alpha = 1.0 - std::exp(-2.0 * 3.141592653589793 * gains_.d_cutoff_hz * dt);
+    rate_f_ += alpha * (raw_rate - rate_f_);
+    target_rate_f_ += alpha * (target_rate - target_rate_f_);
+
+    const double umax = std::max(0.0, gains_.max_drive);
+    const double p = gains_.kp * e;
+    const double d = -gains_.kd * rate_f_ + gains_.kff * target_rate_f_;
+    // Conditional integration: integrate unless the output is saturated and the error would push
+    // it further into saturation (the integral cannot wind up while the motor is at its limit).
+    const double i_next = integral_ + gains_.ki * e * dt;
+    const double u_try = p + i_next + d;
+    const bool winding = (u_try > umax && e > 0.0) || (u_try < -umax && e < 0.0);
+    if (!winding) integral_ = std::clamp(i_next, -umax, umax);
+    double u = p + integral_ + d;
+    saturated_ = std::abs(u) > umax;
+    u = std::clamp(u, -umax, umax);
+    // Past a travel end, never drive further out (the hard stop would stall the motor).
+    if ((l >= travel_.max && u > 0.0) || (l <= travel_.min && u < 0.0)) u = 0.0;
+    drive_ = u;
+    return u;
+}
+
+}  // namespace contactlab

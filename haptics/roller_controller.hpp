@@ -1,0 +1,70 @@
+// roller_controller.hpp — the contact-location (roller) position loop of seed 000, eq. 2:
+//
+//     F_l = (Kp + Ki / s) (l_d - l) - Kd s l
+//
+// discretised at the servo period T: proportional and integral action on the error, derivative on
+// the *measurement* (a step in l_d never kicks the motor) through a first-order low-pass (the
+// encoder difference is quantised), conditional-integration anti-windup, output saturation and
+// travel limits. Gains may change live between ticks: the integral is stored in output units, so
+// changing Ki does not step the output.
+//
+// The output is the motor drive in the device's units (the simulated CLD roller takes volts);
+// gains are in those units per metre of position error. The defaults are tuned for the simulated
+// CLD roller at 1 kHz (drivers/sim/cld_roller.hpp).
+#pragma once
+
+namespace contactlab {
+
+struct RollerGains {
+    double kp = 60000.0;        // drive per m of error (V/m)
+    double ki = 1.0e6;          // drive per m s of error (V/(m s))
+    double kd = 100.0;          // drive per m/s of roller speed (V s/m)
+    double d_cutoff_hz = 300.0; // derivative low-pass cut-off (Hz)
+    double max_drive = 12.0;    // output saturation, |u| <= max_drive (V)
+    // Optional, beyond eq. 2: drive per m/s of the target's rate (V s/m), filtered like the
+    // derivative. Set to the motor's back-EMF per nut speed it cancels the lag on a moving
+    // target; 0 (the default) is seed 000's pure PID.
+    double kff = 0.0;
+};
+
+struct RollerTravel {
+    double min = -0.010;  // m: travel limits along the pad (seed 000: about 2.0 cm of travel)
+    double max = 0.010;   // m
+};
+
+class RollerController {
+public:
+    RollerController() = default;
+    RollerController(const RollerGains& g, const RollerTravel& travel) : gains_(g), travel_(travel) {}
+
+    void set_gains(const RollerGains& g) noexcept { gains_ = g; }
+    const RollerGains& gains() const noexcept { return gains_; }
+    void set_travel(const RollerTravel& t) noexcept { travel_ = t; }
+    const RollerTravel& travel() const noexcept { return travel_; }
+
+    // Forgets integral and derivative history; the next step starts from measurement l (m).
+    void reset(double l) noexcept;
+
+    // One tick: desired location l_d (m), measured location l (m), period dt (s). Returns the
+    // saturated drive. Non-finite inputs give 0 and reset the state.
+    double step(double l_d, double l, double dt) noexcept;
+
+    double target() const noexcept { return target_; }  // l_d after the travel limits (m)
+    double drive() const noexcept { return drive_; }
+    bool saturated() const noexcept { return saturated_; }
+
+private:
+    RollerGains gains_;
+    RollerTravel travel_;
+    double integral_ = 0.0;   // drive units
+    double rate_f_ = 0.0;     // filtered dl/dt (m/s)
+    double target_rate_f_ = 0.0;  // filtered dl_d/dt (m/s)
+    double prev_target_ = 0.0;    // m
+    double prev_l_ = 0.0;     // m
+    bool primed_ = false;
+    double target_ = 0.0;
+    double drive_ = 0.0;
+    bool saturated_ = false;
+};
+
+}  // namespace contactlab

@@ -1,0 +1,103 @@
+// safety.hpp — what stands between the rendered force and the motors (DESIGN.md "Threads and
+// safety"): magnitude clamp (direction kept) then per-axis saturation, a NaN/Inf guard, the
+// engage gate and ramp-in after connect or fault, stall detection, and a passivity observer that
+// turns a loop going unstable into a reported fault instead of a growing oscillation.
+#pragma once
+
+#include "haptics/vec2.hpp"
+
+#include <cstdint>
+
+namespace contactlab {
+
+// |f| clamped to max_force (N) with its direction kept, then each component saturated to axis_max
+// (N). Non-finite input gives zero.
+Vec2 clamp_then_saturate(Vec2 f, double max_force, Vec2 axis_max) noexcept;
+
+enum class ServoState : std::uint8_t {
+    idle,        // no device / not started: output zero
+    arming,      // connected or re-armed: output zero until the commanded force is small
+    ramping,     // force scaled up linearly from 0 to 1 over the ramp time
+    engaged,     // full force
+    fault,       // output zero; see ServoFault
+};
+
+enum class ServoFault : std::uint8_t {
+    none,
+    non_finite_input,   // the device reported NaN/Inf for the finger or the roller
+    non_finite_output,  // the renderer produced NaN/Inf (never passed on)
+    watchdog,           // the tick stalled longer than the watchdog timeout
+    instability,        // the passivity observer saw the loop generating energy
+    device,             // the device reported a fault
+};
+
+const char* to_string(ServoState s) noexcept;
+const char* to_string(ServoFault f) noexcept;
+
+struct SafetyParams {
+    double engage_force = 0.05;   // N: the commanded force must fall below this to engage
+    double ramp_time = 0.25;      // s: 0 -> full force after engaging
+    double fault_hold = 0.5;      // s: a fault holds output at zero at least this long
+    double watchdog_timeout = 0.005;  // s: a gap between ticks longer than this is a stall
+    bool latch_instability = true;    // an instability fault needs clear_fault() to re-arm
+};
+
+// Engage gate, ramp and fault latch. step() returns the scale (0..1) applied to the force.
+class SafetySupervisor {
+public:
+    void set_params(const SafetyParams& p) noexcept { p_ = p; }
+    const SafetyParams& params() const noexcept { return p_; }
+
+    void connect(double t) noexcept;             // device became ready at time t (s)
+    void disconnect() noexcept;                  // back to idle
+    void raise(ServoFault f, double t) noexcept; // enter fault at time t (s); first reason kept
+    void clear_fault() noexcept { clear_requested_ = true; }
+
+    // Once per tick at time t (s) with the unscaled commanded force magnitude (N).
+    double step(double t, double commanded_force) noexcept;
+
+    ServoState state() const noexcept { return state_; }
+    ServoFault fault() const noexcept { return fault_; }
+    ServoFault last_fault() const noexcept { return last_fault_; }
+    std::uint32_t fault_count() const noexcept { return fault_count_; }
+
+private:
+    SafetyParams p_;
+    ServoState state_ = ServoState::idle;
+    ServoFault fault_ = ServoFault::none;
+    ServoFault last_fault_ = ServoFault::none;
+    std::uint32_t fault_count_ = 0;
+    double since_ = 0.0;  // s: when the current state began
+    bool clear_requested_ = false;
+};
+
+// Passivity observer (after Hannaford & Ryu) for a sampled virtual environment rendered through a
+// device with physical damping b (N s/m). Per tick it adds the energy the zero-order-held force
+// delivered to the finger, F_{k-1} . (x_k - x_{k-1}), plus the drop in the spring's stored energy,
+// and subtracts what the device's damping dissipated over the interval, b |dx|^2 / T. A passive
+// loop keeps the sum at or below zero; a loop above the discrete bound K < 2b/T makes it grow
+// every oscillation. The sum leaks with time constant `leak` so slow numerical drift is forgotten.
+struct PassivityParams {
+    double device_damping = 1.0;   // b, N s/m (from the device's declared limits)
+    double threshold = 2e-3;       // J of net generated energy that counts as unstable
+    double leak = 0.5;             // s
+};
+
+class PassivityObserver {
+public:
+    void set_params(const PassivityParams& p) noexcept { p_ = p; }
+    void reset() noexcept { energy_ = 0.0; primed_ = false; }
+    // x: finger position (m) now; f_prev: force (N) applied since the last tick; stored: the
+    // spring's stored energy (J) now; dt: period (s). Returns true once the threshold is passed.
+    bool step(Vec2 x, Vec2 f_prev, double stored, double dt) noexcept;
+    double energy() const noexcept { return energy_; }  // J
+
+private:
+    PassivityParams p_;
+    double energy_ = 0.0;
+    Vec2 prev_x_{0.0};
+    double prev_stored_ = 0.0;
+    bool primed_ = false;
+};
+
+}  // namespace contactlab

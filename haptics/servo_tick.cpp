@@ -1,0 +1,210 @@
+// servo_tick.cpp — the servo tick (see servo_tick.hpp for the contract).
+#include "haptics/servo_tick.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace contactlab {
+namespace {
+
+// Moves `cur` toward `goal` by at most rate * dt.
+double slew(double cur, double goal, double rate, double dt) {
+    if (!std::isfinite(goal)) return cur;
+    if (!(rate > 0.0)) return goal;
+    const double step = rate * dt;
+    return cur + std::clamp(goal - cur, -step, step);
+}
+
+bool finite_input(const ServoInput& in, bool roller) {
+    return std::isfinite(in.t) && is_finite(in.finger) && std::isfinite(in.phi) &&
+           (!roller || std::isfinite(in.roller_l));
+}
+
+}  // namespace
+
+double spring_energy(double depth, double k, double max_force) noexcept {
+    if (!(depth > 0.0) || !(k > 0.0)) return 0.0;
+    const double d_clamp = max_force / k;  // m: depth where the clamp starts
+    if (depth <= d_clamp) return 0.5 * k * depth * depth;
+    return 0.5 * k * d_clamp * d_clamp + max_force * (depth - d_clamp);
+}
+
+ServoTick::ServoTick(const ServoConfig& config, const ServoParams& params)
+    : config_(config), target_(params), current_(params), params_in_(params) {
+    params_seen_ = params_in_.version();
+    current_.max_force = std::min(current_.max_force, config_.device_max_force);
+    roller_ = RollerController(params.roller, config.roller_travel);
+    safety_.set_params(params.safety);
+}
+
+ServoTick::~ServoTick() { delete scene_; }
+
+void ServoTick::connect(double t) noexcept {
+    safety_.connect(t);
+    observer_.reset();
+    applied_ = Vec2{0.0};
+}
+
+void ServoTick::disconnect() noexcept {
+    safety_.disconnect();
+    observer_.reset();
+    applied_ = Vec2{0.0};
+    cmd_ = ServoCommand{};
+}
+
+void ServoTick::apply_params(double dt) noexcept {
+    const std::uint64_t v = params_in_.version();
+    if (v != params_seen_) {
+        params_seen_ = v;
+        target_ = params_in_.load();
+        // Gains and safety settings take effect at this boundary; the controller keeps its
+        // integral in output units, so a gain change does not step the drive.
+        roller_.set_gains(target_.roller);
+        safety_.set_params(target_.safety);
+        current_.roller = target_.roller;
+        current_.safety = target_.safety;
+        current_.passivity_threshold = target_.passivity_threshold;
+        current_.stiffness_slew = target_.stiffness_slew;
+        current_.max_force_slew = target_.max_force_slew;
+    }
+    current_.stiffness = std::max(0.0, slew(current_.stiffness, target_.stiffness, current_.stiffness_slew, dt));
+    const double force_goal = std::min(target_.max_force, config_.device_max_force);
+    current_.max_force = std::max(0.0, slew(current_.max_force, force_goal, current_.max_force_slew, dt));
+    const double linear_energy = current_.stiffness > 0.0
+                                     ? current_.max_force * current_.max_force / (2.0 * current_.stiffness)
+                                     : 0.0;
+    observer_.set_params({config_.device_damping, current_.passivity_threshold * linear_energy, 0.5});
+}
+
+void ServoTick::swap_scene(const ServoInput& in) noexcept {
+    ServoScene* next = scenes_.take(scene_);
+    if (next == nullptr) return;
+    // Continuity: the new proxy starts where the old one was (its history), so the force changes
+    // only by what the geometry changed. Without a previous scene it starts at the finger.
+    if (scene_ != nullptr) {
+        // If the edit moved the surface over the old proxy, the proxy must be pushed out to the
+        // new boundary, not left inside (it would render nothing). Proxy has no public
+        // "depenetrate" (reported upstream); its phi re-projection does exactly that, bounded by
+        // the chord the pad's ends sweep, so the new proxy starts at a slightly different angle
+        // and rotates back: it is pushed out by at most kSwapPush.
+        constexpr double kSwapPush = 0.002;  // m: the largest geometry change followed continuously
+        const double R = next->proxy.def().finger.radius;
+        const double dphi = 2.0 * std::asin(std::min(1.0, 0.5 * kSwapPush / R));
+        next->proxy.reset(scene_->proxy.output().proxy, scene_->proxy.output().phi + dphi);
+    } else {
+        next->proxy.reset(in.finger, in.phi);
+    }
+    scene_ = next;  // the old one now sits in the exchange's retire slot for the publisher
+    ++scene_swaps_;
+}
+
+void ServoTick::fault_tick(const ServoInput& in, double dt, ServoFault f) noexcept {
+    safety_.raise(f, std::isfinite(in.t) ? in.t : (std::isfinite(last_t_) ? last_t_ + dt : 0.0));
+    observer_.reset();
+    roller_.reset(std::numeric_limits<double>::quiet_NaN());
+    applied_ = Vec2{0.0};
+    cmd_ = ServoCommand{};
+}
+
+const ServoCommand& ServoTick::tick(const ServoInput& in) noexcept {
+    ++ticks_;
+    double dt = config_.period;
+    if (std::isfinite(in.t) && std::isfinite(last_t_) && in.t > last_t_) dt = in.t - last_t_;
+    const bool stalled = std::isfinite(last_t_) && std::isfinite(in.t) &&
+                         in.t - last_t_ > current_.safety.watchdog_timeout;
+    if (std::isfinite(in.t)) last_t_ = in.t;
+
+    if (clear_request_.exchange(false, std::memory_order_acq_rel)) safety_.clear_fault();
+    apply_params(dt);
+
+    ServoSnapshot snap;
+    snap.ticks = ticks_;
+    snap.t = in.t;
+    snap.dt = dt;
+    snap.finger = in.finger;
+    snap.phi = in.phi;
+    snap.roller_l = in.roller_l;
+
+    const bool finite = finite_input(in, config_.has_roller);
+    if (finite) swap_scene(in);
+
+    if (!finite) {
+        fault_tick(in, dt, ServoFault::non_finite_input);
+    } else if (in.device_fault) {
+        fault_tick(in, dt, ServoFault::device);
+    } else if (stalled) {
+        fault_tick(in, dt, ServoFault::watchdog);
+    }
+
+    if (finite && scene_ != nullptr) {
+        Proxy& proxy = scene_->proxy;
+        ProxyDef def = proxy.def();
+        def.stiffness = current_.stiffness;
+        def.max_force = current_.max_force;
+        proxy.set_def(def);
+        proxy_out_ = proxy.update(in.finger, in.phi);
+
+        const Vec2 rendered = proxy_out_.force;
+        const double rendered_mag = is_finite(rendered) ? glm::length(rendered) : 0.0;
+        if (!is_finite(rendered)) fault_tick(in, dt, ServoFault::non_finite_output);
+
+        const double scale = safety_.step(in.t, rendered_mag);
+        Vec2 f = clamp_then_saturate(rendered * scale, current_.max_force, config_.axis_max);
+
+        // Instability watch while force is being applied.
+        const ServoState st = safety_.state();
+        if (st == ServoState::ramping || st == ServoState::engaged) {
+            const double stored = scale * spring_energy(proxy_out_.depth, current_.stiffness, current_.max_force);
+            if (observer_.step(in.finger, applied_, stored, dt)) {
+                fault_tick(in, dt, ServoFault::instability);
+                f = Vec2{0.0};
+            }
+        } else {
+            observer_.reset();
+        }
+
+        cmd_.force = f;
+        applied_ = f;
+        if (config_.has_roller && safety_.state() != ServoState::fault && safety_.state() != ServoState::idle) {
+            cmd_.roller_drive = roller_.step(proxy_out_.l_d, in.roller_l, dt);
+            cmd_.roller_target = roller_.target();
+        } else {
+            cmd_.roller_drive = 0.0;
+            cmd_.roller_target = std::clamp(proxy_out_.l_d, config_.roller_travel.min, config_.roller_travel.max);
+            roller_.reset(in.roller_l);
+        }
+
+        snap.proxy = proxy_out_.proxy;
+        snap.contact = proxy_out_.contact;
+        snap.contact_count = proxy_out_.contact_count;
+        snap.depth = proxy_out_.depth;
+        snap.rendered_force = rendered;
+        snap.l_d = proxy_out_.l_d;
+    } else {
+        // No scene or unusable input: nothing to render, and never a NaN to the motors.
+        safety_.step(std::isfinite(in.t) ? in.t : 0.0, 0.0);
+        cmd_ = ServoCommand{};
+        applied_ = Vec2{0.0};
+        if (!finite) proxy_out_ = ProxyOutput{};
+    }
+
+    // Last line of defence: whatever happened above, the command is finite.
+    if (!is_finite(cmd_.force)) cmd_.force = Vec2{0.0};
+    if (!std::isfinite(cmd_.roller_drive)) cmd_.roller_drive = 0.0;
+    if (!std::isfinite(cmd_.roller_target)) cmd_.roller_target = 0.0;
+
+    snap.force = cmd_.force;
+    snap.roller_target = cmd_.roller_target;
+    snap.roller_drive = cmd_.roller_drive;
+    snap.stiffness = current_.stiffness;
+    snap.max_force = current_.max_force;
+    snap.observer_energy = observer_.energy();
+    snap.state = safety_.state();
+    snap.fault = safety_.fault();
+    snap.fault_count = safety_.fault_count();
+    snap.scene_swaps = scene_swaps_;
+    snapshot_.store(snap);
+    return cmd_;
+}
+
+}  // namespace contactlab

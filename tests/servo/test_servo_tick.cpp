@@ -1,0 +1,214 @@
+// The servo tick on plain structs: NaN guard, engage gate and ramp, scene swap continuity,
+// slew-limited parameters, lock-free snapshots, the roller PID's saturation and anti-windup.
+#include "sim_fixture.hpp"
+
+#include <doctest/doctest.h>
+
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <thread>
+
+using namespace contactlab;
+using namespace contactlab::test;
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double R = 0.026;  // m, the default finger radius
+
+ServoConfig cfg_no_roller() {
+    ServoConfig c;
+    c.has_roller = false;
+    return c;
+}
+
+// Ticks at 1 kHz from time t0 (s) pressing `depth` (m) into the floor y = 0.
+ServoCommand press(ServoTick& s, double& t, double depth, int ticks) {
+    ServoCommand c;
+    ServoInput in;
+    in.finger = {0.0, R - depth};
+    for (int k = 0; k < ticks; ++k) {
+        in.t = (t += 1e-3);
+        c = s.tick(in);
+    }
+    return c;
+}
+
+}  // namespace
+
+TEST_CASE("a NaN reading gives zero force and a fault, never a NaN command") {
+    ServoTick s(ServoConfig{}, ServoParams{});
+    s.scenes().publish(std::make_unique<ServoScene>(floor_scene()));
+    s.connect(0.0);
+    double t = 0.0;
+    press(s, t, -0.005, 5);        // free space: engage
+    ServoCommand c = press(s, t, 0.001, 400);
+    REQUIRE(s.state() == ServoState::engaged);
+    CHECK(c.force.y == doctest::Approx(1.0).epsilon(1e-6));  // Ke 1000 N/m x 1 mm
+
+    std::mt19937 rng(7);
+    const double bad[] = {kNaN, std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+    for (int k = 0; k < 300; ++k) {
+        ServoInput in;
+        in.t = (t += 1e-3);
+        in.finger = {0.0, R - 0.001};
+        in.roller_l = 0.0;
+        switch (rng() % 4) {
+            case 0: in.finger.x = bad[rng() % 3]; break;
+            case 1: in.finger.y = bad[rng() % 3]; break;
+            case 2: in.phi = bad[rng() % 3]; break;
+            default: in.roller_l = bad[rng() % 3]; break;
+        }
+        c = s.tick(in);
+        CHECK(c.force == Vec2{0.0});
+        CHECK(std::isfinite(c.roller_drive));
+        CHECK(std::isfinite(c.roller_target));
+        CHECK(s.state() == ServoState::fault);
+    }
+    CHECK(s.snapshot().fault == ServoFault::non_finite_input);
+}
+
+TEST_CASE("no kick: starting inside an object gives no force; after a fault, force waits until small") {
+    ServoTick s(cfg_no_roller(), ServoParams{});
+    s.scenes().publish(std::make_unique<ServoScene>(floor_scene()));
+    s.connect(0.0);
+    double t = 0.0;
+    // Starting 3 mm deep the proxy has no history and starts at the finger: nothing pushes.
+    CHECK(press(s, t, 0.003, 200).force == Vec2{0.0});
+    press(s, t, -0.002, 400);  // out into free space: engaged by now
+    REQUIRE(s.state() == ServoState::engaged);
+    REQUIRE(press(s, t, 0.001, 50).force.y == doctest::Approx(1.0).epsilon(1e-6));
+
+    // A fault while pressing (NaN reading), then valid readings still pressing 1 mm: after the
+    // fault hold the servo re-arms, but holds zero while the commanded force (1 N) is not small.
+    ServoInput bad;
+    bad.t = (t += 1e-3);
+    bad.finger = {kNaN, 0.0};
+    s.tick(bad);
+    REQUIRE(s.state() == ServoState::fault);
+    CHECK(press(s, t, 0.001, 1000).force == Vec2{0.0});
+    CHECK(s.state() == ServoState::arming);
+    // Backing off to 0.02 mm (20 mN < the 50 mN gate) opens it; force then ramps over 0.25 s.
+    press(s, t, 0.00002, 1);
+    CHECK(s.state() == ServoState::ramping);
+    double prev = 0.0, max_step = 0.0;
+    for (int k = 0; k < 400; ++k) {
+        const double depth = std::min(0.001, 0.00002 + k * 1e-5);  // back in over 0.1 s
+        const ServoCommand c = press(s, t, depth, 1);
+        max_step = std::max(max_step, std::abs(c.force.y - prev));
+        prev = c.force.y;
+    }
+    CHECK(s.state() == ServoState::engaged);
+    CHECK(prev == doctest::Approx(1.0).epsilon(1e-6));
+    // Per tick: the ramp adds <= 1 N / 250 ticks and the motion <= Ke x 0.01 mm = 10 mN.
+    CHECK(max_step < 0.004 + 0.01 + 1e-9);
+}
+
+TEST_CASE("a scene swap in contact changes the force only by what the geometry changed") {
+    ServoTick s(cfg_no_roller(), ServoParams{});
+    s.scenes().publish(std::make_unique<ServoScene>(floor_scene()));
+    s.connect(0.0);
+    double t = 0.0;
+    press(s, t, -0.005, 5);
+    const ServoCommand before = press(s, t, 0.001, 400);
+    REQUIRE(before.force.y == doctest::Approx(1.0).epsilon(1e-6));
+
+    // Same geometry again: no step at all.
+    s.scenes().publish(std::make_unique<ServoScene>(floor_scene()));
+    const ServoCommand same = press(s, t, 0.001, 1);
+    CHECK(s.snapshot().scene_swaps == 2);
+    CHECK(glm::length(same.force - before.force) < 1e-9);
+
+    // The floor raised by 0.2 mm: the force grows by Ke x 0.2 mm = 0.2 N, and no more.
+    Scene raised = floor_scene();
+    raised.contours[0].segments[0] = LineSegment{{-1.0, 0.0002}, {1.0, 0.0002}};
+    s.scenes().publish(std::make_unique<ServoScene>(raised));
+    const ServoCommand after = press(s, t, 0.001, 1);
+    CHECK(after.force.y == doctest::Approx(1.2).epsilon(1e-6));
+    CHECK(std::abs(after.force.x) < 1e-9);
+    s.scenes().reclaim();  // the publisher frees the retired scene, off the servo thread
+}
+
+TEST_CASE("parameters apply at a tick boundary, stiffness slew-limited") {
+    ServoParams p;
+    p.stiffness_slew = 10000.0;  // N/m per s: 10 N/m per tick
+    ServoTick s(cfg_no_roller(), p);
+    s.scenes().publish(std::make_unique<ServoScene>(floor_scene()));
+    s.connect(0.0);
+    double t = 0.0;
+    press(s, t, -0.005, 5);
+    press(s, t, 0.001, 400);
+    p.stiffness = 500.0;
+    s.publish_params(p);
+    const ServoCommand c1 = press(s, t, 0.001, 1);
+    CHECK(s.snapshot().stiffness == doctest::Approx(990.0));
+    CHECK(c1.force.y == doctest::Approx(0.99));
+    press(s, t, 0.001, 100);
+    CHECK(s.snapshot().stiffness == doctest::Approx(500.0));
+}
+
+TEST_CASE("snapshots read concurrently are never torn") {
+    ServoTick s(cfg_no_roller(), ServoParams{});
+    s.scenes().publish(std::make_unique<ServoScene>(floor_scene()));
+    s.connect(0.0);
+    std::atomic<bool> done{false};
+    std::atomic<long> torn{0}, reads{0};
+    std::thread reader([&] {
+        while (!done.load()) {
+            const ServoSnapshot snap = s.snapshot();
+            // Each tick writes finger.x = t and phi = -t: a torn copy breaks the relation.
+            if (snap.ticks > 0 && snap.finger.x != snap.t) torn.fetch_add(1);
+            reads.fetch_add(1);
+        }
+    });
+    ServoInput in;
+    for (int k = 1; k <= 200000; ++k) {
+        in.t = k * 1e-3;
+        in.finger = {in.t, 1.0};
+        s.tick(in);
+    }
+    done = true;
+    reader.join();
+    CHECK(torn.load() == 0);
+    CHECK(reads.load() > 0);
+}
+
+TEST_CASE("roller PID: saturates, does not wind up, travel-limited, bumpless gain change") {
+    RollerGains g;
+    RollerController pid(g, {-0.01, 0.01});
+    pid.reset(0.0);
+    // A 5 mm step with the roller held (stuck): the drive saturates at max_drive and the
+    // integral stays bounded by it, so releasing does not leave seconds of wound-up drive.
+    for (int k = 0; k < 2000; ++k) CHECK(std::abs(pid.step(0.005, 0.0, 1e-3)) <= g.max_drive);
+    CHECK(pid.saturated());
+    // At the target now: proportional 0, derivative 0 after the filter settles: the output is
+    // the integral alone and must be within one rail.
+    double u = 0.0;
+    for (int k = 0; k < 200; ++k) u = pid.step(0.005, 0.005, 1e-3);
+    CHECK(std::abs(u) <= g.max_drive);
+    // Target beyond travel is clamped.
+    pid.step(0.05, 0.005, 1e-3);
+    CHECK(pid.target() == doctest::Approx(0.01));
+    // Changing Ki keeps the output continuous (integral stored in volts).
+    pid.reset(0.0);
+    for (int k = 0; k < 50; ++k) pid.step(0.0001, 0.0, 1e-3);
+    const double before = pid.step(0.0001, 0.0, 1e-3);
+    g.ki *= 3.0;
+    pid.set_gains(g);
+    const double after = pid.step(0.0001, 0.0, 1e-3);
+    CHECK(std::abs(after - before) < 0.5);  // V: one tick of integration, no jump
+    // Non-finite input: zero drive.
+    CHECK(pid.step(kNaN, 0.0, 1e-3) == 0.0);
+}
+
+TEST_CASE("force clamp keeps direction, then per-axis saturation") {
+    const Vec2 f = clamp_then_saturate({3.0, 4.0}, 1.5, {10.0, 10.0});
+    CHECK(glm::length(f) == doctest::Approx(1.5));
+    CHECK(f.y / f.x == doctest::Approx(4.0 / 3.0));
+    const Vec2 g = clamp_then_saturate({3.0, 4.0}, 1.5, {0.5, 10.0});
+    CHECK(g.x == doctest::Approx(0.5));
+    CHECK(g.y == doctest::Approx(1.2));
+    CHECK(clamp_then_saturate({kNaN, 1.0}, 1.5, {1.0, 1.0}) == Vec2{0.0});
+}
