@@ -33,10 +33,9 @@ void push_circle(std::vector<CPiece>& out, CPiece base, const AngleSpan& a, cons
     }
 }
 
-void append_vertex(const Environment& env, int owner, Vec2 vertex, const AngleSpan& cone,
-                   const FingerShape& f, const AngleSpan& pads, std::vector<CPiece>& out) {
+void append_vertex(int owner, Vec2 vertex, const AngleSpan& cone, const FingerShape& f, const AngleSpan& pads,
+                   std::vector<CPiece>& out) {
     if (cone.width <= 0.0 || f.radius <= 0.0) return;
-    (void)env;
     CPiece p;
     p.kind = CPiece::Kind::circle;
     p.source = CPiece::Source::vertex;
@@ -49,35 +48,35 @@ void append_vertex(const Environment& env, int owner, Vec2 vertex, const AngleSp
     push_circle(out, p, cone, {wrap_2pi(pads.start + kPi), pads.width});
 }
 
-void append_line(const EnvSegment& s, int index, const FingerShape& f, double phi,
-                 const AngleSpan& pads, std::vector<CPiece>& out) {
+void append_line(const EnvSegment& s, int index, const PadFrame& pad, std::vector<CPiece>& out) {
+    const FingerShape& f = pad.finger;
     CPiece p;
     p.kind = CPiece::Kind::line;
     p.segment = index;
     p.dir = s.dir;
     p.len = s.length;
     p.n = s.normal;
-    // Pad interior pressed by the line: the pad point facing -n must be on the pad.
-    if (span_contains(pads, angle_of(-s.normal))) {
+    // Pad interior pressed by the line: the pad point facing -n must be on the pad, i.e. -n within
+    // the pad's half-angle of its middle direction (a dot product: no atan2 per segment).
+    if (glm::dot(-s.normal, pad.mid_dir) >= pad.cos_half) {
         p.source = CPiece::Source::line_offset;
         p.a = s.start + f.radius * s.normal;
         out.push_back(p);
     }
     if (!pad_has_endpoints(f)) return;
-    const double h = pad_half_angle(f);
     for (int k = 0; k < 2; ++k) {
-        const double theta = pad_mid_angle(phi) + (k == 0 ? -h : h);
-        if (glm::dot(pad_inward_tangent(theta, k), s.normal) <= kEndpointCosTolerance) continue;
+        if (glm::dot(pad.end_tangent[k], s.normal) <= kEndpointCosTolerance) continue;
         p.source = CPiece::Source::endpoint;
-        p.pad_theta = theta;
-        p.pad_l = k == 0 ? -0.5 * f.length : 0.5 * f.length;
-        p.a = s.start - f.radius * unit_at(theta);
+        p.pad_theta = pad.end_theta[k];
+        p.pad_l = pad.end_l[k];
+        p.a = s.start - f.radius * pad.end_dir[k];
         out.push_back(p);
     }
 }
 
-void append_arc(const EnvSegment& s, int index, const FingerShape& f, double phi,
-                const AngleSpan& pads, std::vector<CPiece>& out) {
+void append_arc(const EnvSegment& s, int index, const PadFrame& pad, std::vector<CPiece>& out) {
+    const FingerShape& f = pad.finger;
+    const AngleSpan& pads = pad.span;
     CPiece p;
     p.kind = CPiece::Kind::circle;
     p.segment = index;
@@ -95,18 +94,15 @@ void append_arc(const EnvSegment& s, int index, const FingerShape& f, double phi
         push_circle(out, p, s.angles, pads);
     }
     if (!pad_has_endpoints(f)) return;
-    const double h = pad_half_angle(f);
     for (int k = 0; k < 2; ++k) {
-        const double theta = pad_mid_angle(phi) + (k == 0 ? -h : h);
-        const Vec2 tau = pad_inward_tangent(theta, k);
         p.source = CPiece::Source::endpoint;
-        p.pad_theta = theta;
-        p.pad_l = k == 0 ? -0.5 * f.length : 0.5 * f.length;
-        p.center = s.center - f.radius * unit_at(theta);
+        p.pad_theta = pad.end_theta[k];
+        p.pad_l = pad.end_l[k];
+        p.center = s.center - f.radius * pad.end_dir[k];
         p.radius = s.radius;
         // Non-penetrating where the pad leaves toward free space: tau . n(beta) > 0, a half circle
         // of beta centred on tau's direction (bump) or on -tau's (bowl).
-        const double mid = angle_of(s.free_outside ? tau : -tau);
+        const double mid = s.free_outside ? pad.end_tangent_angle[k] : pad.end_tangent_angle[k] + kPi;
         const double half = 0.5 * kPi - kEndpointCosTolerance;
         push_circle(out, p, s.angles, {wrap_2pi(mid - half), 2.0 * half});
     }
@@ -114,17 +110,38 @@ void append_arc(const EnvSegment& s, int index, const FingerShape& f, double phi
 
 }  // namespace
 
-void append_cspace_pieces(const Environment& env, int index, const FingerShape& finger,
-                          double phi, std::vector<CPiece>& out) {
-    const EnvSegment& s = env.segments[index];
-    const AngleSpan pads = pad_span(finger, phi);
-    if (s.kind == EnvSegment::Kind::line) {
-        append_line(s, index, finger, phi, pads, out);
-    } else {
-        append_arc(s, index, finger, phi, pads, out);
+PadFrame make_pad_frame(const FingerShape& finger, double phi) {
+    PadFrame pad;
+    pad.finger = finger;
+    pad.phi = phi;
+    pad.span = pad_span(finger, phi);
+    const double h = pad_half_angle(finger);
+    pad.mid_dir = unit_at(pad_mid_angle(phi));
+    pad.cos_half = h >= kPi ? -2.0 : std::cos(h);
+    for (int k = 0; k < 2; ++k) {
+        pad.end_theta[k] = pad_mid_angle(phi) + (k == 0 ? -h : h);
+        pad.end_dir[k] = unit_at(pad.end_theta[k]);
+        pad.end_tangent[k] = pad_inward_tangent(pad.end_theta[k], k);
+        pad.end_tangent_angle[k] = angle_of(pad.end_tangent[k]);
+        pad.end_l[k] = k == 0 ? -0.5 * finger.length : 0.5 * finger.length;
     }
-    append_vertex(env, index, s.end, s.end_cone, finger, pads, out);
-    append_vertex(env, index, s.start, s.start_cone, finger, pads, out);
+    return pad;
+}
+
+void append_cspace_pieces(const Environment& env, int index, const PadFrame& pad, std::vector<CPiece>& out) {
+    const EnvSegment& s = env.segments[index];
+    if (s.kind == EnvSegment::Kind::line) {
+        append_line(s, index, pad, out);
+    } else {
+        append_arc(s, index, pad, out);
+    }
+    append_vertex(index, s.end, s.end_cone, pad.finger, pad.span, out);
+    append_vertex(index, s.start, s.start_cone, pad.finger, pad.span, out);
+}
+
+void append_cspace_pieces(const Environment& env, int index, const FingerShape& finger, double phi,
+                          std::vector<CPiece>& out) {
+    append_cspace_pieces(env, index, make_pad_frame(finger, phi), out);
 }
 
 double piece_signed_distance(const CPiece& piece, Vec2 p) {

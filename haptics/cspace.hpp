@@ -44,8 +44,26 @@ struct CPiece {
     bool free_outside = true;
 };
 
+// What the pieces need of the pad at one finger angle, computed once per angle (the sines and
+// cosines), not once per segment.
+struct PadFrame {
+    FingerShape finger;
+    double phi = 0.0;         // rad
+    AngleSpan span;           // pad angles that can touch
+    Vec2 mid_dir{0.0, -1.0};  // unit direction of the pad's middle from x_f
+    double cos_half = 0.0;    // cos of the pad's half-angle (-2 for a full circle: everything)
+    double end_theta[2] = {0.0, 0.0};  // the pad ends' angles (rad): low, high
+    Vec2 end_dir[2];                   // unit directions to the ends
+    Vec2 end_tangent[2];               // direction in which the pad continues from each end
+    double end_tangent_angle[2] = {0.0, 0.0};  // their angles (rad)
+    double end_l[2] = {0.0, 0.0};      // the ends' contact locations (m): -L/2, +L/2
+};
+PadFrame make_pad_frame(const FingerShape& finger, double phi);
+
 // Appends the pieces of segment `index` (and of the vertex at its end, and at its start for the
-// first segment of an open chain) for finger angle phi (rad).
+// first segment of an open chain) for the pad frame's finger angle.
+void append_cspace_pieces(const Environment& env, int index, const PadFrame& pad, std::vector<CPiece>& out);
+// The same for finger angle phi (rad): builds the pad frame first.
 void append_cspace_pieces(const Environment& env, int index, const FingerShape& finger,
                           double phi, std::vector<CPiece>& out);
 

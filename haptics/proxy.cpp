@@ -191,7 +191,8 @@ void Proxy::gather_segments(Vec2 center, double half_size) {
 
 void Proxy::build_pieces(double phi) {
     pieces_.clear();
-    for (int id : segment_ids_) append_cspace_pieces(*env_, id, def_.finger, phi, pieces_);
+    const PadFrame pad = make_pad_frame(def_.finger, phi);
+    for (int id : segment_ids_) append_cspace_pieces(*env_, id, pad, pieces_);
     active_count_ = 0;
 }
 

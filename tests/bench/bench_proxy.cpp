@@ -8,9 +8,11 @@
 // cross vertices. One benchmark iteration = one tick; the path is precomputed.
 #include "haptics/environment.hpp"
 #include "haptics/proxy.hpp"
+#include "haptics/stimuli.hpp"
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -75,6 +77,55 @@ void BM_ProxyTick(benchmark::State& state) {
     state.SetLabel(std::to_string(segments) + " line segments");
 }
 BENCHMARK(BM_ProxyTick)->Arg(10)->Arg(1000)->Arg(100000);
+
+// Curves: a generated seed 002 stimulus (seed 1: 2 small bumps, 1 large, 100 quad segments),
+// traced left to right 1 mm under its envelope at 0.035 mm per tick, in exact mode and flattened
+// at 1e-4 and 1e-5 m. Counter `max_err_m`: the largest distance of the mode's force-determining
+// proxy from exact mode's over the stroke (the accuracy the speed buys).
+struct BumpsStroke {
+    GeneratedScene g = generate_bumps(BumpsDef{});
+    std::vector<Sample> path;
+    std::vector<Vec2> exact_proxy;
+    BumpsStroke() {
+        const auto& env = g.envelope;
+        std::size_t j = 0;
+        for (double x = 0.005; x <= 0.175; x += 3.5e-5) {
+            while (j + 2 < env.size() && env[j + 1].x < x) ++j;
+            const double t = (x - env[j].x) / (env[j + 1].x - env[j].x);
+            path.push_back({{x, env[j].y + t * (env[j + 1].y - env[j].y) + 0.026 - 0.001}, 0.0});
+        }
+        const Environment e = build_environment(g.scene);
+        Proxy p(e, ProxyDef{});
+        p.reset(path[0].x + Vec2{0.0, 0.05}, 0.0);
+        for (const Sample& s : path) exact_proxy.push_back(p.update(s.x, s.phi).proxy);
+    }
+};
+
+void BM_ProxyTickBumps(benchmark::State& state) {
+    static const BumpsStroke stroke;
+    Scene scene = stroke.g.scene;
+    const int mode = static_cast<int>(state.range(0));
+    if (mode > 0) scene.curves = {CurveMode::flatten, mode == 1 ? 1e-4 : 1e-5};
+    const Environment env = build_environment(scene);
+    Proxy proxy(env, ProxyDef{});
+    double max_err = 0.0;
+    proxy.reset(stroke.path[0].x + Vec2{0.0, 0.05}, 0.0);
+    for (std::size_t k = 0; k < stroke.path.size(); ++k)
+        max_err = std::max(max_err, glm::length(proxy.update(stroke.path[k].x, 0.0).proxy - stroke.exact_proxy[k]));
+    std::size_t k = 0;
+    proxy.reset(stroke.path[0].x + Vec2{0.0, 0.05}, 0.0);
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(proxy.update(stroke.path[k].x, 0.0).force);
+        if (++k == stroke.path.size()) {
+            k = 0;
+            proxy.reset(stroke.path[0].x + Vec2{0.0, 0.05}, 0.0);
+        }
+    }
+    state.counters["max_err_m"] = max_err;
+    state.counters["env_segments"] = static_cast<double>(env.segments.size());
+    state.SetLabel(mode == 0 ? "exact" : mode == 1 ? "flatten 1e-4 m" : "flatten 1e-5 m");
+}
+BENCHMARK(BM_ProxyTickBumps)->Arg(0)->Arg(1)->Arg(2);
 
 }  // namespace
 
