@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
     register_trace_commands(app, rc);
     register_generate_command(app, rc);
     register_simulate_command(app, rc);
+    register_render_command(app, rc);
 
     try {
         app.parse(argc, argv);

@@ -1,0 +1,52 @@
+// frame.cpp — build_frame: the painter's order of a frame (parts in frame_*.cpp).
+#include "engine/render/frame.hpp"
+
+#include "engine/render/frame_parts.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace contactlab::render {
+
+View default_view(const FrameContent& content, int width, int height) {
+    Aabb box;
+    if (content.env) box = content.env->bounds;
+    if (content.finger) {
+        // The finger's body reaches 2.5 R behind its centre and R around it.
+        const double reach = 3.5 * content.shape.radius;
+        box.grow(content.finger->finger - Vec2(reach));
+        box.grow(content.finger->finger + Vec2(reach));
+    }
+    return fit_view(box, width, height);
+}
+
+namespace parts {
+
+Metrics metrics_for(const View& view) {
+    // Sizes follow the image's short side so small test images stay legible (px).
+    const float s = static_cast<float>(std::min(view.width, view.height)) / 720.0f;
+    Metrics m;
+    m.contour_width = std::max(1.5f, 2.5f * s);
+    m.outline_width = std::max(1.0f, 2.0f * s);
+    m.pad_width = std::max(2.0f, 5.0f * s);
+    m.dot_radius = std::max(2.0f, 5.0f * s);
+    m.arrow_full = std::max(24.0f, 140.0f * s);
+    m.arrow_width = std::max(1.5f, 3.5f * s);
+    m.text_scale = std::max(1, static_cast<int>(std::lround(2.0f * s)));
+    return m;
+}
+
+}  // namespace parts
+
+void build_frame(const FrameContent& content, const View& view, const Theme& theme, DrawList& out) {
+    out.clear();
+    const parts::Metrics m = parts::metrics_for(view);
+    parts::draw_grid(view, theme, out);
+    if (content.overlays.zones && content.finger && content.env) parts::draw_zones(content, view, theme, out);
+    if (content.scene) parts::draw_solids(*content.scene, view, theme, m, out);
+    if (content.overlays.cspace && content.finger && content.env) parts::draw_cspace(content, view, theme, m, out);
+    if (content.finger) parts::draw_proxy_state(content, view, theme, m, out);
+    parts::draw_legend(content, view, theme, m, out);
+}
+
+}  // namespace contactlab::render

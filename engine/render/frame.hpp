@@ -1,0 +1,46 @@
+// frame.hpp — the scene drawer: scene + proxy state + view -> draw list. The one drawing path
+// shared by offscreen rendering and (next) the window.
+//
+// Painter's order: grid, anticipation zones (overlay), solids, contours, c-space boundary
+// (overlay), proxy ghost, finger, target (and roller) on the pad, force arrow, contacts, anticipation marker, legend.
+#pragma once
+
+#include "engine/render/draw_list.hpp"
+#include "engine/render/theme.hpp"
+#include "engine/render/view.hpp"
+#include "haptics/environment.hpp"
+#include "haptics/proxy.hpp"
+#include "haptics/scene.hpp"
+
+#include <optional>
+
+namespace contactlab::render {
+
+struct Overlays {
+    bool cspace = false;  // the c-space obstacle boundary for the finger's phi (seed 000 Fig. 5)
+    bool zones = false;   // free space split by the nearest c-space piece's kind (seed 000 Fig. 6)
+};
+
+struct FrameContent {
+    const Scene* scene = nullptr;
+    const Environment* env = nullptr;  // built from *scene
+    std::optional<ProxyOutput> finger; // the proxy's state; nothing drawn for the finger if empty
+    FingerShape shape;                 // pad R, L
+    double max_force = 1.5;            // N: the force arrow's full length
+    Overlays overlays;
+    // Labels (scale bar, force bar, a status line) drawn with stb_easy_font. Off in golden images.
+    bool text = false;
+    // The roller's measured position on the pad (m, like l), when a device reports one.
+    std::optional<double> roller_l;
+};
+
+// Tolerance (px) for flattening curves: chord error at most this.
+inline constexpr double kFlattenTolerancePx = 0.2;
+
+// The view that shows the whole scene and the finger (with its body), with a margin.
+View default_view(const FrameContent& content, int width, int height);
+
+// Fills `out` (its size is the view's) with the frame.
+void build_frame(const FrameContent& content, const View& view, const Theme& theme, DrawList& out);
+
+}  // namespace contactlab::render

@@ -1,0 +1,92 @@
+// frame_grid.cpp — the millimetre grid, the axes, and the legend (scale bar, force bar).
+#include "engine/render/frame_parts.hpp"
+
+#include "engine/render/text.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace contactlab::render::parts {
+namespace {
+
+// Grid step (m): 1, 2 or 5 times a power of ten mm, the smallest at least 8 px apart.
+double grid_step(double px_per_m) {
+    for (double decade = 1e-3;; decade *= 10.0)
+        for (double k : {1.0, 2.0, 5.0})
+            if (k * decade * px_per_m >= 8.0) return k * decade;
+}
+
+// Snaps a pixel coordinate to the centre of its pixel, so 1 px lines are crisp.
+float snap(float v) { return std::floor(v) + 0.5f; }
+
+}  // namespace
+
+void draw_grid(const View& view, const Theme& theme, DrawList& out) {
+    const double step = grid_step(view.px_per_m);
+    const Aabb b = view.world_bounds();
+    const float w = static_cast<float>(view.width), h = static_cast<float>(view.height);
+    // Vertical lines; every 10th (or every 5th for a 5-mm-type step) is a major line, x = 0 the axis.
+    const long long i0 = static_cast<long long>(std::ceil(b.lo.x / step));
+    const long long i1 = static_cast<long long>(std::floor(b.hi.x / step));
+    for (long long i = i0; i <= i1; ++i) {
+        const float x = snap(view.to_px({static_cast<double>(i) * step, 0.0}).x);
+        const Color c = i == 0 ? theme.axis : (i % 10 == 0 ? theme.grid_major : theme.grid_minor);
+        out.line({x, 0.0f}, {x, h}, 1.0f, c);
+    }
+    const long long j0 = static_cast<long long>(std::ceil(b.lo.y / step));
+    const long long j1 = static_cast<long long>(std::floor(b.hi.y / step));
+    for (long long j = j0; j <= j1; ++j) {
+        const float y = snap(view.to_px({0.0, static_cast<double>(j) * step}).y);
+        const Color c = j == 0 ? theme.axis : (j % 10 == 0 ? theme.grid_major : theme.grid_minor);
+        out.line({0.0f, y}, {w, y}, 1.0f, c);
+    }
+}
+
+void draw_legend(const FrameContent& c, const View& view, const Theme& theme, const Metrics& m, DrawList& out) {
+    // Scale bar, bottom left: 10 mm (or 1 mm / 100 mm if that fits better), with end ticks.
+    double bar_m = 0.01;
+    if (bar_m * view.px_per_m > 0.3 * view.width) bar_m = 0.001;
+    if (bar_m * view.px_per_m < 12.0) bar_m = 0.1;
+    const float pad = std::round(m.dot_radius * 2.0f);
+    const float y = static_cast<float>(view.height) - pad;
+    const float x0 = pad, x1 = pad + static_cast<float>(bar_m * view.px_per_m);
+    out.line({x0, y}, {x1, y}, m.outline_width, theme.legend);
+    out.line({x0, y - 2.0f * m.dot_radius}, {x0, y}, m.outline_width, theme.legend);
+    out.line({x1, y - 2.0f * m.dot_radius}, {x1, y}, m.outline_width, theme.legend);
+    const float label_gap = 2.0f * m.dot_radius + 3.0f * static_cast<float>(m.text_scale);
+    if (c.text) {
+        char label[32];
+        std::snprintf(label, sizeof label, "%g mm", bar_m * 1e3);
+        const P2 size = text_size(label, m.text_scale);
+        draw_text(out, {x0, y - label_gap - size.y}, label, theme.legend, m.text_scale);
+    }
+    // Force bar, bottom right: the arrow length of the maximum force (c.max_force N).
+    if (c.finger) {
+        const float xr = static_cast<float>(view.width) - pad;
+        out.line({xr - m.arrow_full, y}, {xr, y}, m.arrow_width, theme.force);
+        out.line({xr - m.arrow_full, y - 2.0f * m.dot_radius}, {xr - m.arrow_full, y}, m.outline_width, theme.force);
+        out.line({xr, y - 2.0f * m.dot_radius}, {xr, y}, m.outline_width, theme.force);
+        if (c.text) {
+            char label[32];
+            std::snprintf(label, sizeof label, "%.2f N", c.max_force);
+            const P2 size = text_size(label, m.text_scale);
+            draw_text(out, {xr - size.x, y - label_gap - size.y}, label, theme.force, m.text_scale);
+        }
+    }
+    // Status line, top left: the proxy's state in the UI's units (mm, N, degrees).
+    if (c.text && c.finger) {
+        const ProxyOutput& o = *c.finger;
+        char status[160];
+        if (o.contact)
+            std::snprintf(status, sizeof status, "x_f (%.1f, %.1f) mm  phi %.1f deg  contacts %d  |F| %.3f N  l_d %+.2f mm",
+                          o.finger.x * 1e3, o.finger.y * 1e3, o.phi * 180.0 / kPi, o.contact_count,
+                          glm::length(o.force), o.l_d * 1e3);
+        else
+            std::snprintf(status, sizeof status, "x_f (%.1f, %.1f) mm  phi %.1f deg  free  anticipated l_d %+.2f mm",
+                          o.finger.x * 1e3, o.finger.y * 1e3, o.phi * 180.0 / kPi, o.l_d * 1e3);
+        draw_text(out, {pad, pad}, status, theme.legend, m.text_scale);
+    }
+}
+
+}  // namespace contactlab::render::parts

@@ -1,0 +1,36 @@
+// frame_parts.hpp — the pieces of build_frame (frame.cpp), one file each (internal header).
+#pragma once
+
+#include "engine/render/frame.hpp"
+
+#include <vector>
+
+namespace contactlab::render::parts {
+
+// Scale-dependent sizes (px) derived once per frame from the image size.
+struct Metrics {
+    float contour_width, outline_width, pad_width, dot_radius, arrow_full, arrow_width;
+    int text_scale;
+};
+Metrics metrics_for(const View& view);
+
+// World polyline of a contour's segments in travel order, flattened for the view (px).
+void flatten_contour(const Contour& contour, const View& view, std::vector<P2>& out);
+// Appends the points of one segment (px); the first point is skipped when `skip_first`.
+void flatten_segment(const Segment& segment, const View& view, bool skip_first, std::vector<P2>& out);
+
+void draw_grid(const View& view, const Theme& theme, DrawList& out);                        // frame_grid.cpp
+void draw_solids(const Scene& scene, const View& view, const Theme& theme, const Metrics& m,
+                 DrawList& out);                                                             // frame_contours.cpp
+// The finger body at (center, phi): filled body, outline and highlighted pad (frame_finger.cpp).
+void draw_finger_body(Vec2 center, double phi, const FingerShape& shape, const View& view, Color fill,
+                      Color outline, Color pad, const Metrics& m, DrawList& out);
+void draw_proxy_state(const FrameContent& c, const View& view, const Theme& theme, const Metrics& m,
+                      DrawList& out);                                                        // frame_finger.cpp
+void draw_cspace(const FrameContent& c, const View& view, const Theme& theme, const Metrics& m,
+                 DrawList& out);                                                             // frame_overlays.cpp
+void draw_zones(const FrameContent& c, const View& view, const Theme& theme, DrawList& out); // frame_overlays.cpp
+void draw_legend(const FrameContent& c, const View& view, const Theme& theme, const Metrics& m,
+                 DrawList& out);                                                             // frame_grid.cpp
+
+}  // namespace contactlab::render::parts

@@ -1,0 +1,32 @@
+// scene_render.cpp — scene -> settled proxy -> frame -> offscreen pixels.
+#include "engine/render/scene_render.hpp"
+
+#include "engine/render/offscreen.hpp"
+
+namespace contactlab::render {
+
+RenderResult render_scene(const VulkanContext& ctx, const Scene& scene, const RenderRequest& request) {
+    const Environment env = build_environment(scene);
+    const ProxyDef def = proxy_def_of(scene);
+    const FingerPose pose = request.finger ? *request.finger : default_finger_pose(env, def);
+
+    FrameContent content;
+    content.scene = &scene;
+    content.env = &env;
+    content.finger = settle_proxy(env, def, pose);
+    content.shape = def.finger;
+    content.max_force = def.max_force;
+    content.overlays = request.overlays;
+    content.text = request.text;
+
+    RenderResult result;
+    result.view = default_view(content, request.width, request.height);
+    result.proxy = *content.finger;
+    DrawList list(request.width, request.height);
+    build_frame(content, result.view, request.theme, list);
+    OffscreenTarget target(ctx, request.width, request.height);
+    result.image = target.render(list, request.theme.background);
+    return result;
+}
+
+}  // namespace contactlab::render

@@ -1,0 +1,31 @@
+// scene_render.hpp — one call from a scene file's contents to pixels: environment, settled proxy,
+// default view, draw list, offscreen render. Used by `contactlab render` and the snapshot tests.
+#pragma once
+
+#include "engine/render/context.hpp"
+#include "engine/render/finger_state.hpp"
+#include "engine/render/frame.hpp"
+#include "engine/render/image.hpp"
+
+#include <optional>
+
+namespace contactlab::render {
+
+struct RenderRequest {
+    int width = 1280, height = 720;   // px
+    std::optional<FingerPose> finger; // default_finger_pose when empty
+    Overlays overlays;
+    Theme theme = dark_theme();
+    bool text = false;  // labels (FrameContent::text); the CLI turns them on, goldens leave them off
+};
+
+// What the frame showed besides the pixels (for messages and tests).
+struct RenderResult {
+    Image image;
+    View view;
+    ProxyOutput proxy;
+};
+
+RenderResult render_scene(const VulkanContext& ctx, const Scene& scene, const RenderRequest& request);
+
+}  // namespace contactlab::render
