@@ -108,6 +108,15 @@ int circle_circle(Vec2 c0, double r0, Vec2 c1, double r1, Vec2 pts[2]) {
 
 }  // namespace
 
+ProxyDef proxy_def_of(const Scene& scene) {
+    ProxyDef def;
+    def.finger = finger_from_def(scene.finger);
+    def.stiffness = scene.force.stiffness;
+    def.max_force = scene.force.max_force;
+    def.contact_rule = scene.contact_location.rule;
+    return def;
+}
+
 Proxy::Proxy(const Environment& env, const ProxyDef& def) : env_(&env), def_(def) {
     segment_ids_.reserve(1024);
     pieces_.reserve(4096);
@@ -123,6 +132,7 @@ void Proxy::reset(Vec2 finger, double phi) {
 // ---- Proxy::update ------------------------------------------------------------------------------
 const ProxyOutput& Proxy::update(Vec2 finger, double phi) {
     if (!initialised_) reset(finger, phi);
+    const double previous_l_d = out_.l_d;
     const double R = def_.finger.radius;
     // How far any c-space piece can have moved since the last tick: only pieces made by the pad's
     // ends move with phi, by the chord their end swept.
@@ -169,9 +179,7 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi) {
         const double magnitude = glm::length(force);
         if (magnitude > def_.max_force) force *= def_.max_force / magnitude;
         out_.force = force;
-        double sum = 0.0;
-        for (int i = 0; i < out_.contact_count; ++i) sum += out_.contacts[i].l;
-        out_.l_d = out_.contact_count > 0 ? sum / out_.contact_count : 0.0;
+        out_.l_d = contact_location_of_contacts(previous_l_d);
     } else {
         anticipate(finger, phi);
     }
@@ -474,6 +482,23 @@ void Proxy::collect_contacts(Vec2 goal) {
     if (out_.contact_count == 0) {
         for (int i = 0; i < active_count_; ++i) add(pieces_[active_[i]]);
     }
+}
+
+// ---- contact_location_of_contacts ------------------------------------------------------------------
+// l_d from the contacts of this tick: their centroid (seed 000), or under least_displacement the
+// contact nearest the previous l_d (seed 002: the roller stays with the contact it is on, and moves
+// only when a single contact remains elsewhere).
+double Proxy::contact_location_of_contacts(double previous_l_d) const {
+    if (out_.contact_count == 0) return 0.0;
+    if (def_.contact_rule == ContactRule::least_displacement) {
+        double best = out_.contacts[0].l;
+        for (int i = 1; i < out_.contact_count; ++i)
+            if (std::abs(out_.contacts[i].l - previous_l_d) < std::abs(best - previous_l_d)) best = out_.contacts[i].l;
+        return best;
+    }
+    double sum = 0.0;
+    for (int i = 0; i < out_.contact_count; ++i) sum += out_.contacts[i].l;
+    return sum / out_.contact_count;
 }
 
 // ---- refine_on_curves ---------------------------------------------------------------------------

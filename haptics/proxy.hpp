@@ -23,7 +23,13 @@ struct ProxyDef {
     FingerShape finger;        // pad radius R (m) and length L (m)
     double stiffness = 1000.0; // Ke, N/m: F = Ke (x_fd - x_f), seed 000 eq. 1
     double max_force = 1.5;    // N: |F| is clamped here with its direction kept
+    // Several contacts: l_d is their centroid (seed 000) or, with least_displacement, the contact
+    // nearest the previous l_d, i.e. the one the roller reaches with the least travel (seed 002).
+    ContactRule contact_rule = ContactRule::centroid;
 };
+
+// The proxy definition (finger, Ke, force clamp, contact rule) a scene asks for.
+ProxyDef proxy_def_of(const Scene& scene);
 
 // One contact between the proxy's pad and the contour.
 struct ProxyContact {
@@ -80,6 +86,7 @@ private:
     void collect_contacts(Vec2 goal);
     void refine_on_curves(Vec2 goal);
     void refine_corner();
+    double contact_location_of_contacts(double previous_l_d) const;
     void anticipate(Vec2 finger, double phi);
 
     const Environment* env_;

@@ -88,10 +88,14 @@ struct CurveDef {
     double tolerance = 1e-4;  // m, used by flatten only
 };
 
-enum class ContactRule { centroid };
+// Which contact location l_d a tick with several contacts reports (proxy.hpp).
+enum class ContactRule {
+    centroid,            // seed 000: the centroid of the contacts
+    least_displacement,  // seed 002: the contact nearest the previous l_d (least roller travel)
+};
 
 struct ContactLocationDef {
-    ContactRule rule = ContactRule::centroid;  // seed 000: centroid of multiple contacts
+    ContactRule rule = ContactRule::centroid;
 };
 
 inline constexpr int kSceneFormatVersion = 1;

@@ -207,9 +207,14 @@ Scene read_scene(const json& root) {
         expect_object(*it, "contact_location");
         reject_unknown_keys(*it, "contact_location", {"rule"});
         const std::string rule = read_string(*it, "contact_location", "rule");
-        if (rule != "centroid")
-            fail("contact_location.rule", "unknown rule \"" + rule + "\" (expected \"centroid\")");
-        s.contact_location.rule = ContactRule::centroid;
+        if (rule == "centroid") {
+            s.contact_location.rule = ContactRule::centroid;
+        } else if (rule == "least_displacement") {
+            s.contact_location.rule = ContactRule::least_displacement;
+        } else {
+            fail("contact_location.rule",
+                 "unknown rule \"" + rule + "\" (expected \"centroid\" or \"least_displacement\")");
+        }
     }
 
     if (auto it = root.find("curves"); it != root.end()) {
@@ -456,7 +461,8 @@ std::string scene_to_json_text(const Scene& s) {
     }
     root["contours"] = std::move(contours);
     root["force"] = {{"model", "spring"}, {"stiffness", s.force.stiffness}, {"max_force", s.force.max_force}};
-    root["contact_location"] = {{"rule", "centroid"}};
+    root["contact_location"] = {
+        {"rule", s.contact_location.rule == ContactRule::centroid ? "centroid" : "least_displacement"}};
     root["curves"] = {{"mode", s.curves.mode == CurveMode::exact ? "exact" : "flatten"},
                       {"tolerance", s.curves.tolerance}};
     // nlohmann writes doubles with the shortest text that reads back to the same value.

@@ -3,14 +3,6 @@
 
 namespace contactlab {
 
-ProxyDef proxy_def_of(const Scene& s) {
-    ProxyDef d;
-    d.finger = finger_from_def(s.finger);
-    d.stiffness = s.force.stiffness;
-    d.max_force = s.force.max_force;
-    return d;
-}
-
 ServoScene::ServoScene(const Scene& s) : scene(s), env(build_environment(s)), proxy(env, proxy_def_of(s)) {}
 
 SceneExchange::~SceneExchange() {

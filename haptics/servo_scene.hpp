@@ -25,9 +25,6 @@ struct ServoScene {
     Proxy proxy;  // refers to env; only the servo thread touches it once published
 };
 
-// Proxy definition (finger, Ke, force clamp) from a scene's values.
-ProxyDef proxy_def_of(const Scene& s);
-
 // One publisher thread, one servo thread.
 class SceneExchange {
 public:

@@ -47,10 +47,7 @@ void apply_overrides(Scene& scene, const SceneOverrides& o) {
 
 std::vector<ProxyOutput> run_trace(const Scene& scene, const std::vector<FingerSample>& samples) {
     const Environment env = build_environment(scene);
-    ProxyDef def;
-    def.finger = finger_from_def(scene.finger);
-    def.stiffness = scene.force.stiffness;
-    def.max_force = scene.force.max_force;
+    const ProxyDef def = proxy_def_of(scene);
     Proxy proxy(env, def);
     std::vector<ProxyOutput> out;
     out.reserve(samples.size());
@@ -82,10 +79,7 @@ void write_trace_file(const std::string& path, const std::vector<FingerSample>& 
 
 DemoRun run_contour_follow(const Scene& scene, double x0, double speed, double press, double duration) {
     const Environment env = build_environment(scene);
-    ProxyDef def;
-    def.finger = finger_from_def(scene.finger);
-    def.stiffness = scene.force.stiffness;
-    def.max_force = scene.force.max_force;
+    const ProxyDef def = proxy_def_of(scene);
     Proxy proxy(env, def);
     const double dt = 1e-3;          // s: the 1 kHz servo rate of seed 000
     const double max_phi_rate = 1.0; // rad/s

@@ -32,14 +32,6 @@ int nearest_segment(const Environment& env, Vec2 p, double& distance) {
 
 }  // namespace
 
-ProxyDef proxy_def_of(const Scene& scene) {
-    ProxyDef def;
-    def.finger = finger_from_def(scene.finger);
-    def.stiffness = scene.force.stiffness;
-    def.max_force = scene.force.max_force;
-    return def;
-}
-
 Vec2 approach_start(const Environment& env, const ProxyDef& def, Vec2 finger) {
     const double R = def.finger.radius;
     const Vec2 fallback = finger + Vec2(0.0, 0.1);

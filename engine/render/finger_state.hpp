@@ -13,7 +13,7 @@ struct FingerPose {
     double phi = 0.0;  // rad
 };
 
-ProxyDef proxy_def_of(const Scene& scene);
+// (The proxy definition of a scene is haptics' proxy_def_of, proxy.hpp.)
 
 // A free-space start for the approach: from the contour point nearest the finger, out along the
 // contour's free-side normal until a disc of radius 1.05 R there touches nothing. Falls back to

@@ -39,17 +39,12 @@ inline Scene scene_of(std::initializer_list<Contour> contours) {
 struct ProxyRig {
     Environment env;
     std::unique_ptr<Proxy> proxy;
-    explicit ProxyRig(const Scene& scene, ProxyDef def = {}) : env(build_environment(scene)) {
-        def.finger = finger_from_def(scene.finger);
-        def.stiffness = scene.force.stiffness;
-        def.max_force = scene.force.max_force;
-        proxy = std::make_unique<Proxy>(env, def);
+    explicit ProxyRig(const Scene& scene) : env(build_environment(scene)) {
+        proxy = std::make_unique<Proxy>(env, proxy_def_of(scene));
     }
     ProxyRig(const Scene& scene, const FingerShape& finger) : env(build_environment(scene)) {
-        ProxyDef def;
+        ProxyDef def = proxy_def_of(scene);
         def.finger = finger;
-        def.stiffness = scene.force.stiffness;
-        def.max_force = scene.force.max_force;
         proxy = std::make_unique<Proxy>(env, def);
     }
     const ProxyOutput& at(Vec2 x, double phi) { return proxy->update(x, phi); }

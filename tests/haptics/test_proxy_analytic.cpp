@@ -214,3 +214,27 @@ TEST_CASE("concave corner: the proxy rests with two contacts and l_d is their ce
     CHECK(std::abs(o.proxy.x - (-R * std::sin(kHalf))) <= kTol);
     CHECK(std::abs(o.l_d - 0.5 * (0.0 + L / 2)) <= kTol);
 }
+
+TEST_CASE("least displacement rule: in a concave corner l_d stays with the contact the roller was on") {
+    // The concave step corner of the centroid test above: under seed 002's rule the roller stays
+    // at the contact nearest its previous position instead of jumping to the centroid.
+    Scene s = scene_of({polyline({{-0.2, 0.0}, {0.0, 0.0}, {0.0, 0.1}})});
+    s.contact_location.rule = ContactRule::least_displacement;
+    ProxyRig rig(s);
+    rig.proxy->reset({-0.05, 0.05}, 0.0);
+    // Slide along the floor toward the wall: one contact (pad middle on the floor, l = 0) ...
+    const ProxyOutput& a = rig.at({-0.05, R - 0.001}, 0.0);
+    REQUIRE(a.contact_count == 1);
+    CHECK(std::abs(a.l_d) <= kTol);
+    // ... then into the corner, where the pad's distal end also meets the wall: two contacts.
+    int two = 0;
+    for (double x = -0.05; x <= 0.0; x += 1e-4) {
+        const ProxyOutput& o = rig.at({x, R - 0.001}, 0.0);
+        if (o.contact_count == 2) {
+            ++two;
+            // The floor contact (l = 0) is nearer the previous l_d than the wall one (l = L/2).
+            CHECK(std::abs(o.l_d - 0.0) <= kTol);
+        }
+    }
+    CHECK(two > 10);
+}
