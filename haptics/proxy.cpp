@@ -114,6 +114,7 @@ ProxyDef proxy_def_of(const Scene& scene) {
     def.stiffness = scene.force.stiffness;
     def.max_force = scene.force.max_force;
     def.contact_rule = scene.contact_location.rule;
+    def.law = scene.force.law;
     return def;
 }
 
@@ -130,7 +131,7 @@ void Proxy::reset(Vec2 finger, double phi) {
 }
 
 // ---- Proxy::update ------------------------------------------------------------------------------
-const ProxyOutput& Proxy::update(Vec2 finger, double phi) {
+const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
     if (!initialised_) reset(finger, phi);
     const double previous_l_d = out_.l_d;
     const double R = def_.finger.radius;
@@ -175,12 +176,12 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi) {
         refine_on_curves(finger);  // may move out_.proxy onto the exact curve
         out_.contact = true;
         out_.depth = glm::length(out_.proxy - finger);
-        Vec2 force = def_.stiffness * (out_.proxy - finger);
-        const double magnitude = glm::length(force);
-        if (magnitude > def_.max_force) force *= def_.max_force / magnitude;
-        out_.force = force;
+        apply_force_law(finger, dt);
         out_.l_d = contact_location_of_contacts(previous_l_d);
     } else {
+        has_stiction_ = false;
+        previous_depth_ = 0.0;
+        out_.anchor = finger;
         anticipate(finger, phi);
     }
     return out_;
@@ -482,6 +483,46 @@ void Proxy::collect_contacts(Vec2 goal) {
     if (out_.contact_count == 0) {
         for (int i = 0; i < active_count_; ++i) add(pieces_[active_[i]]);
     }
+}
+
+// ---- apply_force_law ------------------------------------------------------------------------------
+// The force on the finger from the proxy's anchor (force_law.hpp): the frictionless proxy, or the
+// stiction point held inside the friction cone and slid onto its edge when the force leaves it.
+// The contact frame is the direction from the finger to the frictionless proxy (the surface
+// normal for one contact, inside the normal cone in a corner).
+void Proxy::apply_force_law(Vec2 finger, double dt) {
+    const ForceLaw& law = def_.law;
+    const Vec2 proxy = out_.proxy;
+    const double depth = out_.depth;
+    const Vec2 n = depth > 0.0 ? (proxy - finger) / depth : Vec2{0.0, 1.0};
+    const Vec2 t = -perp_left(n);
+    Vec2 anchor = proxy;
+    if (law.mu_static > 0.0) {
+        if (!has_stiction_) {
+            stiction_ = proxy;
+            has_stiction_ = true;
+        }
+        // Offset of the stiction point along the surface from the frictionless proxy: the force
+        // toward it has F_t / F_n = sigma / depth for both laws (the ellipsoid keeps direction -p).
+        const double sigma = glm::dot(stiction_ - proxy, t);
+        if (std::abs(sigma) > law.mu_static * depth) {
+            stiction_ = proxy + std::copysign(law.mu_dynamic * depth, sigma) * t;
+            out_.sliding = true;
+        }
+        anchor = stiction_;
+    }
+    Vec2 force = law.model == ForceModel::ellipsoid ? ellipsoid_force(finger - anchor, n, law.k_tangential, law.k_normal)
+                                                    : def_.stiffness * (anchor - finger);
+    if (law.damping > 0.0 && dt > 0.0 && previous_depth_ > 0.0) {
+        force += law.damping * ((depth - previous_depth_) / dt) * n;
+        const double fn = glm::dot(force, n);
+        if (fn < 0.0) force -= fn * n;  // damping may soften the push, never pull the finger in
+    }
+    previous_depth_ = depth;
+    const double magnitude = glm::length(force);
+    if (magnitude > def_.max_force) force *= def_.max_force / magnitude;
+    out_.force = force;
+    out_.anchor = anchor;
 }
 
 // ---- contact_location_of_contacts ------------------------------------------------------------------

@@ -26,7 +26,10 @@ struct ProxyDef {
     // Several contacts: l_d is their centroid (seed 000) or, with least_displacement, the contact
     // nearest the previous l_d, i.e. the one the roller reaches with the least travel (seed 002).
     ContactRule contact_rule = ContactRule::centroid;
+    ForceLaw law;              // spring (Ke above) or ellipsoid; damping; friction cone
 };
+
+inline constexpr double kDefaultServoPeriod = 1e-3;  // s: seed 000's 1 kHz
 
 // The proxy definition (finger, Ke, force clamp, contact rule) a scene asks for.
 ProxyDef proxy_def_of(const Scene& scene);
@@ -49,6 +52,8 @@ struct ProxyOutput {
     double l_d = 0.0;         // desired contact location (m): centroid of contacts, or anticipated
     int contact_count = 0;
     std::array<ProxyContact, 4> contacts{};
+    Vec2 anchor{0.0};         // where the force points: the proxy, or the stiction point (m)
+    bool sliding = false;     // friction: the stiction point slid this tick
     // Free space: the c-space piece the finger is nearest to (seed 000 §3.2), if any.
     bool anticipating = false;
     Vec2 anticipated_point{0.0};  // on the contour, m
@@ -61,8 +66,9 @@ public:
 
     // Places the proxy at the finger (no history), e.g. when a device connects.
     void reset(Vec2 finger, double phi);
-    // One servo tick: measured finger centre x_f (m) and angle phi (rad).
-    const ProxyOutput& update(Vec2 finger, double phi);
+    // One servo tick: measured finger centre x_f (m) and angle phi (rad); dt (s) since the last
+    // tick matters only for damping.
+    const ProxyOutput& update(Vec2 finger, double phi, double dt = kDefaultServoPeriod);
     const ProxyOutput& output() const { return out_; }
     const ProxyDef& def() const { return def_; }
     void set_def(const ProxyDef& def) { def_ = def; }
@@ -86,6 +92,7 @@ private:
     void collect_contacts(Vec2 goal);
     void refine_on_curves(Vec2 goal);
     void refine_corner();
+    void apply_force_law(Vec2 finger, double dt);
     double contact_location_of_contacts(double previous_l_d) const;
     void anticipate(Vec2 finger, double phi);
 
@@ -101,6 +108,9 @@ private:
     std::vector<int> segment_ids_;
     std::vector<CPiece> pieces_;
     int contact_pieces_[4] = {-1, -1, -1, -1};  // the piece behind each reported contact
+    bool has_stiction_ = false;   // friction: a stiction point is held
+    Vec2 stiction_{0.0};          // m
+    double previous_depth_ = 0.0; // m, for damping
 };
 
 }  // namespace contactlab

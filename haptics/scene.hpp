@@ -5,6 +5,7 @@
 // as JSON (format documented in scenes/README.md); environment.hpp compiles it for the servo.
 #pragma once
 
+#include "haptics/force_law.hpp"
 #include "haptics/vec2.hpp"
 
 #include <string>
@@ -70,12 +71,10 @@ struct FingerDef {
     double length = 0.020;  // L, m (seed 000: 2.0 cm); 0 < L < 2 pi R
 };
 
-enum class ForceModel { spring };
-
 struct ForceDef {
-    ForceModel model = ForceModel::spring;
-    double stiffness = 1000.0;  // Ke, N/m
+    double stiffness = 1000.0;  // Ke, N/m (spring)
     double max_force = 1.5;     // N; the magnitude is clamped here, direction kept (seed 000)
+    ForceLaw law;               // model, ellipsoid stiffnesses, damping, friction (force_law.hpp)
 };
 
 // How curves (quad, cubic) become the lines and arcs the proxy touches (bezier.hpp):

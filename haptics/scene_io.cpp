@@ -57,6 +57,8 @@ constexpr double kMaxCoordinate = 1e6;       // m: beyond this, double spacing >
 constexpr double kMaxStiffness = 1e7;        // N/m: far above any device's stable stiffness
 constexpr double kMaxForceLimit = 1e4;       // N
 constexpr double kMinCurveTolerance = 1e-9;  // m, flatten mode's chord tolerance
+constexpr double kMaxDamping = 1e3;          // N s/m
+constexpr double kMaxFriction = 10.0;        // friction coefficients
 constexpr double kMaxCurveTolerance = 1e-2;  // m
 
 //-------------------------------------------------------------------------------------------------
@@ -194,13 +196,52 @@ Scene read_scene(const json& root) {
         s.contours.push_back(read_contour(contours[i], index("contours", i)));
 
     if (auto it = root.find("force"); it != root.end()) {
-        expect_object(*it, "force");
-        reject_unknown_keys(*it, "force", {"model", "stiffness", "max_force"});
-        const std::string model = read_string(*it, "force", "model");
-        if (model != "spring") fail("force.model", "unknown force model \"" + model + "\" (expected \"spring\")");
-        s.force.model = ForceModel::spring;
-        s.force.stiffness = read_number(*it, "force", "stiffness");
-        s.force.max_force = read_number(*it, "force", "max_force");
+        const json& f = *it;
+        expect_object(f, "force");
+        const std::string model = read_string(f, "force", "model");
+        if (model == "spring") {
+            reject_unknown_keys(f, "force", {"model", "stiffness", "max_force", "damping", "friction"});
+            s.force.law.model = ForceModel::spring;
+            s.force.stiffness = read_number(f, "force", "stiffness");
+        } else if (model == "ellipsoid") {
+            // Either the two stiffnesses, or seed 004's eccentricity and total stiffness.
+            reject_unknown_keys(f, "force", {"model", "k_tangential", "k_normal", "eccentricity", "total_stiffness",
+                                             "total_stiffness_formula", "max_force", "damping", "friction"});
+            s.force.law.model = ForceModel::ellipsoid;
+            if (f.contains("k_tangential") || f.contains("k_normal")) {
+                if (f.contains("eccentricity") || f.contains("total_stiffness"))
+                    fail("force", "give k_tangential and k_normal, or eccentricity and total_stiffness, not both");
+                s.force.law.k_tangential = read_number(f, "force", "k_tangential");
+                s.force.law.k_normal = read_number(f, "force", "k_normal");
+            } else {
+                const double e = read_number(f, "force", "eccentricity");
+                const double k = read_number(f, "force", "total_stiffness");
+                if (!(e > 0.0) || e > 1e3) fail("force.eccentricity", "must lie in (0, 1000], got " + fmt(e));
+                TotalStiffness formula = TotalStiffness::printed;
+                if (f.contains("total_stiffness_formula")) {
+                    const std::string name = read_string(f, "force", "total_stiffness_formula");
+                    if (name == "diagonal_rms") {
+                        formula = TotalStiffness::diagonal_rms;
+                    } else if (name != "printed") {
+                        fail("force.total_stiffness_formula",
+                             "unknown formula \"" + name + "\" (expected \"printed\" or \"diagonal_rms\")");
+                    }
+                }
+                s.force.law.k_tangential = tangential_stiffness_from(k, e, formula);
+                s.force.law.k_normal = e * s.force.law.k_tangential;
+            }
+            s.force.stiffness = s.force.law.k_normal;  // the normal stiffness, for consumers of "Ke"
+        } else {
+            fail("force.model", "unknown force model \"" + model + "\" (expected \"spring\" or \"ellipsoid\")");
+        }
+        s.force.max_force = read_number(f, "force", "max_force");
+        if (f.contains("damping")) s.force.law.damping = read_number(f, "force", "damping");
+        if (auto fr = f.find("friction"); fr != f.end()) {
+            expect_object(*fr, "force.friction");
+            reject_unknown_keys(*fr, "force.friction", {"static", "dynamic"});
+            s.force.law.mu_static = read_number(*fr, "force.friction", "static");
+            s.force.law.mu_dynamic = read_number(*fr, "force.friction", "dynamic");
+        }
     }
 
     if (auto it = root.find("contact_location"); it != root.end()) {
@@ -391,6 +432,18 @@ void validate_scene(const Scene& s) {
         fail("force.stiffness", "must lie in (0, " + fmt(kMaxStiffness) + "] N/m, got " + fmt(s.force.stiffness));
     if (!std::isfinite(s.force.max_force) || !(s.force.max_force > 0.0) || s.force.max_force > kMaxForceLimit)
         fail("force.max_force", "must lie in (0, " + fmt(kMaxForceLimit) + "] N, got " + fmt(s.force.max_force));
+    const ForceLaw& law = s.force.law;
+    if (law.model == ForceModel::ellipsoid) {
+        for (const auto& [name, k] : {std::pair{"force.k_tangential", law.k_tangential}, std::pair{"force.k_normal", law.k_normal}})
+            if (!std::isfinite(k) || !(k > 0.0) || k > kMaxStiffness)
+                fail(name, "must lie in (0, " + fmt(kMaxStiffness) + "] N/m, got " + fmt(k));
+    }
+    if (!std::isfinite(law.damping) || law.damping < 0.0 || law.damping > kMaxDamping)
+        fail("force.damping", "must lie in [0, " + fmt(kMaxDamping) + "] N s/m, got " + fmt(law.damping));
+    if (!std::isfinite(law.mu_static) || law.mu_static < 0.0 || law.mu_static > kMaxFriction)
+        fail("force.friction.static", "must lie in [0, " + fmt(kMaxFriction) + "], got " + fmt(law.mu_static));
+    if (!std::isfinite(law.mu_dynamic) || law.mu_dynamic < 0.0 || law.mu_dynamic > law.mu_static)
+        fail("force.friction.dynamic", "must lie in [0, static = " + fmt(law.mu_static) + "], got " + fmt(law.mu_dynamic));
     // Flattening finer than 1e-9 m would need millions of chords for a centimetre curve (and the
     // exact mode is better there); coarser than 1 cm is not the curve any more.
     if (!std::isfinite(s.curves.tolerance) || s.curves.tolerance < kMinCurveTolerance ||
@@ -460,7 +513,18 @@ std::string scene_to_json_text(const Scene& s) {
         contours.push_back({{"closed", c.closed}, {"segments", std::move(segs)}});
     }
     root["contours"] = std::move(contours);
-    root["force"] = {{"model", "spring"}, {"stiffness", s.force.stiffness}, {"max_force", s.force.max_force}};
+    const ForceLaw& law = s.force.law;
+    if (law.model == ForceModel::spring) {
+        root["force"] = {{"model", "spring"}, {"stiffness", s.force.stiffness}, {"max_force", s.force.max_force}};
+    } else {
+        root["force"] = {{"model", "ellipsoid"},
+                         {"k_tangential", law.k_tangential},
+                         {"k_normal", law.k_normal},
+                         {"max_force", s.force.max_force}};
+    }
+    if (law.damping != 0.0) root["force"]["damping"] = law.damping;
+    if (law.mu_static != 0.0 || law.mu_dynamic != 0.0)
+        root["force"]["friction"] = {{"static", law.mu_static}, {"dynamic", law.mu_dynamic}};
     root["contact_location"] = {
         {"rule", s.contact_location.rule == ContactRule::centroid ? "centroid" : "least_displacement"}};
     root["curves"] = {{"mode", s.curves.mode == CurveMode::exact ? "exact" : "flatten"},

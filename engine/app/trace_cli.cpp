@@ -19,6 +19,14 @@ void add_override_options_impl(CLI::App* cmd, SceneOverrides& o) {
     cmd->add_option("--curve-mode", o.curve_mode,
                     "Curves: exact (arc spline within 1e-10 m, refined on the curve) or flatten (chords)");
     cmd->add_option("--tolerance", o.tolerance, "Chord tolerance (m) of --curve-mode flatten; replaces curves.tolerance");
+    cmd->add_option("--force-model", o.force_model, "spring (F = Ke d) or ellipsoid (seed 004's pseudo-ellipsoidal field)");
+    cmd->add_option("--k-tangential", o.k_tangential, "Ellipsoid: tangential stiffness k1 (N/m)");
+    cmd->add_option("--k-normal", o.k_normal, "Ellipsoid: normal stiffness k2 (N/m)");
+    cmd->add_option("--eccentricity", o.eccentricity, "Ellipsoid: e = k2 / k1 (with --total-stiffness)");
+    cmd->add_option("--total-stiffness", o.total_stiffness, "Ellipsoid: k = sqrt((k1^2 + 2 k2^2) / 3) (N/m), seed 004 eq. 3");
+    cmd->add_option("--friction", o.friction, "Friction cone: static coefficient (the dynamic one defaults to it)");
+    cmd->add_option("--friction-dynamic", o.friction_dynamic, "Friction cone: dynamic coefficient (<= static)");
+    cmd->add_option("--damping", o.damping, "Normal damping B (N s/m)");
 }
 
 int trace_main(const std::string& scene_path, const std::string& input, const std::string& output,
@@ -91,7 +99,7 @@ void register_trace_commands(CLI::App& app, int& rc) {
     trace->add_option("scene", trace_args.scene_path, "Scene file (JSON, scenes/README.md)")->required();
     trace->add_option("--input,-i", trace_args.input, "Finger samples, header t,x,y,phi (s, m, m, rad)")->required();
     trace->add_option("--output,-o", trace_args.output,
-                      "Proxy states, header t,x,y,phi,proxy_x,proxy_y,contact,depth,fx,fy,l_d")->required();
+                      "Proxy states, header t,x,y,phi,proxy_x,proxy_y,contact,depth,fx,fy,l_d,stiction_x,stiction_y")->required();
     add_override_options(trace, trace_args.overrides);
     trace->callback([&rc] {
         rc = trace_main(trace_args.scene_path, trace_args.input, trace_args.output, trace_args.overrides);

@@ -33,6 +33,41 @@ void apply_overrides(Scene& scene, const SceneOverrides& o) {
         }
     }
     if (o.tolerance) scene.curves.tolerance = *o.tolerance;
+    note("--k-tangential", o.k_tangential);
+    note("--k-normal", o.k_normal);
+    note("--eccentricity", o.eccentricity);
+    note("--total-stiffness", o.total_stiffness);
+    note("--friction", o.friction);
+    note("--friction-dynamic", o.friction_dynamic);
+    note("--damping", o.damping);
+    ForceLaw& law = scene.force.law;
+    if (o.force_model) {
+        given += std::string(given.empty() ? "" : ", ") + "--force-model " + *o.force_model;
+        if (*o.force_model == "spring") {
+            law.model = ForceModel::spring;
+        } else if (*o.force_model == "ellipsoid") {
+            law.model = ForceModel::ellipsoid;
+        } else {
+            throw SceneError("command-line options (" + given + "): expected spring or ellipsoid");
+        }
+    }
+    if (o.eccentricity || o.total_stiffness) {
+        if (!o.eccentricity || !o.total_stiffness)
+            throw SceneError("command-line options (" + given + "): --eccentricity and --total-stiffness go together");
+        if (!(*o.eccentricity > 0.0) || *o.eccentricity > 1e3)
+            throw SceneError("command-line options (" + given + "): --eccentricity must lie in (0, 1000]");
+        law.k_tangential = tangential_stiffness_from(*o.total_stiffness, *o.eccentricity);
+        law.k_normal = *o.eccentricity * law.k_tangential;
+    }
+    if (o.k_tangential) law.k_tangential = *o.k_tangential;
+    if (o.k_normal) law.k_normal = *o.k_normal;
+    if (o.friction) {
+        law.mu_static = *o.friction;
+        law.mu_dynamic = o.friction_dynamic ? *o.friction_dynamic : *o.friction;
+    } else if (o.friction_dynamic) {
+        law.mu_dynamic = *o.friction_dynamic;
+    }
+    if (o.damping) law.damping = *o.damping;
     if (o.stiffness) scene.force.stiffness = *o.stiffness;
     if (o.radius) scene.finger.radius = *o.radius;
     if (o.length) scene.finger.length = *o.length;
@@ -51,7 +86,11 @@ std::vector<ProxyOutput> run_trace(const Scene& scene, const std::vector<FingerS
     Proxy proxy(env, def);
     std::vector<ProxyOutput> out;
     out.reserve(samples.size());
-    for (const FingerSample& s : samples) out.push_back(proxy.update(s.x, s.phi));
+    double previous_t = samples.empty() ? 0.0 : samples.front().t - kDefaultServoPeriod;
+    for (const FingerSample& s : samples) {
+        out.push_back(proxy.update(s.x, s.phi, s.t - previous_t));  // dt from the file's times
+        previous_t = s.t;
+    }
     return out;
 }
 

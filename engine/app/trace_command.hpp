@@ -18,6 +18,14 @@ struct SceneOverrides {
     std::optional<double> max_force;  // N     (--max-force)
     std::optional<std::string> curve_mode;  // exact | flatten (--curve-mode)
     std::optional<double> tolerance;        // m, flatten chord tolerance (--tolerance)
+    std::optional<std::string> force_model; // spring | ellipsoid (--force-model)
+    std::optional<double> k_tangential;     // N/m (--k-tangential)
+    std::optional<double> k_normal;         // N/m (--k-normal)
+    std::optional<double> eccentricity;     // k_normal / k_tangential (--eccentricity)
+    std::optional<double> total_stiffness;  // N/m, seed 004 eq. 3 (--total-stiffness)
+    std::optional<double> friction;         // static coefficient (--friction)
+    std::optional<double> friction_dynamic; // dynamic coefficient, default = static (--friction-dynamic)
+    std::optional<double> damping;          // N s/m (--damping)
 };
 
 // Applies the overrides and re-validates; a bad value throws SceneError naming the option.

@@ -22,7 +22,10 @@ using contactlab::read_finger_samples;
 using contactlab::read_finger_samples_file;
 
 inline constexpr const char* kTraceInputHeader = kFingerSamplesHeader;
-inline constexpr const char* kTraceOutputHeader = "t,x,y,phi,proxy_x,proxy_y,contact,depth,fx,fy,l_d";
+// The first 11 columns are a contract (issue #2); later columns are appended, never reordered:
+// stiction_x, stiction_y = the point the force pulls toward (the proxy without friction).
+inline constexpr const char* kTraceOutputHeader =
+    "t,x,y,phi,proxy_x,proxy_y,contact,depth,fx,fy,l_d,stiction_x,stiction_y";
 
 void write_trace_header(std::FILE* out);
 void write_trace_row(std::FILE* out, double t, const ProxyOutput& o);

@@ -58,7 +58,8 @@ inline Csv parse_csv(const std::string& text) {
     return csv;
 }
 
-// Column indices of the trace output `t,x,y,phi,proxy_x,proxy_y,contact,depth,fx,fy,l_d`.
-enum Col { T, X, Y, PHI, PROXY_X, PROXY_Y, CONTACT, DEPTH, FX, FY, L_D, NCOLS };
+// Column indices of the trace output `t,x,y,phi,proxy_x,proxy_y,contact,depth,fx,fy,l_d` (the
+// contract) and the columns appended since: `stiction_x,stiction_y`.
+enum Col { T, X, Y, PHI, PROXY_X, PROXY_Y, CONTACT, DEPTH, FX, FY, L_D, STICTION_X, STICTION_Y, NCOLS };
 
 }  // namespace cli_test

@@ -236,3 +236,52 @@ TEST_CASE("trace with a header and no samples writes a header and no rows") {
     CHECK(r.csv.header == kOutputHeader);
     CHECK(r.csv.rows.empty());
 }
+
+TEST_CASE("trace --force-model ellipsoid with eccentricity 1 is the spring of the same total stiffness") {
+    TempDir dir;
+    const auto in = descend_and_tilt(kFlatR, 0.001, flat_tilts());
+    const TraceRun spring = run_trace(dir, scene("flat.json"), samples_csv(in));
+    const TraceRun ell = run_trace(dir, scene("flat.json"), samples_csv(in),
+                                   {"--force-model", "ellipsoid", "--eccentricity", "1", "--total-stiffness", "1000"});
+    INFO("stderr: " << ell.proc.err);
+    REQUIRE(ell.proc.exit_code == 0);
+    REQUIRE(ell.csv.rows.size() == spring.csv.rows.size());
+    for (std::size_t i = 0; i < in.size(); ++i) {
+        CAPTURE(i);
+        CHECK(std::abs(ell.csv.rows[i][FX] - spring.csv.rows[i][FX]) <= 1e-12);
+        CHECK(std::abs(ell.csv.rows[i][FY] - spring.csv.rows[i][FY]) <= 1e-12);
+    }
+}
+
+TEST_CASE("trace --friction holds the stiction point: sideways motion inside the cone pulls back") {
+    // Press 1 mm into the flat floor at x = 0.01, then slide 0.4 mm right: inside the cone
+    // (mu 0.5 * 1 mm = 0.5 mm), the stiction columns stay at x = 0.01 and fx = -Ke * 0.4 mm
+    // (|F| = 1.08 N, under the scene's 1.5 N clamp).
+    TempDir dir;
+    const std::vector<Sample> in = {{0.000, 0.01, kFlatR + 0.02, 0.0},
+                                    {0.001, 0.01, kFlatR - 0.001, 0.0},
+                                    {0.002, 0.0104, kFlatR - 0.001, 0.0}};
+    const TraceRun r = run_trace(dir, scene("flat.json"), samples_csv(in), {"--friction", "0.5"});
+    INFO("stderr: " << r.proc.err);
+    REQUIRE(r.proc.exit_code == 0);
+    REQUIRE(r.csv.rows.size() == 3);
+    CHECK(r.csv.rows[0][STICTION_X] == in[0].x);  // free space: the anchor is the finger itself
+    CHECK(std::abs(r.csv.rows[2][STICTION_X] - 0.01) <= kTol);
+    CHECK(std::abs(r.csv.rows[2][STICTION_Y] - kFlatR) <= kTol);
+    CHECK(std::abs(r.csv.rows[2][FX] - (-kFlatKe * 0.0004)) <= 1e-9);
+    CHECK(std::abs(r.csv.rows[2][FY] - kFlatKe * 0.001) <= 1e-9);
+}
+
+TEST_CASE("trace rejects absurd force-law options with exit 2 naming them") {
+    TempDir dir;
+    const auto in = descend_and_tilt(kFlatR, 0.001, flat_tilts());
+    for (const std::vector<std::string>& extra :
+         {std::vector<std::string>{"--force-model", "magnet"}, {"--friction", "-1"}, {"--friction", "0.2", "--friction-dynamic", "0.5"},
+          {"--damping", "1e9"}, {"--eccentricity", "0.5"}, {"--force-model", "ellipsoid", "--k-normal", "0"}}) {
+        const TraceRun r = run_trace(dir, scene("flat.json"), samples_csv(in), extra);
+        CAPTURE(extra[0]);
+        CHECK(r.proc.exit_code == 2);
+        CHECK(r.proc.err.find(extra[0]) != std::string::npos);
+        CHECK_FALSE(r.output_exists);
+    }
+}

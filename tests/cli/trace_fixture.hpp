@@ -18,7 +18,7 @@ inline constexpr double kFlatKe = 1000.0;    // N/m
 inline constexpr double kFlatMaxF = 1.5;     // N
 inline constexpr double kTol = 1e-9;
 
-inline constexpr const char* kOutputHeader = "t,x,y,phi,proxy_x,proxy_y,contact,depth,fx,fy,l_d";
+inline constexpr const char* kOutputHeader = "t,x,y,phi,proxy_x,proxy_y,contact,depth,fx,fy,l_d,stiction_x,stiction_y";
 
 struct Sample {
     double t, x, y, phi;

@@ -117,7 +117,7 @@ void check_same_scene(const Scene& a, const Scene& b) {
     CHECK(a.version == b.version);
     check_same_double(a.finger.radius, b.finger.radius);
     check_same_double(a.finger.length, b.finger.length);
-    CHECK(a.force.model == b.force.model);
+    CHECK(a.force.law.model == b.force.law.model);
     check_same_double(a.force.stiffness, b.force.stiffness);
     check_same_double(a.force.max_force, b.force.max_force);
     CHECK(a.contact_location.rule == b.contact_location.rule);
@@ -262,7 +262,7 @@ TEST_CASE("scene io: omitted finger, force and contact_location take the documen
     CHECK(s.version == 1);
     CHECK(s.finger.radius == 0.026);  // m
     CHECK(s.finger.length == 0.020);  // m
-    CHECK(s.force.model == ForceModel::spring);
+    CHECK(s.force.law.model == ForceModel::spring);
     CHECK(s.force.stiffness == 1000.0);  // N/m
     CHECK(s.force.max_force == 1.5);     // N
     CHECK(s.contact_location.rule == ContactRule::centroid);

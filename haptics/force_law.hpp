@@ -1,0 +1,40 @@
+// force_law.hpp — the force laws applied between the finger and the proxy's anchor point.
+//
+//   spring     F = Ke (x_s - x_f)                           (seed 000 eq. 1)
+//   ellipsoid  F = -(|E p| / |p|) p,  p = x_f - x_s,  E = diag(k_tangential, k_normal) in the
+//              contact's (tangent, normal) frame             (seed 004 eq. 2: the pseudo-ellipsoidal
+//              field, always pointing at the anchor; e = k_normal / k_tangential = 1 is the spring)
+// The anchor x_s is the frictionless proxy, or with friction the stiction point of the friction
+// cone (seed 004 §II, after [11]): it holds while |F_t| <= mu_s F_n and otherwise slides along the
+// surface until |F_t| = mu_d F_n. Optional normal damping B adds B v_n along the normal while the
+// penetration grows or shrinks (never pulling the finger in).
+#pragma once
+
+#include "haptics/vec2.hpp"
+
+namespace contactlab {
+
+enum class ForceModel { spring, ellipsoid };
+
+struct ForceLaw {
+    ForceModel model = ForceModel::spring;
+    double k_tangential = 1000.0;  // N/m, ellipsoid only (seed 004's k1)
+    double k_normal = 1000.0;      // N/m, ellipsoid only (seed 004's k2)
+    double damping = 0.0;          // B, N s/m along the normal; 0: none
+    double mu_static = 0.0;        // friction cone; 0: frictionless (the stiction point is the proxy)
+    double mu_dynamic = 0.0;       // <= mu_static
+};
+
+// The pseudo-ellipsoidal field for penetration p = x_f - x_s (m) at a contact with free-side unit
+// normal n: magnitude |E p| along -p. Zero at p = 0 (no division by zero).
+Vec2 ellipsoid_force(Vec2 p, Vec2 n, double k_tangential, double k_normal);
+
+// Seed 004 eq. 3 characterises the field by eccentricity e = k2 / k1 and total stiffness
+// k = sqrt((k1^2 + 2 k2^2) / 3). Its E = diag(k1, k1, k2) has two tangential axes, which suggests
+// k = sqrt((2 k1^2 + k2^2) / 3) instead (the RMS of E's diagonal). ContactLab uses the printed
+// formula; the other is available as TotalStiffness::diagonal_rms.
+enum class TotalStiffness { printed, diagonal_rms };
+// k1 (tangential stiffness, N/m) for total stiffness k (N/m) and eccentricity e.
+double tangential_stiffness_from(double k, double e, TotalStiffness formula = TotalStiffness::printed);
+
+}  // namespace contactlab
