@@ -81,11 +81,13 @@ BENCHMARK(BM_ProxyTick)->Arg(10)->Arg(1000)->Arg(100000);
 // Curves: a generated seed 002 stimulus (seed 1: 2 small bumps, 1 large, 100 quad segments),
 // traced left to right 1 mm under its envelope at 0.035 mm per tick, in exact mode and flattened
 // at 1e-4 and 1e-5 m. Counters `err_*_um`: the distance (micrometres) of the mode's proxy from
-// exact mode's over the stroke (the accuracy the speed buys).
+// exact mode's over the stroke (the accuracy the speed buys); `depth_err_*_um`: the same for the
+// penetration depth, i.e. the force error divided by Ke.
 struct BumpsStroke {
     GeneratedScene g = generate_bumps(BumpsDef{});
     std::vector<Sample> path;
     std::vector<Vec2> exact_proxy;
+    std::vector<double> exact_depth;  // m
     BumpsStroke() {
         const auto& env = g.envelope;
         std::size_t j = 0;
@@ -97,7 +99,11 @@ struct BumpsStroke {
         const Environment e = build_environment(g.scene);
         Proxy p(e, ProxyDef{});
         p.reset(path[0].x + Vec2{0.0, 0.05}, 0.0);
-        for (const Sample& s : path) exact_proxy.push_back(p.update(s.x, s.phi).proxy);
+        for (const Sample& s : path) {
+            const ProxyOutput& o = p.update(s.x, s.phi);
+            exact_proxy.push_back(o.proxy);
+            exact_depth.push_back(o.depth);
+        }
     }
 };
 
@@ -108,11 +114,16 @@ void BM_ProxyTickBumps(benchmark::State& state) {
     if (mode > 0) scene.curves = {CurveMode::flatten, mode == 1 ? 1e-4 : 1e-5};
     const Environment env = build_environment(scene);
     Proxy proxy(env, ProxyDef{});
-    std::vector<double> err;
+    std::vector<double> err;        // proxy position, m
+    std::vector<double> depth_err;  // penetration depth (so force / Ke), m
     proxy.reset(stroke.path[0].x + Vec2{0.0, 0.05}, 0.0);
-    for (std::size_t k = 0; k < stroke.path.size(); ++k)
-        err.push_back(glm::length(proxy.update(stroke.path[k].x, 0.0).proxy - stroke.exact_proxy[k]));
+    for (std::size_t k = 0; k < stroke.path.size(); ++k) {
+        const ProxyOutput& o = proxy.update(stroke.path[k].x, 0.0);
+        err.push_back(glm::length(o.proxy - stroke.exact_proxy[k]));
+        depth_err.push_back(std::abs(o.depth - stroke.exact_depth[k]));
+    }
     std::sort(err.begin(), err.end());
+    std::sort(depth_err.begin(), depth_err.end());
     std::size_t k = 0;
     proxy.reset(stroke.path[0].x + Vec2{0.0, 0.05}, 0.0);
     for (auto _ : state) {
@@ -127,6 +138,8 @@ void BM_ProxyTickBumps(benchmark::State& state) {
     state.counters["err_p50_um"] = 1e6 * err[err.size() / 2];
     state.counters["err_p99_um"] = 1e6 * err[err.size() * 99 / 100];
     state.counters["err_max_um"] = 1e6 * err.back();
+    state.counters["depth_err_p99_um"] = 1e6 * depth_err[depth_err.size() * 99 / 100];
+    state.counters["depth_err_max_um"] = 1e6 * depth_err.back();
     state.counters["env_segments"] = static_cast<double>(env.segments.size());
     state.SetLabel(mode == 0 ? "exact" : mode == 1 ? "flatten 1e-4 m" : "flatten 1e-5 m");
 }
