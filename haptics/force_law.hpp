@@ -16,6 +16,17 @@ namespace contactlab {
 
 enum class ForceModel { spring, ellipsoid };
 
+// What the finger feels when it presses on more than one surface (a concave corner of the
+// contour, the onset of a bump).
+//   proxy  the god-object force toward the proxy: one spring, however many contacts (seed 000);
+//   sum    seed 002's penalty force: the sum over every contact pair the finger has entered of
+//          k d_i n_i, d_i its depth behind that pair's c-space piece along the piece's normal n_i
+//          (seed 002 §2.3: "the sum of the forces at each contact point pair"). Pressing into a
+//          narrow V feels stiffer than pressing on one wall, as two springs in parallel, and the
+//          second wall pushes as soon as the finger reaches it, not when the proxy does. With one
+//          surface under the finger both are the same.
+enum class ContactForce { proxy, sum };
+
 struct ForceLaw {
     ForceModel model = ForceModel::spring;
     double k_tangential = 1000.0;  // N/m, ellipsoid only (seed 004's k1)
@@ -23,6 +34,7 @@ struct ForceLaw {
     double damping = 0.0;          // B, N s/m along the normal; 0: none
     double mu_static = 0.0;        // friction cone; 0: frictionless (the stiction point is the proxy)
     double mu_dynamic = 0.0;       // <= mu_static
+    ContactForce contacts = ContactForce::proxy;  // several contacts: one spring, or their sum
 };
 
 // The pseudo-ellipsoidal field for penetration p = x_f - x_s (m) at a contact with free-side unit

@@ -10,6 +10,7 @@
 #include "haptics/proxy.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 
 namespace contactlab {
@@ -485,6 +486,42 @@ void Proxy::collect_contacts(Vec2 goal) {
     }
 }
 
+// ---- contour_leaves_pad_between ---------------------------------------------------------------------
+// Two pieces are separate contact pairs only if the contour between their segments leaves the
+// finger's circle (radius R about x_f): the pad then overlaps the solid in two places, as on the
+// two sides of a valley. Over a convex bump the contour between the near and a far foot stays
+// within R, one overlap. Walks the chain between the segments (either way round, at most
+// kMaxPairWalk segments) and checks the farthest point of every segment strictly between.
+namespace {
+constexpr int kMaxPairWalk = 512;
+double farthest_distance(const EnvSegment& s, Vec2 from) {
+    double d = std::max(glm::length(s.start - from), glm::length(s.end - from));
+    if (s.kind == EnvSegment::Kind::arc) {
+        const Vec2 away = s.center - from;
+        const double len = glm::length(away);
+        const double angle = len > 0.0 ? std::atan2(away.y, away.x) : s.angles.start;
+        if (span_contains(s.angles, angle)) d = std::max(d, len + s.radius);
+    }
+    return d;
+}
+}  // namespace
+
+bool Proxy::contour_leaves_pad_between(int a, int b, Vec2 finger) const {
+    const double R = def_.finger.radius;
+    for (const bool forward : {true, false}) {
+        double farthest = 0.0;
+        int s = a;
+        for (int step = 0; step < kMaxPairWalk; ++step) {
+            const EnvSegment& seg = env_->segments[static_cast<std::size_t>(s)];
+            s = forward ? seg.next : seg.prev;
+            if (s < 0 || s == a) break;
+            if (s == b) return farthest > R;
+            farthest = std::max(farthest, farthest_distance(env_->segments[static_cast<std::size_t>(s)], finger));
+        }
+    }
+    return true;  // other contour, or far along this one
+}
+
 // ---- apply_force_law ------------------------------------------------------------------------------
 // The force on the finger from the proxy's anchor (force_law.hpp): the frictionless proxy, or the
 // stiction point held inside the friction cone and slid onto its edge when the force leaves it.
@@ -513,6 +550,56 @@ void Proxy::apply_force_law(Vec2 finger, double dt) {
     }
     Vec2 force = law.model == ForceModel::ellipsoid ? ellipsoid_force(finger - anchor, n, law.k_tangential, law.k_normal)
                                                     : def_.stiffness * (anchor - finger);
+    if (law.contacts == ContactForce::sum) {
+        // Seed 002 §2.3, the sum over contact pairs: every surface the finger has entered pushes
+        // on its own, k d_i n_i, d_i being the finger's depth behind that surface's c-space piece
+        // along the piece's normal n_i (the minimum distance of seed 002 eq. 3). As in the seed a
+        // pair is traced across its segment and the adjacent ones, so pieces of the same or
+        // adjacent segments are one pair; only separate surfaces (a valley's two sides) add up.
+        // Each pair's penetration is purely normal, so the ellipsoid acts with k_normal. The
+        // summed force has no tangential part to hold, so the stiction point follows the proxy.
+        const double k = law.model == ForceModel::ellipsoid ? law.k_normal : def_.stiffness;
+        const auto same_pair = [&](int piece_a, int piece_b) {
+            const int a = pieces_[static_cast<std::size_t>(piece_a)].segment;
+            const int b = pieces_[static_cast<std::size_t>(piece_b)].segment;
+            const EnvSegment& sa = env_->segments[static_cast<std::size_t>(a)];
+            return a == b || sa.prev == b || sa.next == b;
+        };
+        const auto pair_force = [&](const CPiece& piece) {
+            return k * std::max(0.0, -piece_signed_distance(piece, finger)) * piece_normal_at(piece, finger);
+        };
+        if (active_count_ == 2 && !same_pair(active_[0], active_[1])) {
+            // The proxy rests on two separate surfaces: each pushes by its own depth.
+            force = pair_force(pieces_[static_cast<std::size_t>(active_[0])]) +
+                    pair_force(pieces_[static_cast<std::size_t>(active_[1])]);
+        } else if (active_count_ >= 1) {
+            // One surface under the proxy (k times the proxy's depth, as the spring), plus the
+            // nearest other surface the finger has crossed before the proxy reaches it: it joins at
+            // d = 0, so the force stays continuous when the proxy arrives there later. A piece the
+            // proxy is behind (a thin wall's far face) was never entered: no pop-through.
+            force = k * (proxy - finger);
+            int other = -1;
+            double other_d = std::numeric_limits<double>::infinity();
+            for (int i = 0; i < static_cast<int>(pieces_.size()); ++i) {
+                const CPiece& piece = pieces_[static_cast<std::size_t>(i)];
+                const double d = -piece_signed_distance(piece, finger);
+                if (d <= 0.0 || d >= other_d || same_pair(i, active_[0])) continue;
+                if (active_count_ == 2 && same_pair(i, active_[1])) continue;
+                // proxy_ is the walk's proxy, on the pieces (out_.proxy may sit up to the arc
+                // spline's tolerance off them after refinement onto a true curve).
+                if (piece_signed_distance(piece, proxy_) < -kOnTolerance) continue;
+                if (piece_foot(piece, finger).clamped) continue;  // beyond its extent
+                if (!contour_leaves_pad_between(pieces_[static_cast<std::size_t>(active_[0])].segment,
+                                                piece.segment, finger))
+                    continue;  // one overlap with the pad, not a second surface
+                other = i;
+                other_d = d;
+            }
+            if (other >= 0) force += pair_force(pieces_[static_cast<std::size_t>(other)]);
+        }
+        anchor = proxy;
+        stiction_ = proxy;
+    }
     if (law.damping > 0.0 && dt > 0.0 && previous_depth_ > 0.0) {
         force += law.damping * ((depth - previous_depth_) / dt) * n;
         const double fn = glm::dot(force, n);

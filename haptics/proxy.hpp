@@ -93,6 +93,7 @@ private:
     void refine_on_curves(Vec2 goal);
     void refine_corner();
     void apply_force_law(Vec2 finger, double dt);
+    bool contour_leaves_pad_between(int segment_a, int segment_b, Vec2 finger) const;
     double contact_location_of_contacts(double previous_l_d) const;
     void anticipate(Vec2 finger, double phi);
 

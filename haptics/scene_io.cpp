@@ -200,13 +200,13 @@ Scene read_scene(const json& root) {
         expect_object(f, "force");
         const std::string model = read_string(f, "force", "model");
         if (model == "spring") {
-            reject_unknown_keys(f, "force", {"model", "stiffness", "max_force", "damping", "friction"});
+            reject_unknown_keys(f, "force", {"model", "stiffness", "max_force", "damping", "friction", "contacts"});
             s.force.law.model = ForceModel::spring;
             s.force.stiffness = read_number(f, "force", "stiffness");
         } else if (model == "ellipsoid") {
             // Either the two stiffnesses, or seed 004's eccentricity and total stiffness.
             reject_unknown_keys(f, "force", {"model", "k_tangential", "k_normal", "eccentricity", "total_stiffness",
-                                             "total_stiffness_formula", "max_force", "damping", "friction"});
+                                             "total_stiffness_formula", "max_force", "damping", "friction", "contacts"});
             s.force.law.model = ForceModel::ellipsoid;
             if (f.contains("k_tangential") || f.contains("k_normal")) {
                 if (f.contains("eccentricity") || f.contains("total_stiffness"))
@@ -236,6 +236,14 @@ Scene read_scene(const json& root) {
         }
         s.force.max_force = read_number(f, "force", "max_force");
         if (f.contains("damping")) s.force.law.damping = read_number(f, "force", "damping");
+        if (f.contains("contacts")) {
+            const std::string contacts = read_string(f, "force", "contacts");
+            if (contacts == "sum") {
+                s.force.law.contacts = ContactForce::sum;
+            } else if (contacts != "proxy") {
+                fail("force.contacts", "unknown contact force \"" + contacts + "\" (expected \"proxy\" or \"sum\")");
+            }
+        }
         if (auto fr = f.find("friction"); fr != f.end()) {
             expect_object(*fr, "force.friction");
             reject_unknown_keys(*fr, "force.friction", {"static", "dynamic"});
@@ -523,6 +531,7 @@ std::string scene_to_json_text(const Scene& s) {
                          {"max_force", s.force.max_force}};
     }
     if (law.damping != 0.0) root["force"]["damping"] = law.damping;
+    if (law.contacts == ContactForce::sum) root["force"]["contacts"] = "sum";
     if (law.mu_static != 0.0 || law.mu_dynamic != 0.0)
         root["force"]["friction"] = {{"static", law.mu_static}, {"dynamic", law.mu_dynamic}};
     root["contact_location"] = {

@@ -17,7 +17,7 @@ void add_override_options_impl(CLI::App* cmd, SceneOverrides& o) {
     cmd->add_option("--length", o.length, "Finger pad arc length L (m); replaces finger.length");
     cmd->add_option("--max-force", o.max_force, "Force magnitude clamp (N); replaces force.max_force");
     cmd->add_option("--curve-mode", o.curve_mode,
-                    "Curves: exact (arc spline within 1e-10 m, refined on the curve) or flatten (chords)");
+                    "Curves: exact (arc spline within 1e-7 m, contacts refined on the true curve) or flatten (chords)");
     cmd->add_option("--tolerance", o.tolerance, "Chord tolerance (m) of --curve-mode flatten; replaces curves.tolerance");
     cmd->add_option("--force-model", o.force_model, "spring (F = Ke d) or ellipsoid (seed 004's pseudo-ellipsoidal field)");
     cmd->add_option("--k-tangential", o.k_tangential, "Ellipsoid: tangential stiffness k1 (N/m)");
@@ -27,6 +27,8 @@ void add_override_options_impl(CLI::App* cmd, SceneOverrides& o) {
     cmd->add_option("--friction", o.friction, "Friction cone: static coefficient (the dynamic one defaults to it)");
     cmd->add_option("--friction-dynamic", o.friction_dynamic, "Friction cone: dynamic coefficient (<= static)");
     cmd->add_option("--damping", o.damping, "Normal damping B (N s/m)");
+    cmd->add_option("--contact-force", o.contact_force,
+                    "Two contacts: proxy (one spring to the proxy) or sum (each contact's own spring, seed 002)");
 }
 
 int trace_main(const std::string& scene_path, const std::string& input, const std::string& output,

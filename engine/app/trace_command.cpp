@@ -51,6 +51,16 @@ void apply_overrides(Scene& scene, const SceneOverrides& o) {
             throw SceneError("command-line options (" + given + "): expected spring or ellipsoid");
         }
     }
+    if (o.contact_force) {
+        given += std::string(given.empty() ? "" : ", ") + "--contact-force " + *o.contact_force;
+        if (*o.contact_force == "proxy") {
+            law.contacts = ContactForce::proxy;
+        } else if (*o.contact_force == "sum") {
+            law.contacts = ContactForce::sum;
+        } else {
+            throw SceneError("command-line options (" + given + "): expected proxy or sum");
+        }
+    }
     if (o.eccentricity || o.total_stiffness) {
         if (!o.eccentricity || !o.total_stiffness)
             throw SceneError("command-line options (" + given + "): --eccentricity and --total-stiffness go together");

@@ -26,6 +26,7 @@ struct SceneOverrides {
     std::optional<double> friction;         // static coefficient (--friction)
     std::optional<double> friction_dynamic; // dynamic coefficient, default = static (--friction-dynamic)
     std::optional<double> damping;          // N s/m (--damping)
+    std::optional<std::string> contact_force; // proxy | sum: force with two contacts (--contact-force)
 };
 
 // Applies the overrides and re-validates; a bad value throws SceneError naming the option.

@@ -116,3 +116,105 @@ TEST_CASE("normal damping adds B times the penetration speed and never pulls the
     CHECK(out.force.y >= 0.0);
     CHECK(std::abs(out.force.y) <= 1e-12);
 }
+
+// Seed 002 §2.3's multi-contact force: a valley whose sides (at +-a to the horizontal, solid
+// below) are separate surfaces, joined through a 1 cm deep slot the pad cannot reach, and
+// narrower than the pad. Each side's c-space
+// piece is its offset line, so the finger's depth behind side i is d_i = (x_c - x_f) . n_i with x_c
+// the point R from both sides, and the summed force is Ke times the sum of d_i n_i over the sides
+// the finger is behind (d_i > 0). Pressing straight down by h gives 2 Ke h cos^2 a, against Ke h
+// for the god-object's one spring.
+TEST_CASE("sum over contact pairs: a valley pushes with each side the finger is behind, continuously") {
+    const double a = 0.2;  // rad, within the pad's half-angle L / 2R = 0.385 so both contacts are on the pad
+    // h small enough that the slot's top corners stay beyond the pad's circle (R from x_f).
+    const double Ke = 1000.0, h = 0.0003, w = 0.0005;  // N/m, m, m (slot half-width)
+    const double t = std::tan(a);
+    Scene s = scene_of({polyline({{-w - 0.1, 0.1 * t}, {-w, 0.0}, {-w, -0.01}, {w, -0.01}, {w, 0.0}, {w + 0.1, 0.1 * t}})});
+    s.force.stiffness = Ke;
+    s.force.max_force = 100.0;
+    const Vec2 corner{0.0, R / std::cos(a) - w * t};  // the proxy in the valley: R from both sides
+    const Vec2 n1{std::sin(a), std::cos(a)}, n2{-std::sin(a), std::cos(a)};  // free-side normals
+    auto depth = [&](Vec2 f, Vec2 n) { return glm::dot(corner - f, n); };
+    auto summed_force = [&](Vec2 f) {
+        Vec2 F{0.0};
+        for (const Vec2 n : {n1, n2}) F += Ke * std::max(0.0, depth(f, n)) * n;
+        return F;
+    };
+
+    Scene summed = s;
+    summed.force.law.contacts = ContactForce::sum;
+    ProxyRig one(s), sum(summed);
+    for (ProxyRig* rig : {&one, &sum}) rig->proxy->reset(corner + Vec2{0.0, 0.05}, 0.0);
+    // Straight down, then 0.05 mm to the side (still inside the corner's normal cone, |x/h| < tan a).
+    for (const Vec2 f : {corner - Vec2{0.0, h}, corner + Vec2{0.00005, -h}}) {
+        const ProxyOutput& p = one.at(f, 0.0);
+        const ProxyOutput& q = sum.at(f, 0.0);
+        REQUIRE(p.contact_count == 2);
+        REQUIRE(q.contact_count == 2);
+        CHECK(glm::length(p.proxy - corner) <= 1e-12);
+        CHECK(glm::length(p.force - Ke * (corner - f)) <= 1e-9);
+        CHECK(glm::length(q.force - summed_force(f)) <= 1e-9);
+        CHECK(q.proxy == p.proxy);  // the rule changes the force, not the proxy or l_d
+        CHECK(q.l_d == p.l_d);
+    }
+    CHECK(std::abs(sum.at(corner - Vec2{0.0, h}, 0.0).force.y - 2.0 * Ke * h * std::cos(a) * std::cos(a)) <= 1e-9);
+
+    // Slide h deep (vertically) across the valley. The finger crosses the far side's offset line
+    // before the proxy reaches the corner: from there on the far side pushes too. Every tick
+    // matches the analytic sum; with one side under the finger it equals the god-object's force;
+    // and since each d_i moves by at most |dx| per tick and starts at 0, |dF| <= 2 Ke |dx|.
+    sum.proxy->reset(corner + Vec2{-0.03, 0.05}, 0.0);
+    one.proxy->reset(corner + Vec2{-0.03, 0.05}, 0.0);
+    const double dx = 1e-5;  // m per tick
+    Vec2 previous{0.0};
+    int both = 0, single = 0;
+    for (int k = 0; k <= 6000; ++k) {
+        const double x = -0.03 + k * dx;
+        const Vec2 f{x, corner.y + std::abs(x) * t - h};
+        const ProxyOutput& q = sum.at(f, 0.0);
+        const ProxyOutput& p = one.at(f, 0.0);
+        REQUIRE(q.contact);
+        CHECK(glm::length(q.force - summed_force(f)) <= 1e-9);
+        if (std::min(depth(f, n1), depth(f, n2)) < 0.0) {
+            ++single;
+            CHECK(glm::length(q.force - p.force) <= 1e-9);
+        } else {
+            ++both;
+        }
+        if (k > 0) CHECK(glm::length(q.force - previous) <= 2.0 * Ke * dx * (1.0 + 1e-9) + 1e-12);
+        previous = q.force;
+    }
+    CHECK(single > 5000);
+    CHECK(both > 100);  // |x| < h / (2 tan a) = 0.74 mm: 148 ticks
+
+    // Seed 002 traces a pair across adjacent segments: in a V whose sides meet at one vertex the
+    // sides are one pair, so the sum is the god-object's single spring.
+    Scene v = scene_of({polyline({{-0.1, 0.1 * t}, {0.0, 0.0}, {0.1, 0.1 * t}})});
+    v.force = summed.force;
+    ProxyRig vee(v);
+    const Vec2 v_corner{0.0, R / std::cos(a)};
+    vee.proxy->reset(v_corner + Vec2{0.0, 0.05}, 0.0);
+    const ProxyOutput& o = vee.at(v_corner - Vec2{0.0, h}, 0.0);
+    REQUIRE(o.contact_count == 2);
+    CHECK(glm::length(o.force - Vec2{0.0, Ke * h}) <= 1e-9);
+}
+
+// The proxy keeps the penalty sum from popping through: pressed 3 mm into a 1 mm wall, the finger
+// is behind both faces' pieces, but the proxy is behind the far face's, so only the near face
+// pushes, Ke d back toward the side the finger came from.
+TEST_CASE("sum over contact pairs: a thin wall's far face never pushes the finger through") {
+    const double Ke = 1000.0, d = 0.003;  // N/m, m
+    // A 1 mm wall along y, solid between x = 0 and x = 0.001 (closed, clockwise: solid on the right).
+    Scene s = scene_of({polyline({{0.0, -0.1}, {0.0, 0.1}, {0.001, 0.1}, {0.001, -0.1}}, true)});
+    s.force.stiffness = Ke;
+    s.force.max_force = 100.0;
+    s.force.law.contacts = ContactForce::sum;
+    ProxyRig rig(s);
+    rig.proxy->reset({-0.05, 0.0}, kPi / 2);  // pad facing +x
+    for (double x = -0.05; x <= -R + d; x += 1e-4) rig.at({x, 0.0}, kPi / 2);
+    const ProxyOutput& o = rig.at({-R + d, 0.0}, kPi / 2);
+    REQUIRE(o.contact);
+    CHECK(std::abs(o.proxy.x - (-R)) <= 1e-12);
+    CHECK(std::abs(o.force.x - (-Ke * d)) <= 1e-9);
+    CHECK(std::abs(o.force.y) <= 1e-12);
+}

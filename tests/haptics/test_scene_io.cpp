@@ -118,6 +118,12 @@ void check_same_scene(const Scene& a, const Scene& b) {
     check_same_double(a.finger.radius, b.finger.radius);
     check_same_double(a.finger.length, b.finger.length);
     CHECK(a.force.law.model == b.force.law.model);
+    check_same_double(a.force.law.k_tangential, b.force.law.k_tangential);
+    check_same_double(a.force.law.k_normal, b.force.law.k_normal);
+    check_same_double(a.force.law.damping, b.force.law.damping);
+    check_same_double(a.force.law.mu_static, b.force.law.mu_static);
+    check_same_double(a.force.law.mu_dynamic, b.force.law.mu_dynamic);
+    CHECK(a.force.law.contacts == b.force.law.contacts);
     check_same_double(a.force.stiffness, b.force.stiffness);
     check_same_double(a.force.max_force, b.force.max_force);
     CHECK(a.contact_location.rule == b.contact_location.rule);
@@ -514,6 +520,19 @@ TEST_CASE("scene io error: stiffness must be > 0 and not absurd") {
     check_error(force("1000", "0"), "force.max_force", "must lie in (0, 10000] N, got 0");
     check_error(force("1000", "-1.5"), "force.max_force", "got -1.5");
     check_error(force("1000", "1e6"), "force.max_force", "got 1e+06");
+}
+
+TEST_CASE("scene io: every force-law field round-trips; contacts defaults to proxy") {
+    const Scene a = parse_scene(doc("[" + kFloor + "]",
+        R"(, "force": {"model": "ellipsoid", "k_tangential": 412.5, "k_normal": 1300.25, "max_force": 2,
+              "damping": 0.75, "friction": {"static": 0.6, "dynamic": 0.45}, "contacts": "sum"})"));
+    CHECK(a.force.law.contacts == ContactForce::sum);
+    CHECK(a.force.law.k_tangential == 412.5);
+    CHECK(a.force.law.mu_dynamic == 0.45);
+    check_same_scene(a, parse_scene(scene_to_json_text(a)));
+    CHECK(parse_scene(kFloorDoc).force.law.contacts == ContactForce::proxy);
+    check_error(doc("[]", R"(, "force": {"model": "spring", "stiffness": 1000, "max_force": 1, "contacts": "max"})"),
+                "force.contacts", "unknown contact force \"max\" (expected \"proxy\" or \"sum\")");
 }
 
 TEST_CASE("scene io error: unknown force model or contact rule") {
