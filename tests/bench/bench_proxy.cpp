@@ -78,7 +78,7 @@ void BM_ProxyTick(benchmark::State& state) {
 }
 BENCHMARK(BM_ProxyTick)->Arg(10)->Arg(1000)->Arg(100000);
 
-// Curves: a generated seed 002 stimulus (seed 1: 2 small bumps, 1 large, 100 quad segments),
+// Curves: a generated seed 002 stimulus (seed 1: 2 small bumps, 1 large, 89 quads + 2 lines),
 // traced left to right 1 mm under its envelope at 0.035 mm per tick, in exact mode and flattened
 // at 1e-4 and 1e-5 m. Counters `err_*_um`: the distance (micrometres) of the mode's proxy from
 // exact mode's over the stroke (the accuracy the speed buys); `depth_err_*_um`: the same for the
