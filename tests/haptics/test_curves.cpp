@@ -4,9 +4,11 @@
 
 #include "haptics/bezier.hpp"
 #include "haptics/scene_io.hpp"
+#include "haptics/stimuli.hpp"
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -242,4 +244,68 @@ TEST_CASE("scene files hold quad and cubic segments and the curve mode") {
               .find("t.json: curves.mode: unknown curve mode \"fast\"") != std::string::npos);
     CHECK(error_of(head + R"({"type": "line", "from": [0, 0], "to": [1, 0]}]}], "curves": {"mode": "flatten", "tolerance": 0}})")
               .find("t.json: curves.tolerance: must lie in") != std::string::npos);
+}
+
+// Seed 002's stimulus itself: slide 1 mm deep (along the normal) over a generated bumps scene in
+// exact mode and compare what happens at the G1 joints between its quadratic segments with what
+// happens inside them. A joint artefact (a missed handover, a re-solve landing on the wrong
+// segment) would show as a step at a joint far above the steps inside the curves.
+TEST_CASE("generated bumps: |F| and l_d are as continuous across G1 joints as inside the curves") {
+
+    const GeneratedScene g = generate_bumps(BumpsDef{});
+    Scene scene = g.scene;
+    scene.force.max_force = 100.0;  // N: no clamping, so |F| = Ke depth shows everything
+    ProxyRig rig(scene);
+    // Pass 1: a finger far below the envelope drags the proxy along the c-space boundary; pass 2
+    // puts the finger 1 mm inside along that boundary's normal.
+    std::vector<Vec2> fingers;
+    {
+        ProxyRig guide(scene);
+        const auto& env = g.envelope;
+        std::size_t j = 0;
+        guide.proxy->reset({0.005, 0.3}, 0.0);
+        for (double x = 0.005; x <= 0.175; x += 2e-5) {
+            while (j + 2 < env.size() && env[j + 1].x < x) ++j;
+            const double t = (x - env[j].x) / (env[j + 1].x - env[j].x);
+            const Vec2 f{x, env[j].y + t * (env[j + 1].y - env[j].y) + R - 0.003};
+            const ProxyOutput& o = guide.at(f, 0.0);
+            if (o.contact_count == 1 && o.depth > 0.0) fingers.push_back(o.proxy - 0.001 * (o.proxy - f) / o.depth);
+        }
+    }
+    REQUIRE(fingers.size() > 5000);
+    rig.proxy->reset(fingers[0] + Vec2{0.0, 0.05}, 0.0);
+    std::vector<double> inside_df, inside_dl, joint_df, joint_dl;  // per unit finger motion
+    ProxyOutput last;
+    for (std::size_t k = 0; k < fingers.size(); ++k) {
+        const ProxyOutput& o = rig.at(fingers[k], 0.0);
+        if (k > 0 && o.contact_count == 1 && last.contact_count == 1) {
+            const double moved = glm::length(fingers[k] - fingers[k - 1]);
+            const double df = std::abs(glm::length(o.force) - glm::length(last.force)) / moved;
+            const double dl = std::abs(o.l_d - last.l_d) / moved;
+            const int a = rig.env.segments[static_cast<std::size_t>(last.contacts[0].segment)].scene_segment;
+            const int b = rig.env.segments[static_cast<std::size_t>(o.contacts[0].segment)].scene_segment;
+            if (a == b) {
+                inside_df.push_back(df);
+                inside_dl.push_back(dl);
+            } else if (std::abs(a - b) == 1) {
+                joint_df.push_back(df);
+                joint_dl.push_back(dl);
+            }
+        }
+        last = o;
+    }
+    REQUIRE(joint_df.size() >= 20);  // the stroke crosses dozens of joints
+    std::sort(inside_df.begin(), inside_df.end());
+    std::sort(inside_dl.begin(), inside_dl.end());
+    const double df_ref = inside_df[inside_df.size() * 999 / 1000];
+    const double dl_ref = inside_dl[inside_dl.size() * 999 / 1000];
+    const double df_joint = *std::max_element(joint_df.begin(), joint_df.end());
+    const double dl_joint = *std::max_element(joint_dl.begin(), joint_dl.end());
+    MESSAGE("joints crossed " << joint_df.size() << "; d|F|/dx: joints max " << df_joint << ", inside p99.9 "
+            << df_ref << " N/m; dl_d/dx: joints max " << dl_joint << ", inside p99.9 " << dl_ref);
+    // |F| = Ke depth with the depth held at 1 mm, so |F| barely moves (a missed handover would
+    // give ~Ke = 1000 N/m); l_d follows the normal's turn, R kappa per unit length. A joint may
+    // not exceed twice the worst seen inside a curve.
+    CHECK(df_joint <= 2.0 * std::max(df_ref, 1e-3));
+    CHECK(dl_joint <= 2.0 * std::max(dl_ref, 1e-6));
 }
