@@ -277,7 +277,8 @@ TEST_CASE("trace rejects absurd force-law options with exit 2 naming them") {
     const auto in = descend_and_tilt(kFlatR, 0.001, flat_tilts());
     for (const std::vector<std::string>& extra :
          {std::vector<std::string>{"--force-model", "magnet"}, {"--friction", "-1"}, {"--friction", "0.2", "--friction-dynamic", "0.5"},
-          {"--damping", "1e9"}, {"--eccentricity", "0.5"}, {"--force-model", "ellipsoid", "--k-normal", "0"}}) {
+          {"--damping", "1e9"}, {"--eccentricity", "0.5"}, {"--force-model", "ellipsoid", "--k-normal", "0"},
+          {"--contact-force", "max"}}) {
         const TraceRun r = run_trace(dir, scene("flat.json"), samples_csv(in), extra);
         CAPTURE(extra[0]);
         CHECK(r.proc.exit_code == 2);
