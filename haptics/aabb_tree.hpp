@@ -31,14 +31,35 @@ struct Aabb {
     }
 };
 
+// A cone of directions: the CCW arc of angles [start, start + width] (rad). Empty when width < 0,
+// every direction when width >= 2 pi.
+struct NormalCone {
+    double start = 0.0;
+    double width = -1.0;
+};
+// The smallest cone holding both.
+NormalCone merge_cones(const NormalCone& a, const NormalCone& b);
+
 class AabbTree {
 public:
     AabbTree() = default;
     explicit AabbTree(const std::vector<Aabb>& item_boxes);
+    // With each item's cone of free-side normals, for query_offset_reach.
+    AabbTree(const std::vector<Aabb>& item_boxes, const std::vector<NormalCone>& item_normals);
 
     // Appends to `out` the index of every item whose box overlaps `box`. `out` keeps its capacity,
     // so a caller that reserves once does not allocate per query.
     void query(const Aabb& box, std::vector<int>& out) const;
+
+    // Appends every item that may have a point q with a free-side normal n (within its cone)
+    // such that q + r n lies within `reach` of p: the items whose offset by r (a c-space piece of
+    // a pad of radius r) can come within reach of a finger at p. Nodes are pruned by distance
+    // (farther than r + reach), by the offset of their normal cone, and, without cones, by the
+    // annulus: items wholly within r - reach of p offset to beyond reach. Conservative: may
+    // return more, never fewer. Why: under a pad pressed into a densely sampled contour, the box
+    // around the pad holds thousands of tiny segments of which only those near the contact can
+    // matter.
+    void query_offset_reach(Vec2 p, double r, double reach, std::vector<int>& out) const;
 
     // Smallest exact distance (m) from p to any item, where `item_distance(i)` is the exact distance
     // to item i. Nodes farther than the best distance so far are skipped.
@@ -50,12 +71,13 @@ public:
 private:
     struct Node {
         Aabb box;
+        NormalCone normals;  // of every item below; full when the tree has no cones
         int left = -1;   // child node index; -1 for a leaf
         int right = -1;
         int first = 0;   // leaf: items_[first, first + count)
         int count = 0;
     };
-    int build(const std::vector<Aabb>& boxes, int first, int count);
+    int build(const std::vector<Aabb>& boxes, const std::vector<NormalCone>* normals, int first, int count);
 
     std::vector<Node> nodes_;
     std::vector<int> items_;

@@ -151,12 +151,25 @@ Environment build_environment(const Scene& scene) {
         }
     }
     std::vector<Aabb> boxes;
+    std::vector<NormalCone> normals;  // free-side normals a c-space piece of the segment offsets along
     boxes.reserve(env.segments.size());
+    normals.reserve(env.segments.size());
     for (const EnvSegment& e : env.segments) {
         boxes.push_back(e.box);
         env.bounds.grow(e.box);
+        NormalCone cone;
+        if (e.kind == EnvSegment::Kind::line) {
+            cone = {wrap_2pi(angle_of(e.normal)), 0.0};
+        } else {
+            // Radial normals over the travelled angles: outward on a bump, inward in a bowl.
+            cone = {wrap_2pi(e.angles.start + (e.free_outside ? 0.0 : kPi)), e.angles.width};
+        }
+        // The vertex circles at the segment's convex ends offset along their cones of normals.
+        if (e.end_cone.width > 0.0) cone = merge_cones(cone, {e.end_cone.start, e.end_cone.width});
+        if (e.prev < 0 && e.start_cone.width > 0.0) cone = merge_cones(cone, {e.start_cone.start, e.start_cone.width});
+        normals.push_back(cone);
     }
-    env.tree = AabbTree(boxes);
+    env.tree = AabbTree(boxes, normals);
     return env;
 }
 

@@ -38,8 +38,11 @@ double graze_tolerance(const CPiece& piece) {
     return kGrazeTolerance;
 }
 // Iterations of the constrained motion per tick: each either ends the motion or adds/drops a
-// constraint, so real cases finish in 2-5; the bound keeps the tick's cost fixed.
-constexpr int kMaxWalkIterations = 24;
+// constraint. On ordinary scenes a tick takes 2-5, but sliding over a densely sampled contour
+// crosses a vertex every few micrometres (2 iterations each): at 100,000 segments on 0.4 m and
+// 5 cm/s that is ~25 per tick, and a cap below that makes the proxy lag and dig in, as if sticky.
+// The bound keeps a pathological tick's cost finite.
+constexpr int kMaxWalkIterations = 256;
 constexpr int kMaxDepenetrationIterations = 4;
 // Sub-steps of a finger-angle change (see Proxy::update): the pad end's chord per sub-step (m) is
 // a quarter of the scene's smallest feature, within these bounds, and the count is capped so a
@@ -144,7 +147,7 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
     // Every position the motion can visit lies within |proxy - finger| of the finger, and every
     // piece lies within R of its segment: those segments are all we need.
     const double reach = glm::length(proxy_ - finger) + max_push;
-    gather_segments(finger, reach + R + kOnTolerance);
+    gather_for_motion(finger, phi, reach + kOnTolerance);
 
     // Re-project continuously: rotate in sub-steps whose pad-end chord is at most a quarter of
     // the scene's smallest feature, pushing the proxy out after each. A push is only ever as deep
@@ -197,6 +200,33 @@ void Proxy::gather_segments(Vec2 center, double half_size) {
     // The BVH returns leaves in tree order; sort so the pieces' order (and thus tie-breaks) does
     // not depend on the query box.
     std::sort(segment_ids_.begin(), segment_ids_.end());
+}
+
+// The segments whose c-space pieces can come within `reach` (m) of the finger while the pad turns
+// from phi_ to phi: every piece the walk and the re-projection can meet. Pad-interior and vertex
+// pieces are the segment offset by R along its free-side normals (AabbTree::query_offset_reach);
+// endpoint pieces are the segment seen from a pad end, so they matter for segments within reach
+// of the pad ends' positions, which during the turn stay within the chord (<= reach) of the ends.
+// Under a pad pressed into a densely sampled contour this keeps the few segments near the
+// contact instead of the thousands in the box around the pad.
+void Proxy::gather_for_motion(Vec2 finger, double phi, double reach) {
+    segment_ids_.clear();
+    const FingerShape& shape = def_.finger;
+    env_->tree.query_offset_reach(finger, shape.radius, reach, segment_ids_);
+    if (pad_has_endpoints(shape)) {
+        const double h = pad_half_angle(shape);
+        for (const double side : {-1.0, 1.0}) {
+            Aabb box;
+            box.grow(finger + shape.radius * unit_at(pad_mid_angle(phi_) + side * h));
+            box.grow(finger + shape.radius * unit_at(pad_mid_angle(phi) + side * h));
+            box.lo -= Vec2(2.0 * reach);
+            box.hi += Vec2(2.0 * reach);
+            env_->tree.query(box, segment_ids_);
+        }
+    }
+    // Sorted and unique, so the pieces' order (and thus tie-breaks) does not depend on the queries.
+    std::sort(segment_ids_.begin(), segment_ids_.end());
+    segment_ids_.erase(std::unique(segment_ids_.begin(), segment_ids_.end()), segment_ids_.end());
 }
 
 void Proxy::build_pieces(double phi) {

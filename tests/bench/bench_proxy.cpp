@@ -78,6 +78,42 @@ void BM_ProxyTick(benchmark::State& state) {
 }
 BENCHMARK(BM_ProxyTick)->Arg(10)->Arg(1000)->Arg(100000);
 
+// Density: the same 0.4 m sinusoid (amplitude 1 cm, wavelength 10 cm) refined into N line
+// segments, so at N = 100,000 thousands of 4 um segments lie under the pad. The finger slides
+// 1 mm deep along the curve's normal, pad facing down, over the middle 0.2 m in 4000 ticks.
+double dense_height(double x) { return 0.01 * std::sin(2.0 * 3.141592653589793 * x / 0.1); }
+double dense_slope(double x) { return 0.01 * 2.0 * 3.141592653589793 / 0.1 * std::cos(2.0 * 3.141592653589793 * x / 0.1); }
+
+void BM_ProxyTickDense(benchmark::State& state) {
+    const int segments = static_cast<int>(state.range(0));
+    Scene scene;
+    Contour c;
+    for (int i = 0; i < segments; ++i) {
+        const double x0 = 0.4 * i / segments, x1 = 0.4 * (i + 1) / segments;
+        c.segments.push_back(LineSegment{{x0, dense_height(x0)}, {x1, dense_height(x1)}});
+    }
+    scene.contours.push_back(c);
+    const Environment env = build_environment(scene);
+    Proxy proxy(env, ProxyDef{});
+    std::vector<Vec2> path;
+    for (int k = 0; k < 4000; ++k) {
+        const double x = 0.1 + 0.2 * k / 4000;
+        const Vec2 n = glm::normalize(Vec2{-dense_slope(x), 1.0});
+        path.push_back(Vec2{x, dense_height(x)} + (0.026 - 0.001) * n);
+    }
+    proxy.reset(path[0] + Vec2{0.0, 0.05}, 0.0);
+    std::size_t k = 0;
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(proxy.update(path[k], 0.0).force);
+        if (++k == path.size()) {
+            k = 0;
+            proxy.reset(path[0] + Vec2{0.0, 0.05}, 0.0);
+        }
+    }
+    state.SetLabel(std::to_string(segments) + " segments on 0.4 m");
+}
+BENCHMARK(BM_ProxyTickDense)->Arg(10)->Arg(100)->Arg(1000)->Arg(10000)->Arg(100000);
+
 // Curves: a generated seed 002 stimulus (seed 1: 2 small bumps, 1 large, 89 quads + 2 lines),
 // traced left to right 1 mm under its envelope at 0.035 mm per tick, in exact mode and flattened
 // at 1e-4 and 1e-5 m. Counters `err_*_um`: the distance (micrometres) of the mode's proxy from
