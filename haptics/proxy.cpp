@@ -44,6 +44,15 @@ double graze_tolerance(const CPiece& piece) {
 // The bound keeps a pathological tick's cost finite.
 constexpr int kMaxWalkIterations = 256;
 constexpr int kMaxDepenetrationIterations = 4;
+// Boxes used to reject pieces far from a walk step are grown by this much (m), well beyond every
+// tolerance the entry tests accept (kOnTolerance along a piece, t_slack along the motion).
+constexpr double kBoxSlack = 1e-8;
+Aabb grown(Aabb b, double by) {
+    b.lo -= Vec2(by);
+    b.hi += Vec2(by);
+    return b;
+}
+bool contains(const Aabb& b, Vec2 p) { return p.x >= b.lo.x && p.x <= b.hi.x && p.y >= b.lo.y && p.y <= b.hi.y; }
 // Sub-steps of a finger-angle change (see Proxy::update): the pad end's chord per sub-step (m) is
 // a quarter of the scene's smallest feature, within these bounds, and the count is capped so a
 // wild jump of phi costs a bounded time (at the cap a feature thinner than
@@ -233,6 +242,8 @@ void Proxy::build_pieces(double phi) {
     pieces_.clear();
     const PadFrame pad = make_pad_frame(def_.finger, phi);
     for (int id : segment_ids_) append_cspace_pieces(*env_, id, pad, pieces_);
+    piece_boxes_.clear();
+    for (const CPiece& piece : pieces_) piece_boxes_.push_back(grown(piece_box(piece), kBoxSlack));
     active_count_ = 0;
 }
 
@@ -295,7 +306,7 @@ bool Proxy::inside_or_past_concave_end(const CPiece& piece, double param, double
 bool Proxy::handed_over(int i, Vec2 at, Vec2 t) const {
     if (!leaves_range(pieces_[i], at, t)) return false;
     for (int j = 0; j < static_cast<int>(pieces_.size()); ++j) {
-        if (j == i) continue;
+        if (j == i || !contains(piece_boxes_[static_cast<std::size_t>(j)], at)) continue;
         const CPiece& other = pieces_[j];
         if (std::abs(piece_signed_distance(other, at)) > kOnTolerance) continue;
         const double slack = other.kind == CPiece::Kind::line ? kOnTolerance : kOnTolerance / other.radius;
@@ -395,8 +406,13 @@ Proxy::Hit Proxy::first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b)
     const double len = glm::length(v);
     if (len <= 0.0) return best;
     const double t_slack = kOnTolerance / len;
+    Aabb motion;
+    motion.grow(p);
+    motion.grow(q);
+    motion = grown(motion, kBoxSlack);
     for (int i = 0; i < static_cast<int>(pieces_.size()); ++i) {
         if (i == exclude_a || i == exclude_b) continue;
+        if (!piece_boxes_[static_cast<std::size_t>(i)].overlaps(motion)) continue;  // far from this step
         const CPiece& piece = pieces_[i];
         if (piece.kind == CPiece::Kind::line) {
             const double den = glm::dot(v, piece.n);
@@ -465,8 +481,9 @@ Proxy::Hit Proxy::first_entry_arc(const CPiece& on, double s0, double s1, int ex
         if (handed_over(i, x, t)) return;
         best = {true, std::max(s, 0.0), s < 0.0 ? proxy_ : x, i};
     };
+    const Aabb motion = grown(arc_bounds(on.center, on.radius, on.span.start + std::min(s0, s1), std::abs(ds)), kBoxSlack);
     for (int i = 0; i < static_cast<int>(pieces_.size()); ++i) {
-        if (i == exclude) continue;
+        if (i == exclude || !piece_boxes_[static_cast<std::size_t>(i)].overlaps(motion)) continue;
         const CPiece& piece = pieces_[i];
         if (piece.kind == CPiece::Kind::line) {
             double roots[2];

@@ -109,6 +109,7 @@ private:
     // Scratch space reused every tick (capacity kept: no allocation in steady state).
     std::vector<int> segment_ids_;
     std::vector<CPiece> pieces_;
+    std::vector<Aabb> piece_boxes_;  // each piece's box grown by kBoxSlack: cheap rejection per walk step
     int contact_pieces_[4] = {-1, -1, -1, -1};  // the piece behind each reported contact
     bool has_stiction_ = false;   // friction: a stiction point is held
     Vec2 stiction_{0.0};          // m
