@@ -56,6 +56,21 @@ std::unique_ptr<Device> make_device(const SimulateOptions& o, const Scene& scene
     return std::make_unique<sim::SimCldDevice>(sp, std::move(path));
 }
 
+// Seed 002 constrains the roller's range "in software": the servo's travel limits shrink to
+// `travel` (m, total) centred on the pad; the mechanism's hard stops stay where they are.
+RollerTravel software_roller_travel(const Device& dev, const ServoConfig& config, double travel) {
+    if (!config.has_roller) throw BadInput(std::string("--roller-travel: device ") + dev.name() + " has no roller");
+    const double full = config.roller_travel.max - config.roller_travel.min;  // m
+    if (!std::isfinite(travel) || !(travel > 0.0) || travel > full + 1e-12) {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "--roller-travel: must be a length in (0, %g] m (the device's travel), got %.17g",
+                      full, travel);
+        throw BadInput(buf);
+    }
+    const double mid = 0.5 * (config.roller_travel.max + config.roller_travel.min);  // m
+    return RollerTravel{mid - 0.5 * travel, mid + 0.5 * travel};
+}
+
 }  // namespace
 
 int run_simulate(const SimulateOptions& o) {
@@ -74,7 +89,9 @@ int run_simulate(const SimulateOptions& o) {
     ServoParams params;
     params.stiffness = scene.force.stiffness;
     params.max_force = scene.force.max_force;
-    ServoTick tick(servo_config_for(*dev, o.rate), params);
+    ServoConfig config = servo_config_for(*dev, o.rate);
+    if (o.roller_travel_set) config.roller_travel = software_roller_travel(*dev, config, o.roller_travel);
+    ServoTick tick(config, params);
     tick.scenes().publish(std::make_unique<ServoScene>(scene));
 
     SpscRing<TickRecord> ring(1u << 16);
@@ -100,6 +117,10 @@ int run_simulate(const SimulateOptions& o) {
     std::fprintf(stderr, "simulate: roller |target - measured| max %.4f mm while engaged in contact; state %s, %u fault(s)%s%s\n",
                  sum.max_roller_error * 1e3, to_string(snap.state), snap.fault_count,
                  snap.fault_count ? ", last: " : "", snap.fault_count ? to_string(tick.snapshot().fault) : "");
+    if (o.roller_travel_set) {
+        std::fprintf(stderr, "simulate: roller travel limited to %.1f mm (%+.1f..%+.1f mm)\n", o.roller_travel * 1e3,
+                     config.roller_travel.min * 1e3, config.roller_travel.max * 1e3);
+    }
     if (o.realtime) {
         std::fprintf(stderr, "simulate: %s; %s\n", rt.scheduling.c_str(), rt.memory_lock.c_str());
         std::fprintf(stderr, "simulate: period p50 %.2f us, p99 %.2f us, max %.2f us, mean %.3f us, %llu overruns, %llu records dropped\n",

@@ -1,0 +1,93 @@
+// test_simulate.cpp — `contactlab simulate`: the roller travel option (seed 002's 18 mm software
+// range) and the roller bandwidth task, run through the real executable.
+#include "trace_fixture.hpp"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+
+using namespace cli_test;
+
+namespace {
+
+struct SimRun {
+    ProcessResult proc;
+    Csv csv;
+    bool output_exists = false;
+    std::size_t col(const std::string& name) const {
+        const std::vector<std::string> names = split_commas(csv.header);
+        const auto it = std::find(names.begin(), names.end(), name);
+        REQUIRE(it != names.end());
+        return static_cast<std::size_t>(it - names.begin());
+    }
+};
+
+// Runs `contactlab simulate SCENE --hand DIR/hand.csv --output DIR/out.csv EXTRA...`.
+SimRun run_simulate(const TempDir& dir, const std::string& scene_path, const std::string& hand_text,
+                    const std::vector<std::string>& extra) {
+    const std::string hand = dir.file("hand.csv"), out = dir.file("out.csv");
+    write_text(hand, hand_text);
+    std::vector<std::string> args = {"simulate", scene_path, "--hand", hand, "--output", out};
+    args.insert(args.end(), extra.begin(), extra.end());
+    SimRun r;
+    r.proc = run_contactlab(args);
+    r.output_exists = fs::exists(out);
+    if (r.proc.exit_code == 0 && r.output_exists) r.csv = parse_csv(read_text(out));
+    return r;
+}
+
+// The hand comes down on scenes/flat.json, presses 2 mm in and tilts the finger to phi (rad):
+// on a flat floor the contact sits at l = -R phi (DESIGN.md), here past -9 mm. The tilt takes 1 s,
+// so l_d moves at R * 0.365 rad / 1 s = 9.5 mm/s, slow motion in seed 001's terms.
+constexpr double kTilt = 0.365;  // rad: l_d = -0.026 m * 0.365 = -9.49 mm
+std::string tilt_hand() {
+    const double R = kFlatR;
+    return samples_csv({{0.0, 0.0, R + 0.010, 0.0},
+                        {0.3, 0.0, R - 0.002, 0.0},
+                        {0.5, 0.0, R - 0.002, 0.0},
+                        {1.5, 0.0, R - 0.002, kTilt},
+                        {2.0, 0.0, R - 0.002, kTilt}});
+}
+
+}  // namespace
+
+TEST_CASE("simulate --roller-travel 0.018 limits the roller to seed 002's 18 mm") {
+    TempDir dir;
+    const SimRun full = run_simulate(dir, scene("flat.json"), tilt_hand(), {});
+    INFO("stderr: " << full.proc.err);
+    REQUIRE(full.proc.exit_code == 0);
+    const SimRun lim = run_simulate(dir, scene("flat.json"), tilt_hand(), {"--roller-travel", "0.018"});
+    INFO("stderr: " << lim.proc.err);
+    REQUIRE(lim.proc.exit_code == 0);
+    CHECK(contains(lim.proc.err, "18.0 mm"));
+
+    auto min_of = [](const SimRun& r, const std::string& name) {
+        double m = 1e9;
+        for (const auto& row : r.csv.rows) m = std::min(m, row[r.col(name)]);
+        return m;
+    };
+    // Full travel: the target follows l_d = -R phi past the 18 mm range, to within one count of
+    // the angle encoder (R * 2 pi / 4096 = 0.04 mm).
+    const double l_full = -kFlatR * kTilt;  // m
+    CHECK(std::abs(min_of(full, "roller_target") - l_full) < 0.04e-3);
+    CHECK(min_of(full, "roller_target") < -0.009 - 0.4e-3);
+    // 18 mm: the target stops exactly at -9 mm, the roller never runs past it by more than the
+    // tracking error (seed 001: 0.05 mm, fast motion) and comes to rest there within seed 001's
+    // slow-motion error (0.01 mm).
+    CHECK(std::abs(min_of(lim, "roller_target") + 0.009) < 1e-12);
+    CHECK(min_of(lim, "roller_l") > -0.009 - 0.05e-3);
+    CHECK(std::abs(lim.csv.rows.back()[lim.col("roller_l")] + 0.009) < 0.01e-3);
+}
+
+TEST_CASE("simulate --roller-travel rejects lengths the device cannot give (exit 2, no output)") {
+    for (const char* v : {"0", "-0.018", "0.0201", "0.5", "nan", "inf", "abc"}) {
+        CAPTURE(v);
+        TempDir dir;
+        const SimRun r = run_simulate(dir, scene("flat.json"), tilt_hand(), {"--roller-travel", v});
+        INFO("stderr: " << r.proc.err);
+        CHECK(r.proc.exit_code == 2);
+        CHECK(contains(r.proc.err, "--roller-travel"));
+        CHECK_FALSE(r.output_exists);
+    }
+}
