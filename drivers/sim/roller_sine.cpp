@@ -14,7 +14,8 @@ SineResponse roller_sine_response(const RollerParams& plant, const RollerGains& 
                                   double freq) {
     CldRoller roller(plant);
     roller.place_at(0.0);
-    RollerController ctl(gains, RollerTravel{-roller.half_travel(), roller.half_travel()});
+    const double half = test.travel > 0.0 ? std::min(0.5 * test.travel, roller.half_travel()) : roller.half_travel();
+    RollerController ctl(gains, RollerTravel{-half, half});
     ctl.reset(roller.measured());
     const double T = 1.0 / test.rate;  // s
     const int n_sub = std::max(1, static_cast<int>(std::ceil(T / test.substep - 1e-9)));

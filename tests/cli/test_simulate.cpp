@@ -91,3 +91,44 @@ TEST_CASE("simulate --roller-travel rejects lengths the device cannot give (exit
         CHECK_FALSE(r.output_exists);
     }
 }
+
+TEST_CASE("simulate --task roller-bandwidth prints the -3 dB frequency and writes the sweep") {
+    TempDir dir;
+    const std::string out = dir.file("bw.csv");
+    const auto p = run_contactlab({"simulate", scene("block.json"), "--task", "roller-bandwidth", "--output", out});
+    INFO("stderr: " << p.err);
+    REQUIRE(p.exit_code == 0);
+    const std::string key = "bandwidth (-3 dB) ";
+    const std::size_t at = p.err.find(key);
+    REQUIRE(at != std::string::npos);
+    const double bw = std::strtod(p.err.c_str() + at + key.size(), nullptr);  // Hz
+    const Csv csv = parse_csv(read_text(out));
+    CHECK(csv.header == "freq,gain,phase_deg,element_gain,max_error");
+    // The printed figure is the sweep's first crossing of 1/sqrt(2): every frequency below it is
+    // above -3 dB and the next one measured above it is below (bisection to 0.01 Hz, printed to 0.01).
+    const double half_power = 1.0 / std::sqrt(2.0);
+    bool below_seen = false;
+    for (const auto& row : csv.rows) {
+        if (row[0] < bw - 0.01) CHECK(row[1] >= half_power);
+        if (row[0] > bw + 0.01 && row[1] < half_power) below_seen = true;
+    }
+    CHECK(below_seen);
+    // The seed band (tests/drivers/test_roller_tracking.cpp derives it): 7.5 .. 8.5 sqrt(2) Hz.
+    CHECK(bw >= 7.5);
+    CHECK(bw <= 8.5 * std::sqrt(2.0));
+}
+
+TEST_CASE("simulate --task roller-bandwidth refuses real time, a hand path and a travel too short for the sine") {
+    TempDir dir;
+    const std::string out = dir.file("bw.csv");
+    for (const std::vector<std::string>& extra : std::vector<std::vector<std::string>>{
+             {"--realtime"}, {"--hand", dir.file("none.csv")}, {"--roller-travel", "0.008"}, {"--device", "replay:x"}}) {
+        std::vector<std::string> args = {"simulate", scene("block.json"), "--task", "roller-bandwidth", "--output", out};
+        args.insert(args.end(), extra.begin(), extra.end());
+        const auto p = run_contactlab(args);
+        INFO("stderr: " << p.err << " extra: " << extra[0]);
+        CHECK(p.exit_code == 2);
+        CHECK(contains(p.err, "roller"));
+        CHECK_FALSE(fs::exists(out));
+    }
+}
