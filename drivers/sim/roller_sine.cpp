@@ -18,7 +18,7 @@ SineResponse roller_sine_response(const RollerParams& plant, const RollerGains& 
     RollerController ctl(gains, RollerTravel{-half, half});
     ctl.reset(roller.measured());
     const double T = 1.0 / test.rate;  // s
-    const int n_sub = std::max(1, static_cast<int>(std::ceil(T / test.substep - 1e-9)));
+    const int n_sub = std::max(std::max(1, test.min_substeps), static_cast<int>(std::ceil(T / test.substep - 1e-9)));
     const double h = T / n_sub;        // s
     // Whole ticks per measured window; the window is rounded to whole ticks, and the fundamental
     // is projected on the exact sine and cosine of those tick times (a small leakage only).

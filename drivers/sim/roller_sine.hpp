@@ -21,6 +21,7 @@ struct SineTest {
     int settle_cycles = 4;        // cycles run before measuring (start transient)
     int measure_cycles = 6;       // cycles the fundamental is extracted over
     double substep = 1e-4;        // s, longest integration step of the roller
+    int min_substeps = 10;        // sub-steps per servo period at least (as SimCldDevice)
     double travel = 0.0;          // m, total travel the controller may use, centred; 0: all of it
 };
 

@@ -86,6 +86,7 @@ int run_roller_bandwidth(const SimulateOptions& o) {
     sim::SineTest st;
     st.rate = o.rate;
     st.substep = sp.substep;
+    st.min_substeps = sp.min_substeps;
     if (o.roller_travel_set) {
         if (!std::isfinite(o.roller_travel) || !(o.roller_travel > 2.0 * st.amplitude) ||
             o.roller_travel > sp.roller.travel + 1e-12) {
