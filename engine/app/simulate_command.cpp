@@ -11,6 +11,7 @@
 #include "drivers/tasks.hpp"
 #include "haptics/scene_io.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -21,6 +22,10 @@ namespace contactlab::app {
 using namespace contactlab::drivers;
 
 namespace {
+
+// s: a stall is a gap of more than a few periods (DESIGN.md), and never less than the 5 ms the
+// servo and the simulated amplifiers use at 1 kHz and above.
+double watchdog_timeout_for(double rate) { return std::max(0.005, 3.0 / rate); }
 
 std::unique_ptr<Device> make_device(const SimulateOptions& o, const Scene& scene, double& path_duration) {
     if (o.device.rfind("replay:", 0) == 0) {
@@ -55,6 +60,8 @@ std::unique_ptr<Device> make_device(const SimulateOptions& o, const Scene& scene
     }
     path_duration = path.end() - path.start();
     sim::SimCldParams sp;
+    // The amplifiers' watchdog must outlast a period: at 100 Hz a tick comes every 10 ms.
+    sp.watchdog_timeout = watchdog_timeout_for(o.rate);
     return std::make_unique<sim::SimCldDevice>(sp, std::move(path));
 }
 
@@ -138,6 +145,7 @@ int run_simulate(const SimulateOptions& o) {
     ServoParams params;
     params.stiffness = scene.force.stiffness;
     params.max_force = scene.force.max_force;
+    params.safety.watchdog_timeout = watchdog_timeout_for(o.rate);
     ServoConfig config = servo_config_for(*dev, o.rate);
     if (o.roller_travel_set) config.roller_travel = software_roller_travel(*dev, config, o.roller_travel);
     ServoTick tick(config, params);

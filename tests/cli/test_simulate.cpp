@@ -132,3 +132,20 @@ TEST_CASE("simulate --task roller-bandwidth refuses real time, a hand path and a
         CHECK_FALSE(fs::exists(out));
     }
 }
+
+TEST_CASE("simulate runs the block task at the ends of the rate range without a fault") {
+    // At 100 Hz a tick comes every 10 ms: the stall watchdogs (5 ms at 1 kHz and above) must
+    // stretch to a few periods, or every tick would be a stall. The stiffness stays below the
+    // passivity bound 2 b / T = 2 x 1.7 N s/m / 10 ms = 343 N/m there (the block's 1000 N/m is
+    // above it and is rightly reported unstable).
+    for (const char* rate : {"100", "20000"}) {
+        CAPTURE(rate);
+        TempDir dir;
+        const std::string out = dir.file("out.csv");
+        const auto p = run_contactlab({"simulate", scene("block.json"), "--task", "contour-block", "--rate", rate,
+                                       "--stiffness", "250", "--output", out});
+        INFO("stderr: " << p.err);
+        CHECK(p.exit_code == 0);
+        CHECK(contains(p.err, "state engaged, 0 fault(s)"));
+    }
+}
