@@ -2,23 +2,30 @@
 //
 //     F_l = (Kp + Ki / s) (l_d - l) - Kd s l
 //
-// discretised at the servo period T: proportional and integral action on the error, derivative on
-// the *measurement* (a step in l_d never kicks the motor) through a first-order low-pass (the
-// encoder difference is quantised), conditional-integration anti-windup, output saturation and
-// travel limits. Gains may change live between ticks: the integral is stored in output units, so
-// changing Ki does not step the output.
+// Gains are continuous-time, in physical units (drive per m, per m s, per m/s), and are discretised
+// with the period of each tick, so the same gains give the same closed loop at 1 kHz and 10 kHz
+// (tests/drivers/test_roller_tracking.cpp compares 1 and 4 kHz):
+//   P: Kp e[k]
+//   I: I[k] = I[k-1] + Ki e[k] T             (rectangular rule; the integral is kept in drive units)
+//   D: -Kd v_f[k], v_f the measured rate (l[k] - l[k-1]) / T through the first-order low-pass
+//      1 / (s / w_c + 1) discretised exactly: v_f += (1 - exp(-w_c T)) (v - v_f), w_c = 2 pi f_c
+// Derivative on the *measurement* (a step in l_d never kicks the motor); conditional-integration
+// anti-windup, output saturation and travel limits. Gains may change live between ticks: the
+// integral is stored in output units, so changing Ki does not step the output.
 //
-// The output is the motor drive in the device's units (the simulated CLD roller takes volts);
-// gains are in those units per metre of position error. The defaults are tuned for the simulated
-// CLD roller at 1 kHz (drivers/sim/cld_roller.hpp).
+// The output is the motor drive in the device's units (the simulated CLD roller takes volts).
+// The defaults are placed for the simulated CLD roller (drivers/sim/cld_roller.hpp), whose small-
+// signal plant is l / V = g / (s (tau s + 1)) with g = 1 / (k_e 2 pi / lead) = 0.0223 m/(V s) and
+// tau = 16 ms: with the three closed-loop poles at s = -p, p = 400 rad/s (p T = 0.4 at 1 kHz),
+//   Kp = 3 tau p^2 / g,  Ki = tau p^3 / g,  Kd = (3 tau p - 1) / g.
 #pragma once
 
 namespace contactlab {
 
 struct RollerGains {
-    double kp = 60000.0;        // drive per m of error (V/m)
-    double ki = 1.0e6;          // drive per m s of error (V/(m s))
-    double kd = 100.0;          // drive per m/s of roller speed (V s/m)
+    double kp = 3.45e5;         // drive per m of error (V/m)
+    double ki = 4.6e7;          // drive per m s of error (V/(m s))
+    double kd = 820.0;          // drive per m/s of roller speed (V s/m)
     double d_cutoff_hz = 300.0; // derivative low-pass cut-off (Hz)
     double max_drive = 12.0;    // output saturation, |u| <= max_drive (V)
     // Optional, beyond eq. 2: drive per m/s of the target's rate (V s/m), filtered like the

@@ -93,7 +93,7 @@ double SafetySupervisor::step(double t, double commanded_force) noexcept {
     return 0.0;
 }
 
-bool PassivityObserver::step(Vec2 x, Vec2 f_prev, double stored, double dt) noexcept {
+bool PassivityObserver::step(Vec2 x, Vec2 f_prev, double stored, double dt, bool linear) noexcept {
     if (!is_finite(x) || !is_finite(f_prev) || !std::isfinite(stored) || !(dt > 0.0)) {
         reset();
         return false;
@@ -105,12 +105,16 @@ bool PassivityObserver::step(Vec2 x, Vec2 f_prev, double stored, double dt) noex
         const double delivered = glm::dot(f_prev, dx);
         const double generated = delivered + (stored - prev_stored_);
         const double dissipated = p_.device_damping * glm::dot(dx, dx) / dt;
-        energy_ = energy_ * std::exp(-dt / std::max(p_.leak, dt)) + generated - dissipated;
+        const double keep = std::exp(-dt / std::max(p_.leak, dt));
+        energy_ = energy_ * keep + generated - dissipated;
+        linear_energy_ *= keep;
+        if (linear && prev_linear_) linear_energy_ += generated - dissipated;
     }
     prev_x_ = x;
     prev_stored_ = stored;
+    prev_linear_ = linear;
     primed_ = true;
-    return energy_ > p_.threshold;
+    return energy_ > p_.threshold || linear_energy_ > p_.threshold;
 }
 
 }  // namespace contactlab

@@ -77,6 +77,12 @@ private:
 // and subtracts what the device's damping dissipated over the interval, b |dx|^2 / T. A passive
 // loop keeps the sum at or below zero; a loop above the discrete bound K < 2b/T makes it grow
 // every oscillation. The sum leaks with time constant `leak` so slow numerical drift is forgotten.
+//
+// A second sum counts only the intervals spent wholly in the spring's linear range (in contact,
+// force below the clamp). Past the bound a loop can settle into a limit cycle that bounces between
+// free flight and the force clamp: it gains energy only while crossing the linear range and loses
+// it elsewhere, so the whole-cycle sum stays near zero and cannot see it; the linear-range sum
+// grows by (K T / 2 - b) v^2 T a tick in those crossings and does.
 struct PassivityParams {
     double device_damping = 1.0;   // b, N s/m (from the device's declared limits)
     double threshold = 2e-3;       // J of net generated energy that counts as unstable
@@ -86,15 +92,19 @@ struct PassivityParams {
 class PassivityObserver {
 public:
     void set_params(const PassivityParams& p) noexcept { p_ = p; }
-    void reset() noexcept { energy_ = 0.0; primed_ = false; }
+    void reset() noexcept { energy_ = linear_energy_ = 0.0; primed_ = prev_linear_ = false; }
     // x: finger position (m) now; f_prev: force (N) applied since the last tick; stored: the
-    // spring's stored energy (J) now; dt: period (s). Returns true once the threshold is passed.
-    bool step(Vec2 x, Vec2 f_prev, double stored, double dt) noexcept;
+    // spring's stored energy (J) now; dt: period (s); linear: in contact with the force below the
+    // clamp now. Returns true once either sum passes the threshold.
+    bool step(Vec2 x, Vec2 f_prev, double stored, double dt, bool linear = false) noexcept;
     double energy() const noexcept { return energy_; }  // J
+    double linear_energy() const noexcept { return linear_energy_; }  // J
 
 private:
     PassivityParams p_;
     double energy_ = 0.0;
+    double linear_energy_ = 0.0;  // J
+    bool prev_linear_ = false;
     Vec2 prev_x_{0.0};
     double prev_stored_ = 0.0;
     bool primed_ = false;

@@ -155,7 +155,9 @@ const ServoCommand& ServoTick::tick(const ServoInput& in) noexcept {
         const ServoState st = safety_.state();
         if (st == ServoState::ramping || st == ServoState::engaged) {
             const double stored = scale * spring_energy(proxy_out_.depth, current_.stiffness, current_.max_force);
-            if (observer_.step(in.finger, applied_, stored, dt)) {
+            const bool linear = proxy_out_.contact && proxy_out_.depth > 0.0 &&
+                                current_.stiffness * proxy_out_.depth < current_.max_force;
+            if (observer_.step(in.finger, applied_, stored, dt, linear)) {
                 fault_tick(in, dt, ServoFault::instability);
                 f = Vec2{0.0};
             }

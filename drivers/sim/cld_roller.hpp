@@ -12,20 +12,30 @@
 
 namespace contactlab::drivers::sim {
 
+// Identification (the seeds give the rig's figures, not its parts; each choice says what fixes it):
+// - lead 0.7 mm (an M4 x 0.7 screw): lead angle atan(0.7 / (pi 3.5 mm)) = 3.6 deg, below the
+//   friction angle of a steel/bronze pair (atan 0.15 = 8.5 deg), so the screw is self-locking
+//   (seed 000: non-backdrivable); with a 1024-line encoder (4096 counts) one count is
+//   0.7 mm / 4096 = 0.171 um, seed 002's "nominal resolution ... 0.17 um".
+// - motor: a small coreless DC motor (10 ohm, 5 mN m/A, rotor 0.4 g cm^2) on a 12 V amplifier.
+//   Reflected to the nut: mass J (2 pi / lead)^2 = 3.2 kg, back-EMF damping (k_t 2 pi / lead)^2 / R
+//   = 201 N s/m (mechanical time constant 16 ms), stall force 54 N, no-load speed 0.27 m/s. The
+//   force limit makes a 1 cm peak-to-peak sine saturate the motor from about 7 Hz on, which is
+//   what sets the large-signal bandwidth (seed 000: "approximately 8 Hz"; drivers/sim/roller_sine.hpp).
 struct RollerParams {
-    double travel = 0.020;         // m, total travel (seed 000: about 2.0 cm; seed 002: 18 mm)
-    double lead = 0.002;           // m per motor revolution
+    double travel = 0.020;         // m, total travel (seed 000: about 2.0 cm; seed 002 limits it to 18 mm in software)
+    double lead = 0.0007;          // m per motor revolution
     double resistance = 10.0;      // ohm
     double torque_constant = 0.005;  // N m/A (= back-EMF constant, V s/rad)
-    double rotor_inertia = 1e-7;   // kg m^2
+    double rotor_inertia = 4e-8;   // kg m^2
     double nut_mass = 0.005;       // kg
-    double coulomb = 1.0;          // N, sliding friction at the nut
+    double coulomb = 1.0;          // N, sliding friction at the nut (leadscrew + wires in their sheaths)
     double stiction = 1.5;         // N, break-away force
     double viscous = 0.5;          // N s/m, at the nut
     double wire_stiffness = 5000;  // N/m, push-pull wires
     double wire_damping = 0.5;     // N s/m
     double element_mass = 0.003;   // kg, contact cylinder + carriage
-    int encoder_counts = 2048;     // per motor revolution (512 lines x 4): lead/2048 ~ 1 um
+    int encoder_counts = 4096;     // per motor revolution (1024 lines x 4): lead/4096 = 0.171 um
     double max_voltage = 12.0;     // V, amplifier rail
 };
 

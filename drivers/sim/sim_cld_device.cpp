@@ -107,7 +107,7 @@ void SimCldDevice::advance(double dt) noexcept {
         state_ = DeviceState::fault;
         fault_ = {DeviceFaultCode::watchdog, "no command within the watchdog timeout"};
     }
-    const int n = std::max(1, static_cast<int>(std::ceil(dt / p_.substep - 1e-9)));
+    const int n = std::max(std::max(1, p_.min_substeps), static_cast<int>(std::ceil(dt / p_.substep - 1e-9)));
     const double h = dt / n;
     for (int i = 0; i < n; ++i) {
         const double t = t_ + i * h;

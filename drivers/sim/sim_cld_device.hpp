@@ -21,6 +21,10 @@ struct SimCldParams {
     HandParams hand;
     int angle_encoder_counts = 4096;  // per revolution
     double substep = 1e-4;          // s, longest integration step
+    // Sub-steps per servo period at least, whatever the rate: the hold of the force over a period
+    // is what makes a sampled spring active (K < 2b/T); integrating a period in one semi-implicit
+    // Euler step would hide it (that step alone is passive for any K).
+    int min_substeps = 10;
     double watchdog_timeout = 0.005; // s of device time without a command -> motors off
     double max_force = 1.5;         // N at the finger (seed 000)
 };

@@ -12,9 +12,14 @@ void register_simulate_command(CLI::App& app, int& rc) {
     cmd->add_option("--device", o.device, "sim-cld (simulated CLD rig + scripted hand) or replay:FILE")
         ->default_val("sim-cld");
     cmd->add_option("--hand", o.hand, "Scripted hand path, header t,x,y,phi (s, m, m, rad), linearly interpolated");
-    cmd->add_option("--task", o.task, "Built-in hand path instead of --hand: contour-block (seed 000 Fig. 9)");
+    cmd->add_option("--task", o.task, "Built-in task instead of --hand: contour-block (seed 000 Fig. 9), or roller-bandwidth "
+                                        "(the roller alone, 1 cm sine sweep; writes freq,gain,phase_deg,element_gain,max_error)");
     cmd->add_option("--task-speed", o.task_speed, "Hand speed on the built-in task (m/s)")->default_val(0.05);
     cmd->add_option("--rate", o.rate, "Servo rate (Hz), 100..20000")->default_val(1000.0);
+    cmd->add_option("--roller-travel", o.roller_travel,
+                    "Roller travel the servo may use (m), centred on the pad: 0.018 is seed 002's software "
+                    "limit; default the device's full travel (sim-cld 0.020)")
+        ->each([](const std::string&) { o.roller_travel_set = true; });
     cmd->add_option("--duration", o.duration, "Simulated time (s); default: the path's or recording's length");
     auto* v = cmd->add_flag("--virtual", virtual_time, "Virtual time: no sleeping, bit-identical runs (default)");
     auto* r = cmd->add_flag("--realtime", real_time, "Real time: a servo thread at the rate, with period statistics");

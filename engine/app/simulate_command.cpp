@@ -6,12 +6,15 @@
 #include "drivers/record_writer.hpp"
 #include "drivers/replay_device.hpp"
 #include "drivers/servo_loop.hpp"
+#include "drivers/sim/roller_sine.hpp"
 #include "drivers/sim/sim_cld_device.hpp"
 #include "drivers/tasks.hpp"
 #include "haptics/scene_io.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <memory>
 
 namespace contactlab::app {
@@ -19,6 +22,10 @@ namespace contactlab::app {
 using namespace contactlab::drivers;
 
 namespace {
+
+// s: a stall is a gap of more than a few periods (DESIGN.md), and never less than the 5 ms the
+// servo and the simulated amplifiers use at 1 kHz and above.
+double watchdog_timeout_for(double rate) { return std::max(0.005, 3.0 / rate); }
 
 std::unique_ptr<Device> make_device(const SimulateOptions& o, const Scene& scene, double& path_duration) {
     if (o.device.rfind("replay:", 0) == 0) {
@@ -38,7 +45,7 @@ std::unique_ptr<Device> make_device(const SimulateOptions& o, const Scene& scene
     if (o.hand.empty() == o.task.empty()) throw BadInput("sim-cld needs exactly one of --hand HAND.csv or --task contour-block");
     HandPath path;
     if (!o.task.empty()) {
-        if (o.task != "contour-block") throw BadInput("--task: unknown task \"" + o.task + "\" (contour-block)");
+        if (o.task != "contour-block") throw BadInput("--task: unknown task \"" + o.task + "\" (contour-block, roller-bandwidth)");
         if (!(o.task_speed > 0.0 && o.task_speed <= 1.0)) throw BadInput("--task-speed: must be in (0, 1] m/s");
         BlockTaskParams bp;
         bp.finger_radius = scene.finger.radius;
@@ -53,7 +60,70 @@ std::unique_ptr<Device> make_device(const SimulateOptions& o, const Scene& scene
     }
     path_duration = path.end() - path.start();
     sim::SimCldParams sp;
+    // The amplifiers' watchdog must outlast a period: at 100 Hz a tick comes every 10 ms.
+    sp.watchdog_timeout = watchdog_timeout_for(o.rate);
     return std::make_unique<sim::SimCldDevice>(sp, std::move(path));
+}
+
+// Seed 002 constrains the roller's range "in software": the servo's travel limits shrink to
+// `travel` (m, total) centred on the pad; the mechanism's hard stops stay where they are.
+RollerTravel software_roller_travel(const Device& dev, const ServoConfig& config, double travel) {
+    if (!config.has_roller) throw BadInput(std::string("--roller-travel: device ") + dev.name() + " has no roller");
+    const double full = config.roller_travel.max - config.roller_travel.min;  // m
+    if (!std::isfinite(travel) || !(travel > 0.0) || travel > full + 1e-12) {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "--roller-travel: must be a length in (0, %g] m (the device's travel), got %.17g",
+                      full, travel);
+        throw BadInput(buf);
+    }
+    const double mid = 0.5 * (config.roller_travel.max + config.roller_travel.min);  // m
+    return RollerTravel{mid - 0.5 * travel, mid + 0.5 * travel};
+}
+
+// --task roller-bandwidth: the sim-cld roller alone under the servo's roller PID at --rate, fed
+// 1.0 cm peak-to-peak sines (seed 000 §4.3) in virtual time; writes the sweep, prints the -3 dB
+// frequency. The scene is read (and must be valid) but not used.
+int run_roller_bandwidth(const SimulateOptions& o) {
+    if (o.device != "sim-cld") throw BadInput("--task roller-bandwidth runs the sim-cld roller (--device sim-cld)");
+    if (!o.hand.empty()) throw BadInput("--task roller-bandwidth takes no --hand");
+    if (o.realtime) throw BadInput("--task roller-bandwidth runs in virtual time only");
+    if (!o.record.empty()) throw BadInput("--task roller-bandwidth records nothing (no --record)");
+    load_scene_file(o.scene_path);
+    const sim::SimCldParams sp;
+    sim::SineTest st;
+    st.rate = o.rate;
+    st.substep = sp.substep;
+    st.min_substeps = sp.min_substeps;
+    if (o.roller_travel_set) {
+        if (!std::isfinite(o.roller_travel) || !(o.roller_travel > 2.0 * st.amplitude) ||
+            o.roller_travel > sp.roller.travel + 1e-12) {
+            char buf[160];
+            std::snprintf(buf, sizeof buf, "--roller-travel: must be in (%g, %g] m for the 1 cm sine, got %.17g",
+                          2.0 * st.amplitude, sp.roller.travel, o.roller_travel);
+            throw BadInput(buf);
+        }
+        st.travel = o.roller_travel;
+    }
+    const sim::BandwidthResult bw = sim::roller_bandwidth(sp.roller, RollerGains{}, st);
+    std::ofstream out(o.output);
+    if (!out) throw BadInput("cannot write " + o.output);
+    out << "freq,gain,phase_deg,element_gain,max_error\n";  // Hz, m/m, deg, m/m, m
+    char line[256];
+    for (const sim::SineResponse& r : bw.sweep) {
+        std::snprintf(line, sizeof line, "%.6f,%.6f,%.3f,%.6f,%.9f\n", r.freq, r.gain, r.phase * 57.29577951308232,
+                      r.element_gain, r.max_error);
+        out << line;
+    }
+    out.close();
+    if (!out) throw BadInput("cannot write " + o.output);
+    if (bw.found) {
+        std::fprintf(stderr, "simulate: roller 1.0 cm peak-to-peak sine bandwidth (-3 dB) %.2f Hz at %.0f Hz servo rate "
+                     "(seed 000: about 8 Hz)\n", bw.bandwidth, o.rate);
+    } else {
+        std::fprintf(stderr, "simulate: roller gain stayed above -3 dB up to %.0f Hz\n", bw.sweep.back().freq);
+    }
+    std::fprintf(stderr, "simulate: sweep (%zu frequencies) written to %s\n", bw.sweep.size(), o.output.c_str());
+    return 0;
 }
 
 }  // namespace
@@ -61,6 +131,7 @@ std::unique_ptr<Device> make_device(const SimulateOptions& o, const Scene& scene
 int run_simulate(const SimulateOptions& o) {
     if (!(o.rate >= 100.0 && o.rate <= 20000.0)) throw BadInput("--rate: must be between 100 and 20000 Hz");
     if (o.output.empty()) throw BadInput("--output is required");
+    if (o.task == "roller-bandwidth") return run_roller_bandwidth(o);
     Scene scene = load_scene_file(o.scene_path);
     apply_overrides(scene, o.overrides);
 
@@ -74,7 +145,10 @@ int run_simulate(const SimulateOptions& o) {
     ServoParams params;
     params.stiffness = scene.force.stiffness;
     params.max_force = scene.force.max_force;
-    ServoTick tick(servo_config_for(*dev, o.rate), params);
+    params.safety.watchdog_timeout = watchdog_timeout_for(o.rate);
+    ServoConfig config = servo_config_for(*dev, o.rate);
+    if (o.roller_travel_set) config.roller_travel = software_roller_travel(*dev, config, o.roller_travel);
+    ServoTick tick(config, params);
     tick.scenes().publish(std::make_unique<ServoScene>(scene));
 
     SpscRing<TickRecord> ring(1u << 16);
@@ -100,6 +174,10 @@ int run_simulate(const SimulateOptions& o) {
     std::fprintf(stderr, "simulate: roller |target - measured| max %.4f mm while engaged in contact; state %s, %u fault(s)%s%s\n",
                  sum.max_roller_error * 1e3, to_string(snap.state), snap.fault_count,
                  snap.fault_count ? ", last: " : "", snap.fault_count ? to_string(tick.snapshot().fault) : "");
+    if (o.roller_travel_set) {
+        std::fprintf(stderr, "simulate: roller travel limited to %.1f mm (%+.1f..%+.1f mm)\n", o.roller_travel * 1e3,
+                     config.roller_travel.min * 1e3, config.roller_travel.max * 1e3);
+    }
     if (o.realtime) {
         std::fprintf(stderr, "simulate: %s; %s\n", rt.scheduling.c_str(), rt.memory_lock.c_str());
         std::fprintf(stderr, "simulate: period p50 %.2f us, p99 %.2f us, max %.2f us, mean %.3f us, %llu overruns, %llu records dropped\n",

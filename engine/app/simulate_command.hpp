@@ -4,6 +4,7 @@
 
 #include "engine/app/trace_command.hpp"
 
+#include <limits>
 #include <string>
 
 namespace contactlab::app {
@@ -16,6 +17,10 @@ struct SimulateOptions {
     double task_speed = 0.05;         // m/s, hand speed on the built-in task
     double rate = 1000.0;             // Hz, 100..20000
     double duration = -1.0;           // s; < 0: the path's (or recording's) length
+    // m, total roller travel the servo may use, centred on the pad (seed 002: 18 mm "constrained in
+    // software"); NaN: the device's full travel (sim-cld: 20 mm, seed 000).
+    double roller_travel = std::numeric_limits<double>::quiet_NaN();
+    bool roller_travel_set = false;
     bool realtime = false;
     std::string output;               // OUT.csv
     std::string record;               // recording file, optional

@@ -1,0 +1,52 @@
+// roller_sine.hpp — the CLD roller alone under its position loop, in virtual time: sine response
+// and the large-signal bandwidth of seed 000 §4.3 ("1.0 cm sinusoidal commands with a bandwidth of
+// approximately 8 Hz").
+//
+// The rig is the one the servo drives (drivers/sim/cld_roller.hpp: motor, self-locking leadscrew,
+// stiction, wires) and the controller is the servo's own (haptics/roller_controller.hpp), stepped
+// at the servo period with the drive held between ticks and the roller integrated at sub-steps,
+// exactly as SimCldDevice does. Nothing here sleeps: results are deterministic.
+#pragma once
+
+#include "drivers/sim/cld_roller.hpp"
+#include "haptics/roller_controller.hpp"
+
+#include <vector>
+
+namespace contactlab::drivers::sim {
+
+struct SineTest {
+    double rate = 1000.0;         // Hz, servo rate
+    double amplitude = 0.005;     // m, sine amplitude about the centre (0.005: 1.0 cm peak to peak)
+    int settle_cycles = 4;        // cycles run before measuring (start transient)
+    int measure_cycles = 6;       // cycles the fundamental is extracted over
+    double substep = 1e-4;        // s, longest integration step of the roller
+    int min_substeps = 10;        // sub-steps per servo period at least (as SimCldDevice)
+    double travel = 0.0;          // m, total travel the controller may use, centred; 0: all of it
+};
+
+struct SineResponse {
+    double freq = 0.0;            // Hz
+    double gain = 0.0;            // |fundamental of l| / amplitude (l: motor encoder, m/m)
+    double phase = 0.0;           // rad, phase of l relative to l_d (negative: lag)
+    double element_gain = 0.0;    // the same for the contact element (what the finger feels)
+    double max_error = 0.0;       // m, max |l_d - l| over the measured cycles
+};
+
+// One frequency (Hz): the roller at rest at the centre tracks l_d = amplitude sin(2 pi f t).
+SineResponse roller_sine_response(const RollerParams& plant, const RollerGains& gains, const SineTest& test,
+                                  double freq);
+
+struct BandwidthResult {
+    double bandwidth = 0.0;              // Hz, first frequency where the gain falls to 1/sqrt(2)
+    bool found = false;                  // false: the gain never fell that low below max_freq
+    std::vector<SineResponse> sweep;     // the log sweep, then the bisection points, by frequency
+};
+
+// Log sweep from min_freq to max_freq (Hz), `per_decade` points a decade, then bisection on the
+// first crossing of -3 dB to `tolerance` Hz.
+BandwidthResult roller_bandwidth(const RollerParams& plant, const RollerGains& gains, const SineTest& test,
+                                 double min_freq = 0.5, double max_freq = 100.0, int per_decade = 12,
+                                 double tolerance = 0.01);
+
+}  // namespace contactlab::drivers::sim
