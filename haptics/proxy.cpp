@@ -220,6 +220,10 @@ void Proxy::gather_segments(Vec2 center, double half_size) {
 // contact instead of the thousands in the box around the pad.
 void Proxy::gather_for_motion(Vec2 finger, double phi, double reach) {
     segment_ids_.clear();
+    if (!def_.use_index) {
+        for (int i = 0; i < static_cast<int>(env_->segments.size()); ++i) segment_ids_.push_back(i);
+        return;
+    }
     const FingerShape& shape = def_.finger;
     env_->tree.query_offset_reach(finger, shape.radius, reach, segment_ids_);
     if (pad_has_endpoints(shape)) {

@@ -27,6 +27,10 @@ struct ProxyDef {
     // nearest the previous l_d, i.e. the one the roller reaches with the least travel (seed 002).
     ContactRule contact_rule = ContactRule::centroid;
     ForceLaw law;              // spring (Ke above) or ellipsoid; damping; friction cone
+    // false: build c-space pieces for every segment of the scene every tick, skipping the
+    // bounding-volume tree. Only `contactlab bench` sets it, as the brute-force baseline the
+    // index is measured against; results are identical, the cost grows with the scene.
+    bool use_index = true;
 };
 
 inline constexpr double kDefaultServoPeriod = 1e-3;  // s: seed 000's 1 kHz

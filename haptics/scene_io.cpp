@@ -7,6 +7,8 @@
 //   [SECTION] Writing           — Scene -> JSON, lossless, and the atomic file save
 #include "haptics/scene_io.hpp"
 
+#include "haptics/atomic_file.hpp"
+
 #include "haptics/bezier.hpp"
 
 #include <nlohmann/json.hpp>
@@ -545,39 +547,10 @@ std::string scene_to_json_text(const Scene& s) {
 void save_scene_file(const Scene& s, const std::string& path) {
     validate_scene(s);
     const std::string text = scene_to_json_text(s);
-    // Write beside the target, flush to disk, then rename: readers see the old file or the new
-    // one, never a torn one, even if the process dies mid-write.
-    std::string tmp = path + ".tmp-XXXXXX";
-    const int fd = ::mkstemp(tmp.data());
-    if (fd < 0) throw SceneError(path + ": cannot create temporary file (" + std::strerror(errno) + ")");
-    const char* p = text.data();
-    std::size_t left = text.size();
-    while (left > 0) {
-        const ssize_t n = ::write(fd, p, left);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) {
-            const int err = errno;
-            ::close(fd);
-            ::unlink(tmp.c_str());
-            throw SceneError(path + ": write failed (" + std::strerror(err) + ")");
-        }
-        p += n;
-        left -= static_cast<std::size_t>(n);
-    }
-    ::fchmod(fd, 0644);
-    // close() must run even when fsync() fails, or every failed save leaks a descriptor.
-    const int sync_rc = ::fsync(fd);
-    const int sync_err = errno;
-    const int close_rc = ::close(fd);
-    if (sync_rc != 0 || close_rc != 0) {
-        const int err = sync_rc != 0 ? sync_err : errno;
-        ::unlink(tmp.c_str());
-        throw SceneError(path + ": flush failed (" + std::strerror(err) + ")");
-    }
-    if (::rename(tmp.c_str(), path.c_str()) != 0) {
-        const int err = errno;
-        ::unlink(tmp.c_str());
-        throw SceneError(path + ": cannot replace file (" + std::strerror(err) + ")");
+    try {
+        write_file_atomically(path, text);
+    } catch (const FileWriteError& e) {
+        throw SceneError(e.what());
     }
 }
 

@@ -1,0 +1,82 @@
+// bench_cli.cpp — `contactlab bench`: the proxy's cost, its growth with the scene, what each
+// feature adds and the speed/accuracy trade, measured here and now (engine/bench/suites.hpp).
+//
+//   contactlab bench [--quick] [--json OUT.json] [--report DIR]
+//   contactlab bench --scene SCENE.json --input IN.csv [--passes N] [--json OUT.json]
+#include "engine/app/subcommands.hpp"
+#include "engine/bench/report.hpp"
+#include "engine/bench/suites.hpp"
+#include "haptics/atomic_file.hpp"
+#include "haptics/scene_io.hpp"
+
+#include <cstdio>
+#include <filesystem>
+
+namespace contactlab::app {
+namespace {
+
+struct BenchArgs {
+    bool quick = false;
+    std::string json;
+    std::string report;
+    std::string scene;
+    std::string input;
+    int passes = 20;
+};
+
+void write(const std::string& path, const std::string& text, const char* what) {
+    try {
+        write_file_atomically(path, text);
+    } catch (const FileWriteError& e) {
+        throw BadInput(std::string("bench: ") + e.what());
+    }
+    std::fprintf(stderr, "bench: %s written to %s\n", what, path.c_str());
+}
+
+int run_trace_timing(const BenchArgs& a) {
+    if (a.input.empty()) throw BadInput("bench: --scene needs --input IN.csv (header t,x,y,phi)");
+    if (a.passes < 1 || a.passes > 100000) throw BadInput("bench: --passes must lie in [1, 100000]");
+    const Scene scene = load_scene_file(a.scene);
+    const auto samples = read_finger_samples_file(a.input);
+    if (samples.empty()) throw BadInput("bench: " + a.input + ": no samples");
+    const bench::TraceTiming t = bench::time_trace(scene, samples, a.passes);
+    std::printf("%s over %s: %zu samples x %d passes, %.0f %% in contact\n", a.scene.c_str(), a.input.c_str(),
+                t.samples, t.passes, 100.0 * t.contact_fraction);
+    std::printf("ns per tick: median %.0f, p99 %.0f, max %.0f  (a 1 kHz servo has 1,000,000)\n", t.stats.median_ns,
+                t.stats.p99_ns, t.stats.max_ns);
+    if (!a.json.empty()) write(a.json, bench::trace_json(t).dump(2) + "\n", "JSON");
+    return 0;
+}
+
+int run_suites(const BenchArgs& a) {
+    bench::BenchOptions options;
+    options.quick = a.quick;
+    const bench::BenchResults r = bench::run_suites(options);
+    const std::string md = bench::results_markdown(r);
+    std::printf("\n%s", md.c_str());
+    if (!a.json.empty()) write(a.json, bench::results_json(r).dump(2) + "\n", "JSON");
+    if (!a.report.empty()) {
+        std::error_code ec;
+        std::filesystem::create_directories(a.report, ec);
+        if (ec) throw BadInput("bench: --report " + a.report + ": " + ec.message());
+        write(a.report + "/README.md", md, "report");
+        write(a.report + "/bench.json", bench::results_json(r).dump(2) + "\n", "JSON");
+    }
+    return 0;
+}
+
+}  // namespace
+
+void register_bench_command(CLI::App& app, int& rc) {
+    static BenchArgs a;
+    CLI::App* cmd = app.add_subcommand("bench", "Measure the proxy's cost per tick: growth, features, accuracy trade");
+    cmd->add_flag("--quick", a.quick, "Fewer sizes and ticks: finishes within a minute (CI smoke run)");
+    cmd->add_option("--json", a.json, "Write the results as JSON (keys tick_ns.<kind>.<N>)");
+    cmd->add_option("--report", a.report, "Write a Markdown report (and the JSON) into this folder");
+    cmd->add_option("--scene", a.scene, "Time your own scene over --input instead of the suites");
+    cmd->add_option("--input", a.input, "Finger samples for --scene (the trace input: t,x,y,phi)");
+    cmd->add_option("--passes", a.passes, "With --scene: how many times to replay the input")->default_val(20);
+    cmd->callback([&rc] { rc = a.scene.empty() ? run_suites(a) : run_trace_timing(a); });
+}
+
+}  // namespace contactlab::app

@@ -1,0 +1,259 @@
+// suites.cpp — the measurements behind `contactlab bench` (suites.hpp).
+//
+// Index
+//   measure            one benchmark: a proxy over a stroke, every tick timed
+//   cost growth        extent and density, lines/arcs/curves, with the two baselines
+//   feature costs      each force-law feature used, and all enabled but unused
+//   Pareto             curve modes against exact mode on seed 002's bumps stimulus
+//   time_trace         a user's scene and trace
+#include "engine/bench/suites.hpp"
+
+#include "haptics/environment.hpp"
+#include "haptics/proxy.hpp"
+#include "haptics/scene_io.hpp"
+#include "haptics/stimuli.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace contactlab::bench {
+namespace {
+
+// Brute force builds pieces for every segment every tick: at 100,000 segments that is ~10 ms a
+// tick and minutes a table, so it runs up to this size.
+constexpr int kBruteForceMaxSegments = 10000;
+constexpr int kBruteForceMaxSegmentsQuick = 1000;
+constexpr double kStartAbove = 0.003;  // m: each pass starts this far above its first sample
+
+// ---- measure ----------------------------------------------------------------------------------
+void run_registered() {
+    static bool initialised = false;
+    if (!initialised) {
+        char name[] = "contactlab-bench";
+        char* argv[] = {name, nullptr};
+        int argc = 1;
+        benchmark::Initialize(&argc, argv);
+        initialised = true;
+    }
+    // A fresh reporter each run: the library's default one does not survive a second run.
+    benchmark::ConsoleReporter reporter(benchmark::ConsoleReporter::OO_Tabular);
+    benchmark::RunSpecifiedBenchmarks(&reporter);
+    benchmark::ClearRegisteredBenchmarks();
+}
+
+struct Measured {
+    TickStats stats;
+    double contact_fraction = 0.0;
+};
+
+// One Google Benchmark run of `passes` x the stroke, one iteration per tick. Each pass starts
+// with no history at the first sample raised by `start_above` (m).
+Measured measure(const std::string& name, const Environment& env, const ProxyDef& def,
+                 const std::vector<FingerSample>& path, int passes, double start_above = kStartAbove) {
+    Measured result;
+    const auto iterations = static_cast<benchmark::IterationCount>(path.size() * static_cast<std::size_t>(passes));
+    benchmark::RegisterBenchmark(name.c_str(), [&](benchmark::State& state) {
+        Proxy proxy(env, def);
+        TickTimer timer(static_cast<std::size_t>(iterations));
+        std::size_t k = 0, contacts = 0, ticks = 0;
+        proxy.reset(path[0].x + Vec2{0.0, start_above}, path[0].phi);
+        for (auto _ : state) {
+            const FingerSample& s = path[k];
+            const ProxyOutput* o = nullptr;
+            timer.time([&] { o = &proxy.update(s.x, s.phi); });
+            benchmark::DoNotOptimize(o->force);
+            contacts += o->contact ? 1 : 0;
+            ++ticks;
+            if (++k == path.size()) {  // lift the finger back to the start
+                k = 0;
+                proxy.reset(path[0].x + Vec2{0.0, start_above}, path[0].phi);
+            }
+        }
+        result.stats = timer.stats();
+        result.contact_fraction = ticks ? static_cast<double>(contacts) / static_cast<double>(ticks) : 0.0;
+        state.counters["median_ns"] = result.stats.median_ns;
+        state.counters["p99_ns"] = result.stats.p99_ns;
+        state.counters["contact"] = result.contact_fraction;
+    })->Iterations(iterations)->Unit(benchmark::kNanosecond);
+    run_registered();
+    return result;
+}
+
+// ---- cost growth --------------------------------------------------------------------------------
+void cost_growth(const BenchOptions& o, BenchResults& r) {
+    const std::vector<int> sizes = o.quick ? std::vector<int>{10, 1000, 100000}
+                                           : std::vector<int>{10, 100, 1000, 10000, 100000};
+    const int ticks = o.quick ? 1000 : 4000;
+    const int passes = o.quick ? 1 : 3;
+    const int brute_max = o.quick ? kBruteForceMaxSegmentsQuick : kBruteForceMaxSegments;
+    for (const Growth growth : {Growth::extent, Growth::dense}) {
+        for (const SegmentKind kind : {SegmentKind::lines, SegmentKind::arcs, SegmentKind::curves}) {
+            for (const int n : sizes) {
+                CostRow row;
+                row.scene = {kind, growth, n};
+                row.key = case_key(kind, growth);
+                const Scene scene = cost_scene(row.scene);
+                validate_scene(scene);
+                const Environment env = build_environment(scene);
+                row.env_segments = static_cast<int>(env.segments.size());
+                const auto path = cost_stroke(row.scene, ticks);
+                const std::string name = row.key + "/" + std::to_string(n);
+                ProxyDef def = proxy_def_of(scene);
+                const Measured m = measure(name, env, def, path, passes);
+                row.proxy = m.stats;
+                row.contact_fraction = m.contact_fraction;
+                if (n <= brute_max) {
+                    ProxyDef brute = def;
+                    brute.use_index = false;
+                    row.brute_force = measure(name + "/brute_force", env, brute, path, 1).stats;
+                }
+                ProxyDef point = def;
+                point.finger = FingerShape{FingerKind::point, 0.0, 0.0};
+                // The point finger rides the contour itself: put it 1 mm deep under the same stroke.
+                std::vector<FingerSample> point_path = path;
+                for (FingerSample& s : point_path) s.x.y -= def.finger.radius;
+                row.point_finger = measure(name + "/point_finger", env, point, point_path, passes).stats;
+                r.cost.push_back(row);
+            }
+        }
+    }
+}
+
+// ---- feature costs ------------------------------------------------------------------------------
+void feature_costs(const BenchOptions& o, BenchResults& r) {
+    const CostCase c{SegmentKind::lines, Growth::extent, 1000};
+    const Scene base = cost_scene(c);
+    const Environment env = build_environment(base);
+    const int ticks = o.quick ? 1000 : 4000;
+    const int passes = o.quick ? 1 : 3;
+    const std::vector<FingerSample> contact = cost_stroke(c, ticks);
+    std::vector<FingerSample> free_space_path = contact;
+    for (FingerSample& s : free_space_path) s.x.y += 0.006;  // 5 mm above the surface: anticipation only
+    const std::vector<FingerSample>& free_space = free_space_path;
+
+    struct Variant {
+        const char* name;
+        void (*apply)(ForceLaw&);
+    };
+    const Variant variants[] = {
+        {"spring (baseline)", [](ForceLaw&) {}},
+        {"ellipsoid field, e = 0.5", [](ForceLaw& l) { l.model = ForceModel::ellipsoid; l.k_tangential = 1000.0; l.k_normal = 500.0; }},
+        {"friction cone, mu 0.5 / 0.4", [](ForceLaw& l) { l.mu_static = 0.5; l.mu_dynamic = 0.4; }},
+        {"normal damping, B = 2 N s/m", [](ForceLaw& l) { l.damping = 2.0; }},
+        {"contact sum (seed 002)", [](ForceLaw& l) { l.contacts = ContactForce::sum; }},
+        {"all of the above", [](ForceLaw& l) {
+             l.model = ForceModel::ellipsoid; l.k_tangential = 1000.0; l.k_normal = 500.0;
+             l.mu_static = 0.5; l.mu_dynamic = 0.4; l.damping = 2.0; l.contacts = ContactForce::sum; }},
+    };
+    for (const auto& [stroke_name, stroke] : {std::pair{"contact", &contact}, std::pair{"free space", &free_space}}) {
+        for (const Variant& v : variants) {
+            if (std::string(stroke_name) == "free space" && std::string(v.name) != "spring (baseline)" &&
+                std::string(v.name) != "all of the above")
+                continue;  // in free space no force law runs: baseline against everything enabled
+            ProxyDef def = proxy_def_of(base);
+            v.apply(def.law);
+            const Measured m = measure(std::string("feature/") + v.name + "/" + stroke_name, env, def, *stroke, passes);
+            r.features.push_back(FeatureRow{v.name, stroke_name, m.stats});
+        }
+    }
+}
+
+// ---- Pareto -------------------------------------------------------------------------------------
+// Seed 002's stimulus (generate bumps, seed 1) traced 1 mm deep along the normal of exact mode's
+// own c-space boundary: a guide proxy 3 mm under the envelope gives the boundary and its normal.
+std::vector<FingerSample> bumps_stroke(const GeneratedScene& g) {
+    const Environment env = build_environment(g.scene);
+    Proxy guide(env, proxy_def_of(g.scene));
+    const auto& e = g.envelope;
+    std::vector<FingerSample> path;
+    std::size_t j = 0;
+    guide.reset({0.005, 0.3}, 0.0);
+    for (double x = 0.005; x <= 0.175; x += 3.5e-5) {
+        while (j + 2 < e.size() && e[j + 1].x < x) ++j;
+        const double t = (x - e[j].x) / (e[j + 1].x - e[j].x);
+        const Vec2 f{x, e[j].y + t * (e[j + 1].y - e[j].y) + 0.026 - 0.003};
+        const ProxyOutput& out = guide.update(f, 0.0);
+        if (out.contact && out.depth > 0.0)
+            path.push_back({1e-3 * static_cast<double>(path.size()), out.proxy - 0.001 * (out.proxy - f) / out.depth, 0.0});
+    }
+    return path;
+}
+
+void pareto(const BenchOptions& o, BenchResults& r) {
+    const GeneratedScene g = generate_bumps(BumpsDef{});
+    const auto path = bumps_stroke(g);
+    const int passes = o.quick ? 1 : 3;
+    // Exact mode's outputs are the reference (its own error against the true Bezier is ~1e-9 m,
+    // tests/haptics/test_curves.cpp).
+    std::vector<Vec2> ref_proxy;
+    std::vector<double> ref_depth;
+    {
+        const Environment env = build_environment(g.scene);
+        Proxy p(env, proxy_def_of(g.scene));
+        p.reset(path[0].x + Vec2{0.0, kStartAbove}, 0.0);
+        for (const FingerSample& s : path) {
+            const ProxyOutput& out = p.update(s.x, s.phi);
+            ref_proxy.push_back(out.proxy);
+            ref_depth.push_back(out.depth);
+        }
+    }
+    std::vector<std::pair<CurveMode, double>> modes = {{CurveMode::exact, 0.0}};
+    for (const double tol : o.quick ? std::vector<double>{1e-4, 1e-5} : std::vector<double>{1e-3, 1e-4, 1e-5, 1e-6})
+        modes.push_back({CurveMode::flatten, tol});
+    for (const auto& [mode, tol] : modes) {
+        Scene scene = g.scene;
+        if (mode == CurveMode::flatten) scene.curves = {CurveMode::flatten, tol};
+        const Environment env = build_environment(scene);
+        ParetoRow row;
+        row.mode = mode == CurveMode::exact ? "exact" : "flatten";
+        row.tolerance = tol;
+        row.env_segments = static_cast<int>(env.segments.size());
+        Proxy p(env, proxy_def_of(scene));
+        p.reset(path[0].x + Vec2{0.0, kStartAbove}, 0.0);
+        std::vector<double> depth_err, proxy_err;
+        for (std::size_t k = 0; k < path.size(); ++k) {
+            const ProxyOutput& out = p.update(path[k].x, path[k].phi);
+            depth_err.push_back(std::abs(out.depth - ref_depth[k]));
+            proxy_err.push_back(glm::length(out.proxy - ref_proxy[k]));
+        }
+        std::sort(depth_err.begin(), depth_err.end());
+        std::sort(proxy_err.begin(), proxy_err.end());
+        row.depth_error_max = depth_err.back();
+        row.depth_error_p99 = depth_err[depth_err.size() * 99 / 100];
+        row.proxy_error_max = proxy_err.back();
+        row.proxy_error_p99 = proxy_err[proxy_err.size() * 99 / 100];
+        char name[64];
+        std::snprintf(name, sizeof name, "pareto/%s/%g", row.mode.c_str(), tol);
+        row.stats = measure(name, env, proxy_def_of(scene), path, passes).stats;
+        r.pareto.push_back(row);
+    }
+}
+
+}  // namespace
+
+BenchResults run_suites(const BenchOptions& options) {
+    BenchResults r;
+    r.quick = options.quick;
+    cost_growth(options, r);
+    feature_costs(options, r);
+    pareto(options, r);
+    return r;
+}
+
+TraceTiming time_trace(const Scene& scene, const std::vector<FingerSample>& samples, int passes) {
+    TraceTiming t;
+    t.samples = samples.size();
+    t.passes = passes;
+    if (samples.empty()) return t;
+    const Environment env = build_environment(scene);
+    // Starts from the first sample with no history, as `contactlab trace` does.
+    const Measured m = measure("trace", env, proxy_def_of(scene), samples, passes, 0.0);
+    t.stats = m.stats;
+    t.contact_fraction = m.contact_fraction;
+    return t;
+}
+
+}  // namespace contactlab::bench

@@ -1,0 +1,71 @@
+// suites.hpp — what `contactlab bench` measures (issue 8), as data: the cost-growth suite with
+// its baselines, the feature-cost table, the speed/accuracy Pareto table, and timing one
+// user-supplied trace. Google Benchmark runs every measurement (benchmark::RegisterBenchmark with
+// a fixed iteration count, one iteration per proxy tick); each tick is also timed on its own so
+// the medians and 99th percentiles are per tick, not per batch.
+#pragma once
+
+#include "engine/bench/cost_scenes.hpp"
+#include "engine/bench/tick_stats.hpp"
+#include "haptics/scene.hpp"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace contactlab::bench {
+
+struct BenchOptions {
+    bool quick = false;  // CI smoke run: fewer sizes and ticks, within a minute
+};
+
+// One scene size: ContactLab's proxy, and in the same process the baselines: brute force (every
+// segment every tick, no index; run up to `kBruteForceMaxSegments`) and a point-finger
+// god-object on the same contour.
+struct CostRow {
+    CostCase scene;
+    std::string key;            // tick_ns.<key>.<segments>
+    TickStats proxy;
+    std::optional<TickStats> brute_force;
+    TickStats point_finger;
+    double contact_fraction = 0.0;  // ticks in contact / ticks
+    int env_segments = 0;           // after compiling curves to arcs
+};
+
+struct FeatureRow {
+    std::string feature;
+    std::string stroke;  // "contact" (1 mm deep) or "free space" (5 mm above)
+    TickStats stats;
+};
+
+struct ParetoRow {
+    std::string mode;             // "exact" or "flatten"
+    double tolerance = 0.0;       // m, flatten chord tolerance
+    int env_segments = 0;
+    double depth_error_max = 0.0;  // m, against exact mode
+    double depth_error_p99 = 0.0;  // m
+    double proxy_error_max = 0.0;  // m
+    double proxy_error_p99 = 0.0;  // m
+    TickStats stats;
+};
+
+struct BenchResults {
+    bool quick = false;
+    std::vector<CostRow> cost;
+    std::vector<FeatureRow> features;
+    std::vector<ParetoRow> pareto;
+};
+
+BenchResults run_suites(const BenchOptions& options);
+
+// `contactlab bench --scene --input`: the proxy over the trace's samples, `passes` times, each
+// tick timed (I/O and set-up excluded).
+struct TraceTiming {
+    TickStats stats;
+    std::size_t samples = 0;
+    int passes = 0;
+    double contact_fraction = 0.0;
+};
+TraceTiming time_trace(const Scene& scene, const std::vector<FingerSample>& samples, int passes);
+
+}  // namespace contactlab::bench
