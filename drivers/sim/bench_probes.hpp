@@ -60,7 +60,8 @@ struct RollerTrackingRow {
     double onset_floor = 0;      // m, least error any controller can have on that onset (see onset_floor())
 };
 // quick: gain scales {1, 2} x speeds {0.02, 0.05} m/s; full: gain scales {0.5, 1, 2} x speeds
-// {0.01, 0.02, 0.05, 0.1} m/s. All at 1 kHz.
+// {0.01, 0.02, 0.05, 0.1} m/s. All at 1 kHz. Rows per gain scale, speeds ascending. The errors
+// are NaN if the simulated device did not open (a bench must not report a 0 it did not measure).
 std::vector<RollerTrackingRow> roller_tracking_table(bool quick);
 
 // The 1 cm peak-to-peak sine -3 dB frequency (Hz) of the roller alone at 1 kHz with the default
