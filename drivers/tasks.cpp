@@ -52,4 +52,19 @@ HandPath contour_block_task(const BlockTaskParams& p) {
     return HandPath(std::move(out));
 }
 
+Scene block_scene() {
+    Scene s;
+    s.finger.radius = 0.026;  // m
+    s.finger.length = 0.020;  // m
+    Contour c;
+    c.segments.push_back(LineSegment{{-0.16, 0.0}, {0.0, 0.0}});   // the top, solid below
+    c.segments.push_back(LineSegment{{0.0, 0.0}, {0.0, -0.1}});    // the far face
+    c.segments.push_back(LineSegment{{0.0, -0.1}, {0.16, -0.1}});  // the floor beyond
+    s.contours.push_back(c);
+    s.force.stiffness = 1000.0;  // N/m
+    s.force.max_force = 1.5;     // N
+    s.contact_location.rule = ContactRule::centroid;
+    return s;
+}
+
 }  // namespace contactlab::drivers

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "drivers/hand_path.hpp"
+#include "haptics/scene.hpp"
 
 namespace contactlab::drivers {
 
@@ -22,5 +23,11 @@ struct BlockTaskParams {
 };
 
 HandPath contour_block_task(const BlockTaskParams& p);
+
+// The block the task runs on, as scenes/block.json ships it (d = 6 cm: top along y = 0 from
+// x = -0.16 m to the far edge at x = 0, the far face down 10 cm to a floor to x = 0.16 m; R 2.6 cm,
+// L 2.0 cm; spring 1000 N/m, 1.5 N, centroid contact rule). Built in code so the bench probes need
+// no scene file at run time; a test checks it against the shipped file.
+Scene block_scene();
 
 }  // namespace contactlab::drivers

@@ -4,6 +4,8 @@
 // instead of the oscillation growing.
 #include "sim_fixture.hpp"
 
+#include "drivers/sim/bench_probes.hpp"
+
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -11,77 +13,16 @@
 
 using namespace contactlab;
 using namespace contactlab::test;
+// The press, the bisection and the table are library code (drivers/sim/bench_probes.hpp), shared
+// with `contactlab bench`: the numbers checked here are the ones the bench reports.
+using drivers::sim::press_floor;
+using drivers::sim::PressResult;
 
-namespace {
-
-struct PressResult {
-    bool faulted = false;
-    ServoFault fault = ServoFault::none;
-    double max_force = 0.0;       // N, commanded
-    double max_speed = 0.0;       // m/s, finger
-    double late_force_pp = 0.0;   // N, peak-to-peak force over the last 0.5 s
-    double pp_third = 0.0;        // N, peak-to-peak force over the run's third quarter
-    double pp_fourth = 0.0;       // N, and over its last quarter
-    bool finite = true;
-    double b_normal = 0.0;        // N s/m, arm damping along +y at the press point
-    double b_declared = 0.0;      // N s/m
-    double max_energy = 0.0;      // J, observer
-};
-
-// The hand comes down onto a floor and presses 2 mm into it (free space first: the engage gate).
-PressResult press_floor(double stiffness, double rate, double hand_damping, double seconds = 1.5,
-                        int arm_counts = drivers::sim::PlanarArmParams{}.encoder_counts,
-                        double joint_friction = drivers::sim::PlanarArmParams{}.friction) {
-    drivers::sim::SimCldParams sp;
-    sp.arm.encoder_counts = arm_counts;
-    sp.arm.friction = joint_friction;
-    sp.hand.damping = hand_damping;
-    const double R = 0.026;
-    drivers::HandPath path({{0.0, {0.0, R + 0.005}, 0.0}, {0.3, {0.0, R - 0.002}, 0.0}, {seconds, {0.0, R - 0.002}, 0.0}});
-    Scene scene = floor_scene(stiffness);
-    ServoParams params;
-    params.stiffness = stiffness;
-    params.stiffness_slew = 1e9;
-    SimRig rig(scene, std::move(path), rate, sp, params);
-    REQUIRE(rig.opened);
-    PressResult r;
-    r.b_declared = rig.device.limits().damping;
-    const auto ticks = static_cast<long>(std::lround(seconds * rate));
-    double fmin = 1e9, fmax = -1e9;
-    double q3[2] = {1e9, -1e9}, q4[2] = {1e9, -1e9};  // N, min and max of f_y per quarter
-    for (long k = 0; k < ticks; ++k) {
-        rig.loop.step(1.0 / rate, true);
-        const ServoSnapshot s = rig.servo.snapshot();
-        r.finite = r.finite && is_finite(s.force) && is_finite(s.finger);
-        r.max_force = std::max(r.max_force, glm::length(s.force));
-        r.max_energy = std::max(r.max_energy, s.observer_energy);
-        r.max_speed = std::max(r.max_speed, glm::length(rig.device.arm().velocity()));
-        if (s.fault_count > 0 && !r.faulted) {
-            r.faulted = true;
-            r.fault = s.fault;
-        }
-        if (k > ticks - static_cast<long>(0.5 * rate)) {
-            fmin = std::min(fmin, s.force.y);
-            fmax = std::max(fmax, s.force.y);
-        }
-        if (k >= ticks / 2) {
-            double* q = k >= 3 * ticks / 4 ? q4 : q3;
-            q[0] = std::min(q[0], s.force.y);
-            q[1] = std::max(q[1], s.force.y);
-        }
-        if (k == static_cast<long>(0.3 * rate)) r.b_normal = rig.device.arm().cartesian_damping({0.0, 1.0});
-    }
-    r.late_force_pp = fmax - fmin;
-    r.pp_third = q3[1] - q3[0];
-    r.pp_fourth = q4[1] - q4[0];
-    return r;
-}
-
-}  // namespace
-
-TEST_CASE("below the passivity bound the contact settles; above it the loop reports instability") {
+// (No ';' in test names: doctest_discover_tests splits names there, and the halves match nothing.)
+TEST_CASE("below the passivity bound the contact settles, above it the loop reports instability") {
     const double rate = 1000.0, T = 1.0 / rate;
     const PressResult probe = press_floor(100.0, rate, 0.0, 0.4);
+    REQUIRE(probe.opened);
     const double b = probe.b_declared;
     INFO("declared damping " << b << " N s/m, along the normal " << probe.b_normal << " N s/m");
     REQUIRE(b > 0.0);
@@ -89,6 +30,7 @@ TEST_CASE("below the passivity bound the contact settles; above it the loop repo
 
     // Below: half the declared bound, no help from the hand's damping.
     const PressResult below = press_floor(0.5 * 2.0 * b / T, rate, 0.0);
+    REQUIRE(below.opened);
     CHECK_FALSE(below.faulted);
     CHECK(below.finite);
     CHECK(below.max_force <= 1.5 + 1e-9);
@@ -99,34 +41,12 @@ TEST_CASE("below the passivity bound the contact settles; above it the loop repo
     // Above: four times the bound with the damping actually present along the normal.
     const double k_above = 4.0 * 2.0 * probe.b_normal / T;
     const PressResult above = press_floor(k_above, rate, 0.0);
+    REQUIRE(above.opened);
     CHECK(above.faulted);
     CHECK(above.fault == ServoFault::instability);
     CHECK(above.finite);
     CHECK(above.max_force <= 1.5 + 1e-9);  // the clamp held while it lasted
     CHECK(above.max_speed < 1.0);          // m/s: nothing ran away
-}
-
-// Largest stiffness (N/m) at `rate` (Hz) on the rig, or `ideal` (24-bit encoders, no joint
-// friction: the sampling alone), by
-// bisection on log K between `lo` (must hold) and `hi`, to a ratio of `resolution`. "Holds": no
-// NaN, no runaway and the passivity observer quiet for 1 s; with `settled` also the force ripple
-// in the last quarter second below 0.1 N or below 0.9 x that of the quarter before (no limit
-// cycle). Returns hi when even hi holds.
-double largest_stable_k(double rate, double lo, double hi, bool settled, bool ideal, double resolution = 1.02) {
-    auto holds = [&](double k) {
-        const PressResult r = ideal ? press_floor(k, rate, 0.0, 1.0, 1 << 24, 0.0) : press_floor(k, rate, 0.0, 1.0);
-        // Settled: what oscillation is left is small, or dying out (a loop past the bound grows
-        // into a limit cycle at the force clamp and stays there).
-        const bool dying = r.pp_fourth < 0.1 || r.pp_fourth < 0.9 * r.pp_third;
-        return !r.faulted && r.finite && r.max_speed < 1.0 && (!settled || dying);
-    };
-    REQUIRE(holds(lo));
-    if (holds(hi)) return hi;
-    while (hi / lo > resolution) {
-        const double mid = std::sqrt(lo * hi);
-        (holds(mid) ? lo : hi) = mid;
-    }
-    return lo;
 }
 
 TEST_CASE("stability table: largest stable K vs servo rate against 2 b / T") {
@@ -144,15 +64,20 @@ TEST_CASE("stability table: largest stable K vs servo rate against 2 b / T") {
     std::printf("stability table (hand without damping, 2 mm press, 1 s; largest K by bisection to 2%%; "
                 "unreported: observer quiet; settled: also the force ripple small or dying out):\n");
     std::printf("| rate | b (N s/m) | 2b/T (N/m) | rig: unreported | rig: settled | ideal: unreported | ideal: settled |\n");
-    for (double rate : {250.0, 1000.0, 4000.0, 10000.0}) {
-        const double T = 1.0 / rate;
-        const PressResult probe = press_floor(100.0, rate, 0.0, 0.4);
-        const double bound = 2.0 * probe.b_normal / T;  // N/m
-        std::printf("| %.0f Hz | %.3f | %.0f |", rate, probe.b_normal, bound);
+    const std::vector<StabilityRow> rows = stability_table(false);
+    REQUIRE(rows.size() == 4);
+    for (const StabilityRow& row : rows) {
+        const double bound = row.passivity_bound;  // N/m
+        std::printf("| %.0f Hz | %.3f | %.0f |", row.rate_hz, row.b_normal, bound);
+        CHECK(row.search_lo == doctest::Approx(0.2 * bound));
+        CHECK(row.search_hi == doctest::Approx(4.0 * bound));
         for (bool ideal : {false, true}) {
             for (bool settled : {false, true}) {
-                const double k = largest_stable_k(rate, 0.2 * bound, 4.0 * bound, settled, ideal);
-                std::printf(" %s%.0f (%.2f) |", k >= 4.0 * bound ? ">= " : "", k, k / bound);
+                const double k = ideal ? (settled ? row.k_ideal_settles : row.k_ideal_no_fault)
+                                       : (settled ? row.k_settles : row.k_no_fault);
+                std::printf(" %s%.0f (%.2f) |", k >= row.search_hi ? ">= " : "", k, k / bound);
+                // 0 would mean the loop failed even at 0.2 x the bound: the bracket's low end must hold.
+                CHECK(k >= row.search_lo);
                 if (ideal && settled) {
                     CHECK(k >= 0.75 * bound);
                     CHECK(k <= 1.25 * bound);
@@ -171,5 +96,29 @@ TEST_CASE("stability table: largest stable K vs servo rate against 2 b / T") {
             }
         }
         std::printf("\n");
+    }
+}
+
+TEST_CASE("quick stability table: the full table's rows at 250 Hz and 1 kHz, the ideal arm settling at 2 b / T") {
+    // The bench's --quick run: fewer rates, the same bisection, so the same numbers as the full
+    // table at those rates (the full table is checked above; here the physics band on what the
+    // quick run reports, without running the full table again).
+    const std::vector<StabilityRow> quick = stability_table(true);
+    REQUIRE(quick.size() == 2);
+    CHECK(quick[0].rate_hz == 250.0);
+    CHECK(quick[1].rate_hz == 1000.0);
+    for (const StabilityRow& row : quick) {
+        INFO(row.rate_hz << " Hz: 2b/T " << row.passivity_bound << " N/m, ideal settled " << row.k_ideal_settles
+                         << " N/m, rig settled " << row.k_settles << " N/m, rig unreported " << row.k_no_fault << " N/m");
+        CHECK(row.passivity_bound == doctest::Approx(2.0 * row.b_normal * row.rate_hz));
+        // The band of the full table's test: sampling alone puts the settling limit at the bound.
+        CHECK(row.k_ideal_settles >= 0.75 * row.passivity_bound);
+        CHECK(row.k_ideal_settles <= 1.25 * row.passivity_bound);
+        // And no false alarm below the bound, rig or ideal.
+        CHECK(row.k_no_fault >= row.passivity_bound);
+        CHECK(row.k_ideal_no_fault >= row.passivity_bound);
+        // Settling is the stricter test: never above what merely goes unreported.
+        CHECK(row.k_settles <= row.k_no_fault);
+        CHECK(row.k_ideal_settles <= row.k_ideal_no_fault);
     }
 }

@@ -1,0 +1,239 @@
+// bench_probes.cpp — closed-loop measurements on the simulated CLD rig (see bench_probes.hpp).
+#include "drivers/sim/bench_probes.hpp"
+
+#include "drivers/sim/roller_sine.hpp"
+#include "drivers/sim/sim_rig.hpp"
+#include "drivers/tasks.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <limits>
+
+namespace contactlab::drivers::sim {
+
+namespace {
+constexpr double kTwoPi = 6.283185307179586;
+// Below this finger speed (m/s) nothing ran away: a 2 mm press moves the finger at cm/s at most,
+// while a loop that the clamp did not hold would fling it at the arm's top speed.
+constexpr double kRunawaySpeed = 1.0;
+// Force ripple (N) under which a contact counts as settled whatever its trend: the quantisation
+// limit cycle of a stable spring (K times a few encoder counts of ~20 um) stays below it.
+constexpr double kSettledRipple = 0.1;
+}  // namespace
+
+PressResult press_floor(double stiffness, double rate, double hand_damping, double seconds, int arm_counts,
+                        double joint_friction) {
+    SimCldParams sp;
+    sp.arm.encoder_counts = arm_counts;
+    sp.arm.friction = joint_friction;
+    sp.hand.damping = hand_damping;
+    const double R = 0.026;  // m, the finger's radius (SimCldParams' finger)
+    HandPath path({{0.0, {0.0, R + 0.005}, 0.0}, {0.3, {0.0, R - 0.002}, 0.0}, {seconds, {0.0, R - 0.002}, 0.0}});
+    const Scene scene = floor_scene(stiffness);
+    ServoParams params;
+    params.stiffness = stiffness;
+    // The spring is at its value from the first tick (no slew): the probe is about K itself.
+    params.stiffness_slew = 1e9;
+    SimRig rig(scene, std::move(path), rate, sp, params);
+    PressResult r;
+    r.opened = rig.opened;
+    if (!rig.opened) return r;
+    r.b_declared = rig.device.limits().damping;
+    const auto ticks = static_cast<long>(std::lround(seconds * rate));
+    double fmin = 1e9, fmax = -1e9;
+    double q3[2] = {1e9, -1e9}, q4[2] = {1e9, -1e9};  // N, min and max of f_y per quarter
+    for (long k = 0; k < ticks; ++k) {
+        rig.loop.step(1.0 / rate, true);
+        const ServoSnapshot s = rig.servo.snapshot();
+        r.finite = r.finite && is_finite(s.force) && is_finite(s.finger);
+        r.max_force = std::max(r.max_force, glm::length(s.force));
+        r.max_energy = std::max(r.max_energy, s.observer_energy);
+        r.max_speed = std::max(r.max_speed, glm::length(rig.device.arm().velocity()));
+        if (s.fault_count > 0 && !r.faulted) {
+            r.faulted = true;
+            r.fault = s.fault;
+        }
+        if (k > ticks - static_cast<long>(0.5 * rate)) {
+            fmin = std::min(fmin, s.force.y);
+            fmax = std::max(fmax, s.force.y);
+        }
+        if (k >= ticks / 2) {
+            double* q = k >= 3 * ticks / 4 ? q4 : q3;
+            q[0] = std::min(q[0], s.force.y);
+            q[1] = std::max(q[1], s.force.y);
+        }
+        // Once pressed (the descent ends at 0.3 s): the damping the spring actually sees.
+        if (k == static_cast<long>(0.3 * rate)) r.b_normal = rig.device.arm().cartesian_damping({0.0, 1.0});
+    }
+    r.late_force_pp = fmax - fmin;
+    r.pp_third = q3[1] - q3[0];
+    r.pp_fourth = q4[1] - q4[0];
+    return r;
+}
+
+double largest_stable_k(double rate, double lo, double hi, bool settled, bool ideal, double resolution) {
+    auto holds = [&](double k) {
+        const PressResult r = ideal ? press_floor(k, rate, 0.0, 1.0, 1 << 24, 0.0) : press_floor(k, rate, 0.0, 1.0);
+        // Settled: what oscillation is left is small, or dying out (a loop past the bound grows
+        // into a limit cycle at the force clamp and stays there).
+        const bool dying = r.pp_fourth < kSettledRipple || r.pp_fourth < 0.9 * r.pp_third;
+        return r.opened && !r.faulted && r.finite && r.max_speed < kRunawaySpeed && (!settled || dying);
+    };
+    if (!holds(lo)) return 0.0;
+    if (holds(hi)) return hi;
+    // On log K: the bound spans decades across rates, and a ratio is what the table reports.
+    while (hi / lo > resolution) {
+        const double mid = std::sqrt(lo * hi);
+        (holds(mid) ? lo : hi) = mid;
+    }
+    return lo;
+}
+
+StabilityRow stability_row(double rate, double resolution) {
+    StabilityRow row;
+    row.rate_hz = rate;
+    row.resolution = resolution;
+    // A soft press (100 N/m, far below any bound) only to read the arm's damping along the normal.
+    const PressResult probe = press_floor(100.0, rate, 0.0, 0.4);
+    row.b_normal = probe.b_normal;
+    row.passivity_bound = 2.0 * probe.b_normal / (1.0 / rate);  // N/m: 2 b / T, T = 1 / rate
+    // The bracket: well inside (0.2x, where the loop must hold) to far past (4x) the bound, so
+    // both the observer's report and the settling limit land inside it.
+    row.search_lo = 0.2 * row.passivity_bound;
+    row.search_hi = 4.0 * row.passivity_bound;
+    row.k_no_fault = largest_stable_k(rate, row.search_lo, row.search_hi, false, false, resolution);
+    row.k_settles = largest_stable_k(rate, row.search_lo, row.search_hi, true, false, resolution);
+    row.k_ideal_no_fault = largest_stable_k(rate, row.search_lo, row.search_hi, false, true, resolution);
+    row.k_ideal_settles = largest_stable_k(rate, row.search_lo, row.search_hi, true, true, resolution);
+    return row;
+}
+
+BlockTracking block_task_tracking(double speed, double rate, const RollerGains& gains) {
+    const Scene scene = block_scene();
+    BlockTaskParams bp;
+    bp.finger_radius = scene.finger.radius;
+    bp.speed = speed;
+    ServoParams params;
+    params.roller = gains;
+    SimRig rig(scene, contour_block_task(bp), rate, {}, params);
+    BlockTracking tr;
+    tr.opened = rig.opened;
+    if (!rig.opened) return tr;
+    double lmin = 1e9, lmax = -1e9;  // m
+    double sum_sq = 0.0;             // m^2
+    const double T = 1.0 / rate;     // s
+    // 10 ms windows for the target's rate: l_d = -R phi moves in angle-encoder steps of 0.04 mm,
+    // which a per-tick difference would report as bursts of metres per second.
+    const auto window = static_cast<std::size_t>(std::lround(0.010 * rate));
+    std::deque<double> recent;       // m, the last `window` targets while engaged in contact
+    const auto ticks = static_cast<std::uint64_t>(std::lround(rig.device.hand().path().end() * rate));
+    for (std::uint64_t k = 0; k < ticks; ++k) {
+        rig.loop.step(T, true);
+        const ServoSnapshot s = rig.servo.snapshot();
+        // In free space l_d is the anticipation's and the roller is not felt: only contact counts.
+        if (s.state != ServoState::engaged || !s.contact) {
+            recent.clear();
+            continue;
+        }
+        lmin = std::min(lmin, s.roller_target);
+        lmax = std::max(lmax, s.roller_target);
+        const double e = s.roller_target - s.roller_l;  // m
+        tr.max_measured = std::max(tr.max_measured, std::abs(e));
+        sum_sq += e * e;
+        ++tr.samples;
+        tr.max_element = std::max(tr.max_element, std::abs(s.roller_target - rig.device.roller().element()));
+        recent.push_back(s.roller_target);
+        if (recent.size() > window) {
+            recent.pop_front();
+            tr.max_rate = std::max(tr.max_rate, std::abs(recent.back() - recent.front()) / (window - 1) * rate);
+        }
+    }
+    tr.l_range = tr.samples > 0 ? lmax - lmin : 0.0;
+    tr.rms_measured = tr.samples > 0 ? std::sqrt(sum_sq / static_cast<double>(tr.samples)) : 0.0;
+    return tr;
+}
+
+double onset_floor(double v, double T, const RollerParams& p) {
+    const double n = kTwoPi / p.lead;                                    // rad/m
+    const double mass = p.rotor_inertia * n * n + p.nut_mass;            // kg
+    const double stall = p.torque_constant * n * p.max_voltage / p.resistance;  // N
+    const double a_max = (stall - p.coulomb) / mass;                     // m/s^2
+    return v * T + v * v / (2.0 * a_max);
+}
+
+RollerGains roller_gains_scaled(double scale, const RollerParams& plant) {
+    // Small-signal plant l / V = g / (s (tau s + 1)): g = 1 / (k_e 2 pi / lead), m/(V s).
+    const double g = 1.0 / (plant.torque_constant * kTwoPi / plant.lead);
+    RollerGains out;
+    out.kp *= scale * scale;
+    out.ki *= scale * scale * scale;
+    // Kd(s p0) = (3 tau s p0 - 1) / g = s (3 tau p0 - 1) / g + (s - 1) / g.
+    out.kd = out.kd * scale + (scale - 1.0) / g;
+    return out;
+}
+
+}  // namespace contactlab::drivers::sim
+
+namespace contactlab {
+
+std::vector<StabilityRow> stability_table(bool quick) {
+    // quick drops 4 and 10 kHz, the costly rates (1 s of virtual time is 4000-10000 ticks of 10
+    // arm sub-steps, per bisection step), and keeps the 2 % bisection: its rows are the full
+    // table's, number for number, and a coarser stop would cost little time but eat into the
+    // margin of the ideal arm's settling limit (0.80 x 2b/T at 250 Hz) over the 0.75 the tests
+    // hold it to.
+    const std::vector<double> rates = quick ? std::vector<double>{250.0, 1000.0}
+                                            : std::vector<double>{250.0, 1000.0, 4000.0, 10000.0};
+    const double resolution = 1.02;
+    std::vector<StabilityRow> rows;
+    rows.reserve(rates.size());
+    for (double rate : rates) rows.push_back(drivers::sim::stability_row(rate, resolution));
+    return rows;
+}
+
+std::vector<RollerTrackingRow> roller_tracking_table(bool quick) {
+    const std::vector<double> scales = quick ? std::vector<double>{1.0, 2.0} : std::vector<double>{0.5, 1.0, 2.0};
+    // m/s; quick skips 1 cm/s (an 18 s task) and 10 cm/s.
+    const std::vector<double> speeds = quick ? std::vector<double>{0.02, 0.05}
+                                             : std::vector<double>{0.01, 0.02, 0.05, 0.1};
+    const double rate = 1000.0;  // Hz: seed 000's servo rate
+    std::vector<RollerTrackingRow> rows;
+    rows.reserve(scales.size() * speeds.size());
+    for (double scale : scales) {
+        const RollerGains gains = drivers::sim::roller_gains_scaled(scale);
+        for (double speed : speeds) {
+            const drivers::sim::BlockTracking tr = drivers::sim::block_task_tracking(speed, rate, gains);
+            RollerTrackingRow row;
+            row.gain_scale = scale;
+            row.finger_speed = speed;
+            row.rate_hz = rate;
+            row.max_error = tr.opened ? tr.max_measured : std::numeric_limits<double>::quiet_NaN();
+            row.rms_error = tr.opened ? tr.rms_measured : std::numeric_limits<double>::quiet_NaN();
+            row.pole_rad_s = 400.0 * scale;
+            row.max_element_error = tr.max_element;
+            row.target_range = tr.l_range;
+            row.max_target_rate = tr.max_rate;
+            row.onset_floor = drivers::sim::onset_floor(tr.max_rate, 1.0 / rate);
+            rows.push_back(row);
+        }
+    }
+    return rows;
+}
+
+double roller_bandwidth_hz(bool quick) {
+    const drivers::sim::SimCldParams sp;
+    drivers::sim::SineTest st;  // 1 kHz, 5 mm amplitude = 1.0 cm peak to peak
+    // Integrate the roller exactly as the simulated CLD device does.
+    st.substep = sp.substep;
+    st.min_substeps = sp.min_substeps;
+    // The low end of the sweep is what costs (settle + measure cycles at 0.5 Hz are 20 s of
+    // virtual time); the -3 dB point of this motor on a 1 cm sine is several Hz, so quick starts
+    // at 2 Hz and stops the bisection at 0.05 Hz.
+    const drivers::sim::BandwidthResult bw =
+        quick ? drivers::sim::roller_bandwidth(sp.roller, RollerGains{}, st, 2.0, 100.0, 12, 0.05)
+              : drivers::sim::roller_bandwidth(sp.roller, RollerGains{}, st);
+    return bw.found ? bw.bandwidth : std::numeric_limits<double>::quiet_NaN();
+}
+
+}  // namespace contactlab

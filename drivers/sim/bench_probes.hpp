@@ -1,0 +1,140 @@
+// bench_probes.hpp — closed-loop measurements on the simulated CLD rig, as library functions, so
+// `contactlab bench` (issue 8 §1: "Rate vs stiffness", "Roller tracking error vs PID gains and
+// finger speed") and the drivers tests (issue 4 §5) run one implementation and print the same
+// numbers. Everything runs in virtual time (drivers/sim/sim_rig.hpp, drivers/sim/roller_sine.hpp):
+// deterministic, no sleeping, as fast as the CPU allows; results do not depend on machine load,
+// only the time taken does.
+//
+// Two layers: the tables (namespace contactlab, the interface the bench calls) and the single
+// measurements they are built from (namespace contactlab::drivers::sim, which the tests also use
+// for their assertions). All quantities SI unless a name says otherwise.
+#pragma once
+
+#include "drivers/sim/cld_roller.hpp"
+#include "drivers/sim/planar_arm.hpp"
+#include "haptics/roller_controller.hpp"
+#include "haptics/servo_tick.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace contactlab {
+
+// ---- Rate vs stiffness ------------------------------------------------------------------------
+// The hand presses the finger 2 mm into a floor (no hand damping, so the arm's own damping b is
+// all the loop has) and the spring's K is bisected for the largest value that still holds. The
+// sampled spring on a damped mass is passive for K < 2 b / T (Colgate and Schenkel), b the arm's
+// damping along the contact normal and T the servo period: `passivity_bound`.
+struct StabilityRow {
+    double rate_hz = 0;          // servo rate
+    double passivity_bound = 0;  // 2 b / T, N/m
+    double k_no_fault = 0;       // largest K (N/m) with no fault reported, real (simulated) arm
+    double k_settles = 0;        // largest K (N/m) that settles, real arm
+    double k_ideal_settles = 0;  // the same with ideal encoders and no joint friction
+    // Beyond the bench's interface:
+    double k_ideal_no_fault = 0; // N/m, largest K with no fault reported, ideal arm
+    double b_normal = 0;         // N s/m, the arm's damping along the floor normal at the press point
+    double search_lo = 0;        // N/m, bisection bracket: K values are clipped to [search_lo,
+    double search_hi = 0;        //   search_hi]; a K equal to search_hi means "held even there"
+    double resolution = 0;       // ratio the bisection stops at (hi / lo), e.g. 1.02: 2 %
+};
+// quick: 250 and 1000 Hz (the same rows as full's); full: 250, 1000, 4000, 10000 Hz. Bisection
+// on log K to 2 %, bracket [0.2, 4] x passivity_bound at every rate.
+std::vector<StabilityRow> stability_table(bool quick);
+
+// ---- Roller tracking error vs PID gains and finger speed -------------------------------------
+// Seed 000's block task (drivers/tasks.hpp: along the top, over the corner, down the far face) on
+// the simulated CLD at `rate_hz`; the error is the roller's encoder against the servo's target
+// l_d, sampled every tick while engaged and in contact.
+struct RollerTrackingRow {
+    double gain_scale = 1;       // multiplier on the default closed-loop bandwidth (pole placement) or gains
+    double finger_speed = 0;     // m/s along the block task's contour
+    double rate_hz = 1000;
+    double max_error = 0;        // m, roller vs target
+    double rms_error = 0;        // m
+    // Beyond the bench's interface:
+    double pole_rad_s = 0;       // rad/s, the placed closed-loop pole (triple), 400 x gain_scale
+    double max_element_error = 0;  // m, contact element (after the wires: what the finger feels) vs target
+    double target_range = 0;     // m, how far l_d travelled (the task must move the roller)
+    double max_target_rate = 0;  // m/s, fastest l_d over 10 ms windows
+    double onset_floor = 0;      // m, least error any controller can have on that onset (see onset_floor())
+};
+// quick: gain scales {1, 2} x speeds {0.02, 0.05} m/s; full: gain scales {0.5, 1, 2} x speeds
+// {0.01, 0.02, 0.05, 0.1} m/s. All at 1 kHz. Rows per gain scale, speeds ascending. The errors
+// are NaN if the simulated device did not open (a bench must not report a 0 it did not measure).
+std::vector<RollerTrackingRow> roller_tracking_table(bool quick);
+
+// The 1 cm peak-to-peak sine -3 dB frequency (Hz) of the roller alone at 1 kHz with the default
+// gains (seed 000: about 8 Hz). quick: the sweep starts at 2 Hz (the motor's force does not
+// saturate on that sine below ~7 Hz, so the crossing lies well above) and the bisection stops at
+// 0.05 Hz; full: from 0.5 Hz, to 0.01 Hz. NaN when the gain never fell to -3 dB below 100 Hz.
+double roller_bandwidth_hz(bool quick);
+
+}  // namespace contactlab
+
+namespace contactlab::drivers::sim {
+
+// ---- Single measurements (what the tables are made of) ----------------------------------------
+
+struct PressResult {
+    bool opened = false;          // the device opened (nothing else is meaningful otherwise)
+    bool faulted = false;
+    ServoFault fault = ServoFault::none;
+    double max_force = 0.0;       // N, commanded
+    double max_speed = 0.0;       // m/s, finger
+    double late_force_pp = 0.0;   // N, peak-to-peak force over the last 0.5 s
+    double pp_third = 0.0;        // N, peak-to-peak force over the run's third quarter
+    double pp_fourth = 0.0;       // N, and over its last quarter
+    bool finite = true;
+    double b_normal = 0.0;        // N s/m, arm damping along +y at the press point
+    double b_declared = 0.0;      // N s/m
+    double max_energy = 0.0;      // J, observer
+};
+
+// The hand comes down onto a floor of `stiffness` (N/m) from 5 mm above, over 0.3 s, and presses
+// 2 mm into it (free space first: the engage gate), for `seconds` s at `rate` (Hz) with the hand's
+// damping `hand_damping` (N s/m). `arm_counts` (per joint revolution) and `joint_friction` (N m)
+// override the simulated arm's (ideal: 1 << 24 and 0).
+PressResult press_floor(double stiffness, double rate, double hand_damping, double seconds = 1.5,
+                        int arm_counts = PlanarArmParams{}.encoder_counts,
+                        double joint_friction = PlanarArmParams{}.friction);
+
+// Largest stiffness (N/m) at `rate` (Hz) on the rig, or `ideal` (24-bit encoders, no joint
+// friction: the sampling alone), by bisection on log K between `lo` (must hold) and `hi`, to a
+// ratio of `resolution`. "Holds": no NaN, no runaway (finger under 1 m/s) and the passivity
+// observer quiet for a 1 s press; with `settled` also the force ripple in the last quarter second
+// below 0.1 N or below 0.9 x that of the quarter before (no limit cycle). Returns hi when even hi
+// holds, 0 when lo does not (the bracket was wrong: no answer rather than a wrong one).
+double largest_stable_k(double rate, double lo, double hi, bool settled, bool ideal, double resolution = 1.02);
+
+// One row of the stability table at `rate` (Hz), bracket [0.2, 4] x 2 b / T.
+StabilityRow stability_row(double rate, double resolution = 1.02);
+
+struct BlockTracking {
+    double max_measured = 0.0;  // m, |l_target - l_encoder|
+    double rms_measured = 0.0;  // m, RMS of the same over the ticks sampled
+    double max_element = 0.0;   // m, |l_target - l_element| (what the finger feels)
+    double l_range = 0.0;       // m, how far l_d travelled
+    double max_rate = 0.0;      // m/s, fastest l_d over 10 ms windows (encoder steps averaged out)
+    std::uint64_t samples = 0;  // ticks sampled (engaged and in contact)
+    bool opened = false;        // the device opened
+};
+
+// Seed 000's block task (drivers/tasks.hpp, on block_scene()) at hand speed `speed` (m/s) and
+// servo rate `rate` (Hz) with roller gains `gains`, sampled while engaged and in contact.
+BlockTracking block_task_tracking(double speed, double rate = 1000.0, const RollerGains& gains = RollerGains{});
+
+// The least error (m) any controller can have on a target that starts moving at v (m/s) from
+// rest, with the roller at rest: it learns of the motion up to one period T (s) late, and then
+// needs v / a_max to reach v, falling behind by v^2 / (2 a_max). a_max (m/s^2) is the stall force
+// less sliding friction over the mass reflected to the nut.
+double onset_floor(double v, double T, const RollerParams& p = RollerParams{});
+
+// Roller gains with the closed-loop poles moved from p0 = 400 rad/s (the defaults' placement,
+// haptics/roller_controller.hpp) to scale x p0: the pole-placement formulas Kp = 3 tau p^2 / g,
+// Ki = tau p^3 / g, Kd = (3 tau p - 1) / g scale as Kp s^2, Ki s^3, Kd s + (s - 1) / g, applied
+// to the defaults so that scale 1 gives RollerGains{} exactly (their rounding kept). g (m/(V s))
+// comes from `plant`. The derivative filter and the drive limit stay as they are.
+RollerGains roller_gains_scaled(double scale, const RollerParams& plant = RollerParams{});
+
+}  // namespace contactlab::drivers::sim
