@@ -58,7 +58,10 @@ void canvas_move(EditorState& s, double x, double y) {
             break;
         case Tool::select:
             if (s.dragging && s.selected) {
-                s.doc.update_continuous(move_handle(s.doc.scene(), *s.selected, s.cursor));
+                // Only real moves count: a click (press and release in place) records no edit.
+                const Vec2 to = s.cursor + s.grab_offset;
+                if (handle_position(s.doc.scene(), *s.selected) != to)
+                    s.doc.update_continuous(move_handle(s.doc.scene(), *s.selected, to));
             } else {
                 s.hovered = pick_handle(s.doc.scene(), s.cursor, pick_radius(s));
             }
@@ -87,6 +90,9 @@ void canvas_press(EditorState& s, Button b, double x, double y) {
             s.selected = pick_handle(s.doc.scene(), s.cursor, pick_radius(s));
             if (s.selected) {
                 s.dragging = true;
+                // Grabbed a few px off the point: it keeps that offset (no jump on a click).
+                s.grab_offset = handle_position(s.doc.scene(), *s.selected) - s.cursor;
+                if (s.snap_grid) s.grab_offset = Vec2(0.0);  // on the grid, the point goes to the grid
                 s.doc.begin_continuous("move point");
             }
             break;

@@ -230,7 +230,10 @@ int run_editor(const EditorOptions& o) {
 
         // UI: ImGui frame, then the canvas (real input, or the script's actions).
         imgui.new_frame();
-        if (scripted) script.step(s, since(t_loop));
+        if (scripted) {
+            script.step(s, since(t_loop));
+            if (const auto r = script.take_resize_request()) window.set_size(r->first, r->second);
+        }
         else handle_real_input(s, window.handle());
         FrameInfo info;
         info.gpu = ctx.device_name();
@@ -335,6 +338,8 @@ int run_editor(const EditorOptions& o) {
                  timer.frames ? 1e3 * timer.busy / timer.frames : 0.0, run_s > 0 ? timer.frames / run_s : 0.0, o.rate,
                  ps.p50 * 1e6, ps.p99 * 1e6, ps.max * 1e6, ps.count,
                  static_cast<unsigned long long>(servo.overruns()), servo.scheduling().c_str());
+    std::fprintf(stderr, "contactlab edit: swapchain recreated %d time(s) (resize, out-of-date, suboptimal)\n",
+                 target.recreations());
     if (scripted && script.failures() > 0) {
         std::fprintf(stderr, "contactlab edit: script: %d check(s) failed\n", script.failures());
         exit_code = 1;

@@ -31,6 +31,7 @@ struct EditorState {
     Vec2 cursor{0.0};                  // m, world point under the cursor
     std::optional<Handle> hovered, selected;
     bool dragging = false;             // a handle is being moved (select tool)
+    Vec2 grab_offset{0.0};             // m, handle position minus cursor when grabbed
     bool line_active = false;          // line tool: the first point is placed
     Vec2 line_start{0.0};              // m
     bool panning = false;

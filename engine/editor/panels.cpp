@@ -134,7 +134,7 @@ void menu_bar(EditorState& s) {
 }
 
 void tuning_window(EditorState& s) {
-    ImGui::SetNextWindowPos(ImVec2(10, 30), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowPos(ImVec2(10, 60), ImGuiCond_FirstUseEver);  // below the frame's status line
     ImGui::SetNextWindowSize(ImVec2(330, 470), ImGuiCond_FirstUseEver);
     if (!ImGui::Begin("Tuning")) {
         ImGui::End();
@@ -254,7 +254,8 @@ void plots_window(EditorState& s, const FrameInfo& info) {
         std::snprintf(overlay, sizeof overlay, "%.3f", cur);
         ImGui::TextUnformatted(label);
         ImGui::PushID(label);
-        ImGui::PlotLines("##plot", v.data(), static_cast<int>(v.size()), 0, overlay, lo, hi, ImVec2(-1, 38));
+        ImGui::SetNextItemWidth(-1.0f);  // PlotLines takes a width of 0 as "the item width"
+        ImGui::PlotLines("##plot", v.data(), static_cast<int>(v.size()), 0, overlay, lo, hi, ImVec2(0.0f, 38.0f));
         ImGui::PopID();
     };
     const float fmax = static_cast<float>(std::max(0.1, s.doc.scene().force.max_force));

@@ -19,7 +19,7 @@ const std::map<std::string, std::pair<int, int>>& arity() {
         {"finger", {2, 3}}, {"key", {1, 1}},         {"set", {2, 2}},        {"undo", {0, 0}},
         {"redo", {0, 0}},   {"fit", {0, 0}},         {"save", {1, 1}},       {"open", {1, 1}},
         {"screenshot", {1, 1}}, {"estop", {1, 1}},   {"wait", {1, 1}},       {"frames", {1, 1}},
-        {"wait_contact", {1, 1}}, {"wait_state", {2, 2}}, {"expect", {2, 2}}, {"quit", {0, 0}},
+        {"wait_contact", {1, 1}}, {"resize", {2, 2}}, {"wait_state", {2, 2}}, {"expect", {2, 2}}, {"quit", {0, 0}},
     };
     return a;
 }
@@ -80,6 +80,12 @@ Script Script::parse(const std::string& text, const std::string& origin) {
     return sc;
 }
 
+std::optional<std::pair<int, int>> Script::take_resize_request() {
+    auto r = resize_;
+    resize_.reset();
+    return r;
+}
+
 std::optional<std::string> Script::take_screenshot_request() {
     auto r = std::move(screenshot_);
     screenshot_.reset();
@@ -105,7 +111,7 @@ void Script::step(EditorState& s, double now) {
         wait_until_ = -1.0;
         frames_left_ = -1;
         // One visible action per frame so the window shows each step (and screenshots see it).
-        if (line.words[0] == "screenshot") return;
+        if (line.words[0] == "screenshot" || line.words[0] == "resize") return;
     }
 }
 
@@ -178,6 +184,11 @@ bool Script::run(EditorState& s, const Line& line, double now) {
     } else if (c == "open") {
         s.doc.open(w[1]);
         cmd_fit(s);
+    } else if (c == "resize") {
+        const double rw = number(w[1]), rh = number(w[2]);
+        if (rw < 64 || rh < 64 || rw > 8192 || rh > 8192) throw ScriptError("resize: 64..8192 px");
+        resize_ = std::make_pair(static_cast<int>(rw), static_cast<int>(rh));
+        return true;
     } else if (c == "screenshot") {
         screenshot_ = w[1];
     } else if (c == "estop") {

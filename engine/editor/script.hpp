@@ -6,7 +6,7 @@
 //   set NAME VALUE   (ke, max_force, damping, mu_s, mu_d, k_t, k_n  SI units;
 //                     model spring|ellipsoid; rule centroid|least_displacement; kp ki kd;
 //                     snap_mm MM: grid snapping for the authoring tools, 0 = off)
-//   undo  redo  fit  save PATH  open PATH  screenshot PATH  estop on|off
+//   undo  redo  fit  save PATH  open PATH  screenshot PATH  estop on|off  resize W H (px)
 //   wait SECONDS     frames N     wait_contact TIMEOUT_S     wait_state STATE TIMEOUT_S
 //   expect NAME VALUE  (contact 0|1, segments N, contours N, ke N/m, ke_effective N/m (within 1),
 //                       state NAME, stopped 0|1, valid 0|1, force_above N, force_below N,
@@ -41,6 +41,8 @@ public:
     int failures() const { return failures_; }
     // A screenshot the script asked for this frame (the editor takes it and writes the PNG).
     std::optional<std::string> take_screenshot_request();
+    // A window size (px) the script asked for this frame.
+    std::optional<std::pair<int, int>> take_resize_request();
 
 private:
     struct Line {
@@ -58,6 +60,7 @@ private:
     double wait_until_ = -1.0;
     long frames_left_ = -1;
     std::optional<std::string> screenshot_;
+    std::optional<std::pair<int, int>> resize_;
 };
 
 }  // namespace contactlab::editor

@@ -32,6 +32,7 @@ Window::~Window() {
 bool Window::should_close() const { return glfwWindowShouldClose(window_) == GLFW_TRUE; }
 void Window::request_close() { glfwSetWindowShouldClose(window_, GLFW_TRUE); }
 void Window::framebuffer_size(int& width, int& height) const { glfwGetFramebufferSize(window_, &width, &height); }
+void Window::set_size(int width, int height) { glfwSetWindowSize(window_, width, height); }
 void Window::set_title(const std::string& title) { glfwSetWindowTitle(window_, title.c_str()); }
 
 Surface::Surface(VkInstance instance, const Window& window) : instance_(instance) {

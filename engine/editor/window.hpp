@@ -25,6 +25,7 @@ public:
     void request_close();
     void framebuffer_size(int& width, int& height) const;  // px; 0x0 while minimised
     void set_title(const std::string& title);
+    void set_size(int width, int height);  // screen coordinates (px without scaling)
 
 private:
     GLFWwindow* window_ = nullptr;

@@ -176,3 +176,24 @@ TEST_CASE("invalid geometry is explained and not saved, undo brings the valid sc
     CHECK_FALSE(contains(p.err, "FAILED"));
     CHECK_FALSE(std::filesystem::exists(saved));
 }
+
+TEST_CASE("resizing the window recreates the swapchain and the frames follow the new size") {
+    TempDir dir;
+    const std::string a = dir.file("a.png"), b = dir.file("b.png");
+    const std::string script = dir.file("resize.txt");
+    write_text(script, "resize 800 500\nframes 5\nscreenshot " + a + "\nresize 1000 640\nframes 5\nscreenshot " + b +
+                           "\nfit\nframes 2\nquit\n");
+    const auto p = run_under_xvfb({"edit", cli_test::scene("bowl.json"), "--script", script, "--software", "--validation",
+                                   "--timeout", "100"});
+    INFO("stderr: " << p.err);
+    CHECK(p.exit_code == 0);
+    CHECK(contains(p.err, "validation layers on, 0 messages"));
+    const render::Image ia = render::read_png(a), ib = render::read_png(b);
+    CHECK(ia.width == 800);
+    CHECK(ia.height == 500);
+    CHECK(ib.width == 1000);
+    CHECK(ib.height == 640);
+    const auto at = p.err.find("swapchain recreated ");
+    REQUIRE(at != std::string::npos);
+    CHECK(std::atoi(p.err.c_str() + at + std::strlen("swapchain recreated ")) >= 2);
+}
