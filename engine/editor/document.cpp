@@ -16,8 +16,15 @@ Document::Document(Scene scene, std::string path) : scene_(std::move(scene)), pa
     dirty_ = false;
 }
 
+namespace {
+std::uint64_t next_revision() {
+    static std::uint64_t counter = 0;  // UI thread only: unique across documents (File > New)
+    return ++counter;
+}
+}  // namespace
+
 void Document::changed() {
-    ++revision_;
+    revision_ = next_revision();
     try {
         validate_scene(scene_);
         problem_.clear();

@@ -23,7 +23,8 @@ public:
     const Scene& scene() const { return scene_; }
     const std::string& path() const { return path_; }
     bool dirty() const { return dirty_; }
-    // Bumped on every change (edit, undo, redo, open): cheap "did anything change" for caches.
+    // New on every change (edit, undo, redo, open), unique across documents: cheap "did anything
+    // change" for caches.
     std::uint64_t revision() const { return revision_; }
 
     // Validation of the current scene: empty when valid, else scene_io's message.

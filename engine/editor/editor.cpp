@@ -213,114 +213,125 @@ int run_editor(const EditorOptions& o) {
     int exit_code = 0;
     const Clock::time_point t_loop = Clock::now();
 
-    while (!s.quit && !window.should_close()) {
-        glfwPollEvents();
-        const Clock::time_point t_frame = Clock::now();
-        window.framebuffer_size(fbw, fbh);
-        if (!target.prepare(fbw, fbh)) {  // minimised: nothing to draw into
-            glfwWaitEventsTimeout(0.05);
-            continue;
-        }
-        if (target.min_image_count() != imgui_min_images) {
-            imgui_min_images = target.min_image_count();
-            imgui.set_min_image_count(imgui_min_images);
-        }
-        const VkExtent2D ext = target.extent();
-        s.camera.resize(static_cast<int>(ext.width), static_cast<int>(ext.height));
+    // The frame loop. Should anything throw (a Vulkan error, a full disk), the user's work is
+    // written to the recovery file before the error is reported.
+    const auto frame_loop = [&] {
+        while (!s.quit && !window.should_close()) {
+            glfwPollEvents();
+            const Clock::time_point t_frame = Clock::now();
+            window.framebuffer_size(fbw, fbh);
+            if (!target.prepare(fbw, fbh)) {  // minimised: nothing to draw into
+                glfwWaitEventsTimeout(0.05);
+                continue;
+            }
+            if (target.min_image_count() != imgui_min_images) {
+                imgui_min_images = target.min_image_count();
+                imgui.set_min_image_count(imgui_min_images);
+            }
+            const VkExtent2D ext = target.extent();
+            s.camera.resize(static_cast<int>(ext.width), static_cast<int>(ext.height));
 
-        // UI: ImGui frame, then the canvas (real input, or the script's actions).
-        imgui.new_frame();
-        if (scripted) {
-            script.step(s, since(t_loop));
-            if (const auto r = script.take_resize_request()) window.set_size(r->first, r->second);
-        }
-        else handle_real_input(s, window.handle());
-        FrameInfo info;
-        info.gpu = ctx.device_name();
-        info.present_mode = present_mode_name(target.present_mode());
-        info.frame_ms = timer.frame_ms;
-        info.fps = timer.fps;
-        info.width = static_cast<int>(ext.width);
-        info.height = static_cast<int>(ext.height);
-        info.validation_messages = ctx.validation_messages();
-        draw_panels(s, info);
-        const float menu_bar_height = ImGui::GetFrameHeight() * ImGui::GetIO().DisplayFramebufferScale.y;
-        imgui.render();
+            // UI: ImGui frame, then the canvas (real input, or the script's actions).
+            imgui.new_frame();
+            if (scripted) {
+                script.step(s, since(t_loop));
+                if (const auto r = script.take_resize_request()) window.set_size(r->first, r->second);
+            }
+            else handle_real_input(s, window.handle());
+            FrameInfo info;
+            info.gpu = ctx.device_name();
+            info.present_mode = present_mode_name(target.present_mode());
+            info.frame_ms = timer.frame_ms;
+            info.fps = timer.fps;
+            info.width = static_cast<int>(ext.width);
+            info.height = static_cast<int>(ext.height);
+            info.validation_messages = ctx.validation_messages();
+            draw_panels(s, info);
+            const float menu_bar_height = ImGui::GetFrameHeight() * ImGui::GetIO().DisplayFramebufferScale.y;
+            imgui.render();
 
-        // Servo: a changed valid scene is published (built here, off the servo thread); Ke, max
-        // force and roller gains go as parameters (slew-limited by the servo).
-        if (s.doc.valid() && s.doc.revision() != published_revision) {
-            servo.publish_scene(s.doc.scene());
-            published_revision = s.doc.revision();
-        }
-        const ServoParams params = servo_params_for(s.doc.last_valid(), s.roller, kMouseWatchdog);
-        if (!same_params(params, published)) {
-            servo.publish_params(params);
-            published = params;
-        }
-        servo.reclaim();
-        for (drivers::TickRecord r; servo.pop_record(r);) s.history.push(r);
+            // Servo: a changed valid scene is published (built here, off the servo thread); Ke, max
+            // force and roller gains go as parameters (slew-limited by the servo).
+            if (s.doc.valid() && s.doc.revision() != published_revision) {
+                servo.publish_scene(s.doc.scene());
+                published_revision = s.doc.revision();
+            }
+            const ServoParams params = servo_params_for(s.doc.last_valid(), s.roller, kMouseWatchdog);
+            if (!same_params(params, published)) {
+                servo.publish_params(params);
+                published = params;
+            }
+            servo.reclaim();
+            for (drivers::TickRecord r; servo.pop_record(r);) s.history.push(r);
 
-        // Frame: the shared scene drawer, then the editor's marks.
-        if (s.doc.valid() && env_revision != s.doc.revision()) {
-            env = std::make_unique<Environment>(build_environment(s.doc.scene()));
-            env_revision = s.doc.revision();
-        }
-        const Scene& shown = s.doc.last_valid();
-        const ServoSnapshot snap = servo.snapshot();
-        render::FrameContent content;
-        content.scene = &shown;
-        content.env = env.get();
-        ServoSnapshot pose_snap = snap;
-        if (snap.ticks == 0) {
-            pose_snap.finger = s.pose.finger;
-            pose_snap.phi = s.pose.phi;
-        }
-        content.finger = proxy_output_from(pose_snap, shown.finger);
-        content.shape = finger_from_def(shown.finger);
-        content.max_force = shown.force.max_force;
-        content.overlays = s.overlays;
-        content.text = s.labels;
-        content.roller_l = snap.roller_l;
-        content.top_inset_px = menu_bar_height;
-        if (list.width() != static_cast<int>(ext.width) || list.height() != static_cast<int>(ext.height))
-            list = render::DrawList(static_cast<int>(ext.width), static_cast<int>(ext.height));
-        render::build_frame(content, s.camera.view(), theme, list);
-        draw_canvas_marks(s, theme, list);
+            // Frame: the shared scene drawer, then the editor's marks.
+            if (s.doc.valid() && env_revision != s.doc.revision()) {
+                env = std::make_unique<Environment>(build_environment(s.doc.scene()));
+                env_revision = s.doc.revision();
+            }
+            const Scene& shown = s.doc.last_valid();
+            const ServoSnapshot snap = servo.snapshot();
+            render::FrameContent content;
+            content.scene = &shown;
+            content.env = env.get();
+            ServoSnapshot pose_snap = snap;
+            if (snap.ticks == 0) {
+                pose_snap.finger = s.pose.finger;
+                pose_snap.phi = s.pose.phi;
+            }
+            content.finger = proxy_output_from(pose_snap, shown.finger);
+            content.shape = finger_from_def(shown.finger);
+            content.max_force = shown.force.max_force;
+            content.overlays = s.overlays;
+            content.text = s.labels;
+            content.roller_l = snap.roller_l;
+            content.top_inset_px = menu_bar_height;
+            if (list.width() != static_cast<int>(ext.width) || list.height() != static_cast<int>(ext.height))
+                list = render::DrawList(static_cast<int>(ext.width), static_cast<int>(ext.height));
+            render::build_frame(content, s.camera.view(), theme, list);
+            draw_canvas_marks(s, theme, list);
 
-        // Screenshot: the last of --frames N, or when the script asks.
-        std::optional<std::string> shot;
-        if (scripted) shot = script.take_screenshot_request();
-        else if (o.frames > 0 && timer.frames + 1 == o.frames && !o.screenshot.empty()) shot = o.screenshot;
-        render::Image image;
-        const FrameOutcome out =
-            target.render(list, theme.background, [&](VkCommandBuffer cmd) { imgui.record(cmd); }, shot ? &image : nullptr);
-        if (out == FrameOutcome::skipped) continue;
-        if (shot) {
-            render::write_png(*shot, image);
-            std::fprintf(stderr, "contactlab edit: screenshot %dx%d written to %s\n", image.width, image.height, shot->c_str());
-        }
-        if (window_open_ms < 0.0) {
-            window_open_ms = 1e3 * since(t_start);
-            std::fprintf(stderr, "contactlab edit: window open, first frame presented %.0f ms after start (%s, %s)\n",
-                         window_open_ms, ctx.device_name().c_str(), present_mode_name(target.present_mode()));
-        }
-        timer.add(since(t_frame));
+            // Screenshot: the last of --frames N, or when the script asks.
+            std::optional<std::string> shot;
+            if (scripted) shot = script.take_screenshot_request();
+            else if (o.frames > 0 && timer.frames + 1 == o.frames && !o.screenshot.empty()) shot = o.screenshot;
+            render::Image image;
+            const FrameOutcome out =
+                target.render(list, theme.background, [&](VkCommandBuffer cmd) { imgui.record(cmd); }, shot ? &image : nullptr);
+            if (out == FrameOutcome::skipped) continue;
+            if (shot) {
+                render::write_png(*shot, image);
+                std::fprintf(stderr, "contactlab edit: screenshot %dx%d written to %s\n", image.width, image.height, shot->c_str());
+            }
+            if (window_open_ms < 0.0) {
+                window_open_ms = 1e3 * since(t_start);
+                std::fprintf(stderr, "contactlab edit: window open, first frame presented %.0f ms after start (%s, %s)\n",
+                             window_open_ms, ctx.device_name().c_str(), present_mode_name(target.present_mode()));
+            }
+            timer.add(since(t_frame));
 
-        // Autosave (recovery file) now and then.
-        if (since(t_loop) - last_autosave > o.autosave_interval) {
-            last_autosave = since(t_loop);
-            const std::string r = s.doc.autosave();
-            if (r.rfind("error: ", 0) == 0) s.say("autosave failed: " + r.substr(7), true);
-        }
+            // Autosave (recovery file) now and then.
+            if (since(t_loop) - last_autosave > o.autosave_interval) {
+                last_autosave = since(t_loop);
+                const std::string r = s.doc.autosave();
+                if (r.rfind("error: ", 0) == 0) s.say("autosave failed: " + r.substr(7), true);
+            }
 
-        if (o.frames > 0 && timer.frames >= o.frames && !scripted) break;
-        if (scripted && script.finished()) break;
-        if (o.timeout > 0.0 && since(t_start) > o.timeout) {
-            std::fprintf(stderr, "contactlab edit: still running after --timeout %.0f s; giving up\n", o.timeout);
-            exit_code = 1;
-            break;
+            if (o.frames > 0 && timer.frames >= o.frames && !scripted) break;
+            if (scripted && script.finished()) break;
+            if (o.timeout > 0.0 && since(t_start) > o.timeout) {
+                std::fprintf(stderr, "contactlab edit: still running after --timeout %.0f s; giving up\n", o.timeout);
+                exit_code = 1;
+                break;
+            }
         }
+    };
+    try {
+        frame_loop();
+    } catch (...) {
+        const std::string r = s.doc.dirty() ? s.doc.autosave() : std::string();
+        if (!r.empty()) std::fprintf(stderr, "contactlab edit: unsaved changes kept in %s\n", r.c_str());
+        throw;
     }
 
     // Work not saved goes to the recovery file, never lost silently.

@@ -85,7 +85,14 @@ void menu_bar(EditorState& s) {
             Scene g;
             bool made = false;
             if (ImGui::MenuItem("Block (seed 000, d = 6 cm)")) { g = generate_block(0.06); made = true; }
-            if (ImGui::MenuItem("Bumps (seed 002)")) { g = generate_bumps(BumpsDef{}).scene; made = true; }
+            if (ImGui::MenuItem("Bumps (seed 002)")) {
+                try {
+                    g = generate_bumps(BumpsDef{}).scene;
+                    made = true;
+                } catch (const std::exception& e) {
+                    s.say(std::string("generate: ") + e.what(), true);
+                }
+            }
             if (ImGui::MenuItem("Arc (seed 003, 30 cm / 20 mm)")) { g = generate_arc(0.30, 0.020); made = true; }
             if (made) {
                 g.finger = s.doc.scene().finger;

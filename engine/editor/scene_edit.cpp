@@ -119,12 +119,13 @@ Scene add_line(const Scene& scene, Vec2 a, Vec2 b, double join_radius) {
         Contour& k = out.contours[end->contour];
         if (end->segment == static_cast<int>(k.segments.size()) - 1 && end->point > 0) {
             k.segments.push_back(LineSegment{segment_end(k.segments.back()), b});
-            return out;
-        }
-        if (end->segment == 0 && end->point == 0) {
+        } else if (end->segment == 0 && end->point == 0) {
             k.segments.insert(k.segments.begin(), LineSegment{b, segment_start(k.segments.front())});
-            return out;
         }
+        // Back at the chain's other end: the contour closes (drawn clockwise it is solid inside).
+        if (k.segments.size() >= 3 && segment_end(k.segments.back()) == segment_start(k.segments.front()))
+            k.closed = true;
+        return out;
     }
     Contour c;
     c.closed = false;

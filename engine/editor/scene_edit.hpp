@@ -36,7 +36,8 @@ Scene move_handle(const Scene& scene, const Handle& h, Vec2 to);
 
 // A line from `a` to `b` (m). If `a` is an open chain's last point it is appended there; if it is
 // a chain's first point the line is prepended (travelling from b to a, so the chain's direction,
-// and with it the solid side, is kept). Otherwise it starts a new open contour.
+// and with it the solid side, is kept); a chain whose ends meet that way becomes closed. Otherwise
+// it starts a new open contour.
 Scene add_line(const Scene& scene, Vec2 a, Vec2 b, double join_radius);
 
 // Removes one segment. A chain broken in the middle becomes two open chains; a closed contour

@@ -62,3 +62,15 @@ TEST_CASE("flipping a contour reverses travel (and so the solid side)") {
     CHECK(segment_end(f.contours[0].segments[1]) == Vec2(0.0, 0.0));
     CHECK_NOTHROW(validate_scene(f));
 }
+
+TEST_CASE("a chain drawn back to its first point closes") {
+    Scene s;
+    s = add_line(s, {0.0, 0.0}, {0.0, 0.01}, 1e-6);
+    s = add_line(s, {0.0, 0.01}, {0.01, 0.01}, 1e-6);
+    CHECK_FALSE(s.contours[0].closed);
+    s = add_line(s, {0.01, 0.01}, {0.0, 0.0}, 1e-6);  // clockwise triangle: solid inside
+    REQUIRE(s.contours.size() == 1);
+    CHECK(s.contours[0].closed);
+    CHECK(s.contours[0].segments.size() == 3);
+    CHECK_NOTHROW(validate_scene(s));
+}
