@@ -7,6 +7,7 @@
 #include "engine/editor/editor_state.hpp"
 #include "engine/editor/imgui_layer.hpp"
 #include "engine/editor/panels.hpp"
+#include "engine/editor/rulers.hpp"
 #include "engine/editor/script.hpp"
 #include "engine/editor/servo_view.hpp"
 #include "engine/editor/window.hpp"
@@ -285,11 +286,12 @@ int run_editor(const EditorOptions& o) {
             content.overlays = s.overlays;
             content.text = s.labels;
             content.roller_l = snap.roller_l;
-            content.top_inset_px = menu_bar_height;
+            content.top_inset_px = menu_bar_height + kRulerBand;
             if (list.width() != static_cast<int>(ext.width) || list.height() != static_cast<int>(ext.height))
                 list = render::DrawList(static_cast<int>(ext.width), static_cast<int>(ext.height));
             render::build_frame(content, s.camera.view(), theme, list);
             draw_canvas_marks(s, theme, list);
+            draw_rulers(s.camera.view(), menu_bar_height, theme, list);
 
             // Screenshot: the last of --frames N, or when the script asks.
             std::optional<std::string> shot;

@@ -141,7 +141,7 @@ void menu_bar(EditorState& s) {
 }
 
 void tuning_window(EditorState& s) {
-    ImGui::SetNextWindowPos(ImVec2(10, 60), ImGuiCond_FirstUseEver);  // below the frame's status line
+    ImGui::SetNextWindowPos(ImVec2(52, 80), ImGuiCond_FirstUseEver);  // below the frame's status line
     ImGui::SetNextWindowSize(ImVec2(330, 470), ImGuiCond_FirstUseEver);
     if (!ImGui::Begin("Tuning")) {
         ImGui::End();
@@ -198,7 +198,7 @@ void tuning_window(EditorState& s) {
 const char* to_text(drivers::DeviceState d) { return drivers::to_string(d); }
 
 void status_window(EditorState& s, const FrameInfo& info) {
-    ImGui::SetNextWindowPos(ImVec2(static_cast<float>(info.width) - 350.0f, 30), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowPos(ImVec2(static_cast<float>(info.width) - 350.0f, 50), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(340, 330), ImGuiCond_FirstUseEver);
     if (!ImGui::Begin("Haptics")) {
         ImGui::End();
@@ -248,8 +248,8 @@ void status_window(EditorState& s, const FrameInfo& info) {
 }
 
 void plots_window(EditorState& s, const FrameInfo& info) {
-    ImGui::SetNextWindowPos(ImVec2(static_cast<float>(info.width) - 350.0f, 365), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(340, 320), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowPos(ImVec2(static_cast<float>(info.width) - 350.0f, 385), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(340, 300), ImGuiCond_FirstUseEver);
     if (!ImGui::Begin("Plots (last 5 s)")) {
         ImGui::End();
         return;
