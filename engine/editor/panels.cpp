@@ -140,6 +140,22 @@ void menu_bar(EditorState& s) {
     }
 }
 
+// Exact numeric editing of the selected point, in mm (one undoable edit per entry).
+void selection_editor(EditorState& s) {
+    if (s.selected && !valid_handle(s.doc.scene(), *s.selected)) s.selected.reset();  // scene replaced
+    if (s.hovered && !valid_handle(s.doc.scene(), *s.hovered)) s.hovered.reset();
+    if (!s.selected) return;
+    ImGui::Separator();
+    const Handle h = *s.selected;
+    ImGui::TextDisabled("selected point: contour %d, segment %d, point %d", h.contour, h.segment, h.point);
+    const Vec2 p = handle_position(s.doc.scene(), h);
+    double mm[2] = {p.x * 1e3, p.y * 1e3};
+    if (ImGui::InputScalarN("x, y (mm)", ImGuiDataType_Double, mm, 2, nullptr, nullptr, "%.3f",
+                            ImGuiInputTextFlags_EnterReturnsTrue)) {
+        s.doc.edit(move_handle(s.doc.scene(), h, Vec2(mm[0] * 1e-3, mm[1] * 1e-3)), "point position");
+    }
+}
+
 void tuning_window(EditorState& s) {
     ImGui::SetNextWindowPos(ImVec2(52, 80), ImGuiCond_FirstUseEver);  // below the frame's status line
     ImGui::SetNextWindowSize(ImVec2(330, 470), ImGuiCond_FirstUseEver);
@@ -181,6 +197,7 @@ void tuning_window(EditorState& s) {
     edit_field(s, "finger R (mm)", [](Scene& x) { return &x.finger.radius; }, 0.005, 0.05, "%.1f", 1e3);
     edit_field(s, "pad L (mm)", [](Scene& x) { return &x.finger.length; }, 0.002, 0.06, "%.1f", 1e3);
 
+    selection_editor(s);
     ImGui::Separator();
     ImGui::TextDisabled("roller PID (live, not in the scene)");
     ImGui::InputDouble("Kp (V/m)", &s.roller.kp, 1000.0, 10000.0, "%.0f");

@@ -23,13 +23,13 @@ Segment reversed(const Segment& s) {
     return ArcSegment{a.center, a.radius, a.end_angle, a.start_angle};
 }
 
+}  // namespace
+
 bool valid_handle(const Scene& scene, const Handle& h) {
     return h.contour >= 0 && h.contour < static_cast<int>(scene.contours.size()) && h.segment >= 0 &&
            h.segment < static_cast<int>(scene.contours[h.contour].segments.size()) && h.point >= 0 &&
            h.point < handle_count(scene.contours[h.contour].segments[h.segment]);
 }
-
-}  // namespace
 
 int handle_count(const Segment& s) {
     if (std::holds_alternative<LineSegment>(s)) return 2;

@@ -22,6 +22,7 @@ struct Handle {
 };
 
 int handle_count(const Segment& s);              // points of a segment
+bool valid_handle(const Scene& scene, const Handle& h);  // names an existing point
 Vec2 handle_position(const Scene& scene, const Handle& h);
 bool handle_is_end(const Scene& scene, const Handle& h);  // first or last point of its segment
 

@@ -1,5 +1,6 @@
 // test_camera.cpp — pan, cursor-anchored zoom and fit.
 #include "engine/editor/camera.hpp"
+#include "engine/editor/rulers.hpp"
 
 #include <doctest/doctest.h>
 
@@ -46,4 +47,11 @@ TEST_CASE("fit shows the whole box, centred") {
     CHECK(shown.hi.y >= 0.05);
     CHECK(cam.view().center.x == doctest::Approx(0.0));
     CHECK(cam.view().center.y == doctest::Approx(0.025));
+}
+
+TEST_CASE("ruler labels step by 1, 2 or 5 x 10^k mm, at least the asked spacing apart") {
+    CHECK(ruler_step(2000.0, 90.0) == doctest::Approx(0.05));    // 2 px/mm: 50 mm = 100 px
+    CHECK(ruler_step(20000.0, 90.0) == doctest::Approx(0.005));  // 20 px/mm: 5 mm = 100 px
+    CHECK(ruler_step(1.0e6, 90.0) == doctest::Approx(0.0001));   // 1000 px/mm: 0.1 mm = 100 px
+    CHECK(ruler_step(900.0, 90.0) == doctest::Approx(0.1));      // exactly 90 px
 }
