@@ -125,9 +125,12 @@ TEST_CASE("scripted session: draw a line, touch it with the finger, change Ke, u
                "expect state idle\n"
                "expect force_below 0.000001\n"
                "quit\n");
+    setenv("TMPDIR", dir.path().c_str(), 1);  // where an untitled scene's recovery file would go
     const auto p = run_under_xvfb({"edit", "--script", script, "--software", "--validation", "--timeout", "100"}, dir.path().string());
     INFO("stderr: " << p.err);
     CHECK(p.exit_code == 0);
+    // Everything was saved before quitting: no recovery file left behind.
+    CHECK_FALSE(std::filesystem::exists(dir.file("contactlab-untitled.recovery.json")));
     CHECK(contains(p.err, "validation layers on, 0 messages"));
     CHECK_FALSE(contains(p.err, "FAILED"));
     CHECK(contains(p.err, "ok: contact = 1"));
@@ -170,11 +173,18 @@ TEST_CASE("invalid geometry is explained and not saved, undo brings the valid sc
                "expect valid 1\n"
                "expect segments 1\n"
                "quit\n");
+    setenv("TMPDIR", dir.path().c_str(), 1);  // the untitled scene's recovery file goes here
     const auto p = run_under_xvfb({"edit", "--script", script, "--software", "--validation", "--timeout", "100"});
     INFO("stderr: " << p.err);
     CHECK(p.exit_code == 0);
     CHECK_FALSE(contains(p.err, "FAILED"));
     CHECK_FALSE(std::filesystem::exists(saved));
+    // Quitting with unsaved work writes it to the recovery file: the valid line after the undo.
+    const std::string rec = dir.file("contactlab-untitled.recovery.json");
+    REQUIRE(std::filesystem::exists(rec));
+    const Scene r = load_scene_file(rec);
+    REQUIRE(r.contours.size() == 1);
+    CHECK(std::get<LineSegment>(r.contours[0].segments[0]).from.x == doctest::Approx(-0.020).epsilon(1e-12));
 }
 
 TEST_CASE("resizing the window recreates the swapchain and the frames follow the new size") {
