@@ -46,7 +46,9 @@ const char* present_mode_name(VkPresentModeKHR m) {
 
 // The document to start with: the file, a new scene at that path, or (file unreadable) an empty
 // scene with the problem reported in the window.
-void open_initial(EditorState& s, const std::string& path) {
+// With `strict` (--frames, --script: nobody is there to read the window) a scene that does not
+// load is an error instead (SceneError: exit 2).
+void open_initial(EditorState& s, const std::string& path, bool strict) {
     if (path.empty()) {
         s.say("new scene: draw with the Line tool (3), move the finger with the Finger tool (1)");
         return;
@@ -60,6 +62,7 @@ void open_initial(EditorState& s, const std::string& path) {
         s.doc.open(path);
         s.say("opened " + path);
     } catch (const SceneError& e) {
+        if (strict) throw;
         s.say(std::string("could not open: ") + e.what(), true);
         std::fprintf(stderr, "contactlab edit: %s\n", e.what());
     }
@@ -161,7 +164,7 @@ int run_editor(const EditorOptions& o) {
     }
 
     EditorState s;
-    open_initial(s, o.scene_path);
+    open_initial(s, o.scene_path, scripted || o.frames > 0);
 
     // Threads: one core for the servo, the rest (the Vulkan driver's threads included) for the
     // renderer and the UI. Lavapipe starts one rasteriser thread per core unless told otherwise.
@@ -263,7 +266,13 @@ int run_editor(const EditorOptions& o) {
                 published = params;
             }
             servo.reclaim();
-            for (drivers::TickRecord r; servo.pop_record(r);) s.history.push(r);
+            for (drivers::TickRecord r; servo.pop_record(r);) {
+                s.history.push(r);
+                if (r.fault != ServoFault::none) {
+                    s.last_fault = r.fault;
+                    s.last_fault_t = r.t;
+                }
+            }
 
             // Frame: the shared scene drawer, then the editor's marks.
             if (s.doc.valid() && env_revision != s.doc.revision()) {

@@ -21,7 +21,7 @@ struct EditorOptions {
 
 // Runs the editor; returns the process exit code. No display: prints the message naming xvfb-run
 // and the headless subcommands, returns 2. A scene file that does not load opens an empty scene
-// with the error shown in the window.
+// with the error shown in the window (with --frames or --script it throws SceneError: exit 2).
 int run_editor(const EditorOptions& options);
 
 }  // namespace contactlab::editor

@@ -44,6 +44,9 @@ struct EditorState {
     MouseDevice* device = nullptr;
     RollerGains roller;                // published with the scene's Ke and max force
     PlotHistory history;
+    // The most recent fault the servo reported (kept after it recovers), from the tick records.
+    ServoFault last_fault = ServoFault::none;
+    double last_fault_t = 0.0;  // s, device time
 
     // View options.
     render::Overlays overlays;

@@ -233,7 +233,7 @@ void status_window(EditorState& s, const FrameInfo& info) {
                            stopped ? "STOPPED (idle)" : to_string(snap.state), fault ? " - " : "",
                            fault ? to_string(snap.fault) : "");
         if (snap.fault_count) {
-            ImGui::Text("faults: %u", snap.fault_count);
+            ImGui::Text("faults: %u, last: %s at %.1f s", snap.fault_count, to_string(s.last_fault), s.last_fault_t);
             ImGui::SameLine();
             if (ImGui::SmallButton("clear fault")) s.servo->clear_fault();
         }

@@ -207,3 +207,14 @@ TEST_CASE("resizing the window recreates the swapchain and the frames follow the
     REQUIRE(at != std::string::npos);
     CHECK(std::atoi(p.err.c_str() + at + std::strlen("swapchain recreated ")) >= 2);
 }
+
+TEST_CASE("a scene that does not load: exit 2 naming the problem when nobody watches the window") {
+    TempDir dir;
+    const std::string bad = dir.file("bad.json");
+    write_text(bad, R"({"version": 1, "contours": [{"closed": false, "segments": [)"
+                    R"({"type": "line", "from": [0, 0], "to": [0, 0]}]}]})");
+    const auto p = run_under_xvfb({"edit", bad, "--frames", "2", "--software"});
+    INFO("stderr: " << p.err);
+    CHECK(p.exit_code == 2);
+    CHECK(contains(p.err, "contours[0].segments[0]"));
+}
