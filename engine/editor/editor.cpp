@@ -215,6 +215,7 @@ int run_editor(const EditorOptions& o) {
     double window_open_ms = -1.0;
     double last_autosave = 0.0;
     int exit_code = 0;
+    std::string shown_title;
     const Clock::time_point t_loop = Clock::now();
 
     // The frame loop. Should anything throw (a Vulkan error, a full disk), the user's work is
@@ -253,6 +254,15 @@ int run_editor(const EditorOptions& o) {
             draw_panels(s, info);
             const float menu_bar_height = ImGui::GetFrameHeight() * ImGui::GetIO().DisplayFramebufferScale.y;
             imgui.render();
+
+            // Title: the file and whether it has unsaved changes.
+            const std::string title = "ContactLab editor - " +
+                                      (s.doc.path().empty() ? std::string("untitled") : s.doc.path()) +
+                                      (s.doc.dirty() ? " *" : "");
+            if (title != shown_title) {
+                window.set_title(title);
+                shown_title = title;
+            }
 
             // Servo: a changed valid scene is published (built here, off the servo thread); Ke, max
             // force and roller gains go as parameters (slew-limited by the servo).

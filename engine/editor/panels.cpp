@@ -42,7 +42,7 @@ void menu_bar(EditorState& s) {
                 s.doc = Document();
                 s.say("new scene");
             }
-            if (ImGui::MenuItem("Open...", "Ctrl+O")) open_popup = true;
+            if (ImGui::MenuItem("Open...")) open_popup = true;
             if (ImGui::MenuItem("Save", "Ctrl+S", false, !s.doc.path().empty())) {
                 try {
                     s.doc.save();
