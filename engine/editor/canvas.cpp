@@ -33,6 +33,30 @@ void publish_pose(EditorState& s) {
     if (s.device) s.device->set_pose(s.pose);
 }
 
+// Drawing tools: one more point; once the tool has all it needs the segment is added (an
+// undoable edit) and its end starts the next segment of the chain.
+void place_point(EditorState& s, Vec2 p) {
+    if (!s.pending.empty() && glm::length(p - s.pending.back()) < 1e-9) return;  // double click
+    const std::size_t needed = s.tool == Tool::line ? 2 : 3;
+    if (s.pending.size() + 1 < needed) {
+        s.pending.push_back(p);
+        return;
+    }
+    const Vec2 a = s.pending.front();
+    std::optional<Segment> seg;
+    if (s.tool == Tool::line) seg = LineSegment{a, p};
+    else if (s.tool == Tool::quad) seg = QuadSegment{a, s.pending[1], p};
+    else if (const auto arc = arc_through(a, s.pending[1], p)) seg = *arc;
+    if (!seg) {
+        s.say("arc: the three points are in a line; click a through point off the chord", true);
+        s.pending.resize(1);
+        return;
+    }
+    s.doc.edit(add_segment(s.doc.scene(), *seg, 1e-9), std::string("add ") + to_string(s.tool));
+    s.say(std::string(to_string(s.tool)) + " added: " + std::to_string(segment_count(s.doc.scene())) + " segments");
+    s.pending.assign(1, segment_end(*seg));  // chain: the next segment continues from here
+}
+
 }  // namespace
 
 const char* to_string(Tool t) {
@@ -40,6 +64,8 @@ const char* to_string(Tool t) {
         case Tool::finger: return "finger";
         case Tool::select: return "select";
         case Tool::line: return "line";
+        case Tool::quad: return "quad";
+        case Tool::arc: return "arc";
     }
     return "?";
 }
@@ -67,6 +93,8 @@ void canvas_move(EditorState& s, double x, double y) {
             }
             break;
         case Tool::line:
+        case Tool::quad:
+        case Tool::arc:
             s.hovered = pick_handle(s.doc.scene(), s.cursor, pick_radius(s));
             break;
     }
@@ -74,14 +102,14 @@ void canvas_move(EditorState& s, double x, double y) {
 
 void canvas_press(EditorState& s, Button b, double x, double y) {
     canvas_move(s, x, y);
-    if (b == Button::middle || (b == Button::right && !(s.tool == Tool::line && s.line_active))) {
+    if (b == Button::middle || (b == Button::right && s.pending.empty())) {
         s.panning = true;
         s.pan_last_x = x;
         s.pan_last_y = y;
         return;
     }
-    if (b == Button::right) {  // line tool: end the chain
-        s.line_active = false;
+    if (b == Button::right) {  // drawing tools: end the chain
+        s.pending.clear();
         return;
     }
     switch (s.tool) {
@@ -96,18 +124,9 @@ void canvas_press(EditorState& s, Button b, double x, double y) {
                 s.doc.begin_continuous("move point");
             }
             break;
-        case Tool::line: {
-            const Vec2 p = snap_to_ends(s, s.cursor);
-            if (!s.line_active) {
-                s.line_active = true;
-                s.line_start = p;
-            } else if (glm::length(p - s.line_start) > 1e-9) {
-                s.doc.edit(add_line(s.doc.scene(), s.line_start, p, 1e-9), "add line");
-                s.say("line added: " + std::to_string(segment_count(s.doc.scene())) + " segments");
-                s.line_start = p;  // chain: the next click continues from here
-            }
-            break;
-        }
+        case Tool::line:
+        case Tool::quad:
+        case Tool::arc: place_point(s, snap_to_ends(s, s.cursor)); break;
     }
 }
 
@@ -208,11 +227,13 @@ bool canvas_key(EditorState& s, const std::string& name) {
     else if (name == "ctrl+z") cmd_undo(s);
     else if (name == "ctrl+y") cmd_redo(s);
     else if (name == "ctrl+s") cmd_save(s, {});
-    else if (name == "escape") s.line_active = false;
+    else if (name == "escape") s.pending.clear();
     else if (name == "f") cmd_fit(s);
     else if (name == "1") cmd_set_tool(s, Tool::finger);
     else if (name == "2") cmd_set_tool(s, Tool::select);
     else if (name == "3") cmd_set_tool(s, Tool::line);
+    else if (name == "4") cmd_set_tool(s, Tool::quad);
+    else if (name == "5") cmd_set_tool(s, Tool::arc);
     else if (name == "q") cmd_rotate_finger(s, s.phi_step);
     else if (name == "e") cmd_rotate_finger(s, -s.phi_step);
     else return false;
@@ -222,7 +243,7 @@ bool canvas_key(EditorState& s, const std::string& name) {
 void cmd_set_tool(EditorState& s, Tool t) {
     if (s.dragging) canvas_release(s, Button::left, 0.0, 0.0);
     s.tool = t;
-    s.line_active = false;
+    s.pending.clear();
     s.dragging = false;
     s.hovered.reset();
 }
@@ -270,9 +291,18 @@ void draw_canvas_marks(const EditorState& s, const render::Theme& theme, render:
             out.fill_rect(p - render::P2(5.0f), p + render::P2(5.0f), accent);
         }
     }
-    if (s.tool == Tool::line && s.line_active) {
-        out.line(view.to_px(s.line_start), view.to_px(s.cursor), 2.0f, accent.with_alpha(200));
-        out.fill_disc(view.to_px(s.line_start), 4.0f, accent);
+    if (!s.pending.empty()) {
+        // The segment being drawn, as it would be with the cursor as its next point.
+        std::vector<render::P2> pts;
+        const Vec2 a = s.pending.front();
+        std::optional<Segment> seg;
+        if (s.tool == Tool::line) seg = LineSegment{a, s.cursor};
+        else if (s.pending.size() == 1) seg = LineSegment{a, s.cursor};
+        else if (s.tool == Tool::quad) seg = QuadSegment{a, s.pending[1], s.cursor};
+        else if (const auto arc = arc_through(a, s.pending[1], s.cursor)) seg = *arc;
+        if (seg) render::parts::flatten_segment(*seg, view, false, pts);
+        if (pts.size() >= 2) out.stroke(pts, false, 2.0f, accent.with_alpha(200));
+        for (const Vec2& p : s.pending) out.fill_disc(view.to_px(p), 4.0f, accent);
     }
 }
 

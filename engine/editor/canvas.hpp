@@ -30,8 +30,8 @@ void cmd_set_tool(EditorState& s, Tool t);
 void cmd_rotate_finger(EditorState& s, double dphi);  // rad
 void cmd_save(EditorState& s, const std::string& path);  // empty: the document's own path
 
-// A key by name ("space", "delete", "ctrl+z", "ctrl+y", "ctrl+s", "escape", "f", "1", "2", "3",
-// "q", "e"); false for a name that means nothing to the canvas.
+// A key by name ("space", "delete", "ctrl+z", "ctrl+y", "ctrl+s", "escape", "f", "1".."5" for
+// the tools, "q", "e"); false for a name that means nothing to the canvas.
 bool canvas_key(EditorState& s, const std::string& name);
 
 // The editor's marks for the current tool, over the frame.

@@ -12,10 +12,11 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace contactlab::editor {
 
-enum class Tool { finger, select, line };
+enum class Tool { finger, select, line, quad, arc };
 const char* to_string(Tool t);
 
 struct EditorState {
@@ -32,8 +33,9 @@ struct EditorState {
     std::optional<Handle> hovered, selected;
     bool dragging = false;             // a handle is being moved (select tool)
     Vec2 grab_offset{0.0};             // m, handle position minus cursor when grabbed
-    bool line_active = false;          // line tool: the first point is placed
-    Vec2 line_start{0.0};              // m
+    // Drawing tools: the points placed so far for the next segment (m). Line: start; quad: start,
+    // control; arc: start, through. The segment's end starts the next one (a chain).
+    std::vector<Vec2> pending;
     bool panning = false;
     double pan_last_x = 0.0, pan_last_y = 0.0;  // px
     bool snap_grid = false;

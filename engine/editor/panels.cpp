@@ -79,6 +79,8 @@ void menu_bar(EditorState& s) {
             if (ImGui::MenuItem("Finger (cursor drives x_f)", "1", s.tool == Tool::finger)) cmd_set_tool(s, Tool::finger);
             if (ImGui::MenuItem("Select / move", "2", s.tool == Tool::select)) cmd_set_tool(s, Tool::select);
             if (ImGui::MenuItem("Line", "3", s.tool == Tool::line)) cmd_set_tool(s, Tool::line);
+            if (ImGui::MenuItem("Quadratic curve (start, control, end)", "4", s.tool == Tool::quad)) cmd_set_tool(s, Tool::quad);
+            if (ImGui::MenuItem("Arc (start, through, end)", "5", s.tool == Tool::arc)) cmd_set_tool(s, Tool::arc);
             ImGui::EndMenu();
         }
         if (ImGui::BeginMenu("Generate")) {

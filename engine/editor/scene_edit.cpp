@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "haptics/scene_io.hpp"  // kSceneJoinTolerance
+
 namespace contactlab::editor {
 namespace {
 
@@ -23,6 +25,14 @@ Segment reversed(const Segment& s) {
     return ArcSegment{a.center, a.radius, a.end_angle, a.start_angle};
 }
 
+// Moves a segment's first / last point (arcs: their end is already where it must be, to rounding).
+void set_start(Segment& s, Vec2 p) {
+    if (Vec2* q = point_ref(s, 0)) *q = p;
+}
+void set_end(Segment& s, Vec2 p) {
+    if (Vec2* q = point_ref(s, handle_count(s) - 1)) *q = p;
+}
+
 }  // namespace
 
 bool valid_handle(const Scene& scene, const Handle& h) {
@@ -32,7 +42,7 @@ bool valid_handle(const Scene& scene, const Handle& h) {
 }
 
 int handle_count(const Segment& s) {
-    if (std::holds_alternative<LineSegment>(s)) return 2;
+    if (std::holds_alternative<LineSegment>(s) || std::holds_alternative<ArcSegment>(s)) return 2;
     if (std::holds_alternative<QuadSegment>(s)) return 3;
     if (std::holds_alternative<CubicSegment>(s)) return 4;
     return 0;
@@ -41,6 +51,7 @@ int handle_count(const Segment& s) {
 Vec2 handle_position(const Scene& scene, const Handle& h) {
     if (!valid_handle(scene, h)) return Vec2{0.0};
     Segment s = scene.contours[h.contour].segments[h.segment];
+    if (std::holds_alternative<ArcSegment>(s)) return h.point == 0 ? segment_start(s) : segment_end(s);
     return *point_ref(s, h.point);
 }
 
@@ -114,24 +125,61 @@ Scene move_handle(const Scene& scene, const Handle& h, Vec2 to) {
 }
 
 Scene add_line(const Scene& scene, Vec2 a, Vec2 b, double join_radius) {
+    return add_segment(scene, LineSegment{a, b}, join_radius);
+}
+
+Scene add_segment(const Scene& scene, const Segment& segment, double join_radius) {
     Scene out = scene;
+    const Vec2 a = segment_start(segment);
     if (const auto end = pick_open_end(scene, a, join_radius)) {
         Contour& k = out.contours[end->contour];
         if (end->segment == static_cast<int>(k.segments.size()) - 1 && end->point > 0) {
-            k.segments.push_back(LineSegment{segment_end(k.segments.back()), b});
+            Segment seg = segment;
+            set_start(seg, segment_end(k.segments.back()));  // exact join
+            k.segments.push_back(seg);
         } else if (end->segment == 0 && end->point == 0) {
-            k.segments.insert(k.segments.begin(), LineSegment{b, segment_start(k.segments.front())});
+            Segment seg = reversed(segment);  // keep the chain's direction (and solid side)
+            set_end(seg, segment_start(k.segments.front()));
+            k.segments.insert(k.segments.begin(), seg);
         }
         // Back at the chain's other end: the contour closes (drawn clockwise it is solid inside).
-        if (k.segments.size() >= 3 && segment_end(k.segments.back()) == segment_start(k.segments.front()))
-            k.closed = true;
+        if (k.segments.size() >= 2 && glm::length(segment_end(k.segments.back()) - segment_start(k.segments.front())) <=
+                                          kSceneJoinTolerance) {
+            set_end(k.segments.back(), segment_start(k.segments.front()));
+            k.closed = k.segments.size() >= 3 || !std::holds_alternative<LineSegment>(k.segments.back());
+        }
         return out;
     }
     Contour c;
     c.closed = false;
-    c.segments.push_back(LineSegment{a, b});
+    c.segments.push_back(segment);
     out.contours.push_back(std::move(c));
     return out;
+}
+
+std::optional<ArcSegment> arc_through(Vec2 a, Vec2 m, Vec2 b) {
+    // Circumcentre of the triangle a, m, b.
+    const Vec2 ab = b - a, am = m - a;
+    const double d = 2.0 * (am.x * ab.y - am.y * ab.x);
+    const double scale = std::max(glm::length(ab), glm::length(am));
+    if (!(scale > 0.0) || std::abs(d) < 1e-9 * scale * scale) return std::nullopt;
+    const double am2 = glm::dot(am, am), ab2 = glm::dot(ab, ab);
+    const Vec2 c = a + Vec2(ab.y * am2 - am.y * ab2, am.x * ab2 - ab.x * am2) / d;
+    ArcSegment arc;
+    arc.center = c;
+    arc.radius = glm::length(a - c);
+    const double a0 = std::atan2(a.y - c.y, a.x - c.x);
+    const auto ccw_from_a0 = [&](Vec2 p) {
+        double t = std::atan2(p.y - c.y, p.x - c.x) - a0;
+        while (t < 0.0) t += 2.0 * kPi;
+        while (t >= 2.0 * kPi) t -= 2.0 * kPi;
+        return t;
+    };
+    const double to_b = ccw_from_a0(b), to_m = ccw_from_a0(m);
+    arc.start_angle = a0;
+    // Counter-clockwise if m lies on the way from a to b going that way, else clockwise.
+    arc.end_angle = to_m < to_b ? a0 + to_b : a0 - (2.0 * kPi - to_b);
+    return arc;
 }
 
 Scene delete_segment(const Scene& scene, int contour, int segment) {

@@ -12,8 +12,8 @@
 namespace contactlab::editor {
 
 // A point of the geometry the user can grab. `point` indexes the segment's points in travel
-// order: line 0 = from, 1 = to; quad p0, p1, p2; cubic p0..p3; arcs expose no handles (their end
-// points follow from centre, radius and angles).
+// order: line 0 = from, 1 = to; quad p0, p1, p2; cubic p0..p3; arc 0 = start, 1 = end (shown and
+// snapped to, but fixed: they follow from centre, radius and angles, so moves leave them alone).
 struct Handle {
     int contour = -1;
     int segment = -1;
@@ -40,6 +40,12 @@ Scene move_handle(const Scene& scene, const Handle& h, Vec2 to);
 // and with it the solid side, is kept); a chain whose ends meet that way becomes closed. Otherwise
 // it starts a new open contour.
 Scene add_line(const Scene& scene, Vec2 a, Vec2 b, double join_radius);
+// The same for any segment (travelling from segment_start to segment_end).
+Scene add_segment(const Scene& scene, const Segment& segment, double join_radius);
+
+// The circular arc from a through m to b (m); nullopt when the points are (nearly) collinear or
+// coincide. Its end points are a and b to rounding (cos/sin of the angles).
+std::optional<ArcSegment> arc_through(Vec2 a, Vec2 m, Vec2 b);
 
 // Removes one segment. A chain broken in the middle becomes two open chains; a closed contour
 // becomes one open chain starting after the gap; an empty contour disappears.

@@ -123,7 +123,9 @@ bool Script::run(EditorState& s, const Line& line, double now) {
         if (w[1] == "finger") cmd_set_tool(s, Tool::finger);
         else if (w[1] == "select") cmd_set_tool(s, Tool::select);
         else if (w[1] == "line") cmd_set_tool(s, Tool::line);
-        else throw ScriptError("unknown tool \"" + w[1] + "\" (finger, select, line)");
+        else if (w[1] == "quad") cmd_set_tool(s, Tool::quad);
+        else if (w[1] == "arc") cmd_set_tool(s, Tool::arc);
+        else throw ScriptError("unknown tool \"" + w[1] + "\" (finger, select, line, quad, arc)");
     } else if (c == "click" || c == "rclick") {
         px_of(s, number(w[1]), number(w[2]), px, py);
         const Button b = c == "click" ? Button::left : Button::right;

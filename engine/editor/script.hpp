@@ -1,7 +1,7 @@
 // script.hpp — `contactlab edit --script FILE`: UI actions and checks, one command per line, run
 // through the same canvas functions the mouse and keys use. Coordinates are world mm; angles deg.
 //
-//   tool finger|select|line        click X Y        rclick X Y       drag X0 Y0 X1 Y1
+//   tool finger|select|line|quad|arc   click X Y        rclick X Y       drag X0 Y0 X1 Y1
 //   finger X Y [PHI]               key NAME (space, delete, ctrl+z, ctrl+y, f, 1, 2, 3, q, e)
 //   set NAME VALUE   (ke, max_force, damping, mu_s, mu_d, k_t, k_n  SI units;
 //                     model spring|ellipsoid; rule centroid|least_displacement; kp ki kd;

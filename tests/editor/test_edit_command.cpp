@@ -218,3 +218,32 @@ TEST_CASE("a scene that does not load: exit 2 naming the problem when nobody wat
     CHECK(p.exit_code == 2);
     CHECK(contains(p.err, "contours[0].segments[0]"));
 }
+
+TEST_CASE("drawing tools: a line, a three-point arc and a quadratic curve in one chain") {
+    TempDir dir;
+    const std::string saved = dir.file("chain.json");
+    const std::string script = dir.file("chain.txt");
+    write_text(script,
+               "set snap_mm 1\n"
+               "tool line\nclick -30 0\nclick -10 0\nrclick -10 0\n"
+               "tool arc\nclick -10 0\nclick 0 10\nclick 10 0\nrclick 10 0\n"
+               "tool quad\nclick 10 0\nclick 20 -10\nclick 30 0\nrclick 30 0\n"
+               "expect segments 3\nexpect contours 1\nexpect valid 1\n"
+               "save " + saved + "\nexpect error 0\nquit\n");
+    setenv("TMPDIR", dir.path().c_str(), 1);
+    const auto p = run_under_xvfb({"edit", "--script", script, "--software", "--validation", "--timeout", "100"});
+    INFO("stderr: " << p.err);
+    CHECK(p.exit_code == 0);
+    const Scene s = load_scene_file(saved);
+    REQUIRE(s.contours.size() == 1);
+    REQUIRE(s.contours[0].segments.size() == 3);
+    CHECK(std::holds_alternative<LineSegment>(s.contours[0].segments[0]));
+    const auto& arc = std::get<ArcSegment>(s.contours[0].segments[1]);
+    CHECK(arc.radius == doctest::Approx(0.010));
+    CHECK(arc.center.x == doctest::Approx(0.0).epsilon(1e-12));
+    CHECK(arc.start_angle > arc.end_angle);  // over the top: clockwise, a convex bump
+    const auto& quad = std::get<QuadSegment>(s.contours[0].segments[2]);
+    CHECK(quad.p1.x == doctest::Approx(0.020));
+    CHECK(quad.p1.y == doctest::Approx(-0.010));
+    CHECK(quad.p2.x == doctest::Approx(0.030));
+}

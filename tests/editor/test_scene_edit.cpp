@@ -74,3 +74,34 @@ TEST_CASE("a chain drawn back to its first point closes") {
     CHECK(s.contours[0].segments.size() == 3);
     CHECK_NOTHROW(validate_scene(s));
 }
+
+TEST_CASE("the arc through three points: centre, radius and direction") {
+    // A quarter... half circle of radius 10 mm about the origin, over the top: clockwise.
+    const auto cw = arc_through({-0.01, 0.0}, {0.0, 0.01}, {0.01, 0.0});
+    REQUIRE(cw);
+    CHECK(cw->center.x == doctest::Approx(0.0).epsilon(1e-12));
+    CHECK(cw->center.y == doctest::Approx(0.0).epsilon(1e-12));
+    CHECK(cw->radius == doctest::Approx(0.01));
+    CHECK(cw->start_angle == doctest::Approx(kPi));
+    CHECK(cw->end_angle == doctest::Approx(0.0));  // pi -> 0 through pi/2: clockwise, a convex bump
+    // Under instead: counter-clockwise (a bowl).
+    const auto ccw = arc_through({-0.01, 0.0}, {0.0, -0.01}, {0.01, 0.0});
+    REQUIRE(ccw);
+    CHECK(ccw->end_angle - ccw->start_angle == doctest::Approx(kPi));
+    CHECK(glm::length(segment_end(Segment{*ccw}) - Vec2(0.01, 0.0)) < 1e-15);
+    CHECK_FALSE(arc_through({0, 0}, {1, 1}, {2, 2}));  // collinear
+}
+
+TEST_CASE("curves and arcs join chains like lines") {
+    Scene s;
+    s = add_line(s, {-0.02, 0.0}, {-0.01, 0.0}, 1e-6);
+    s = add_segment(s, *arc_through({-0.01, 0.0}, {0.0, 0.01}, {0.01, 0.0}), 1e-6);
+    s = add_segment(s, QuadSegment{{0.01, 0.0}, {0.015, -0.005}, {0.02, 0.0}}, 1e-6);
+    REQUIRE(s.contours.size() == 1);
+    CHECK(s.contours[0].segments.size() == 3);
+    CHECK_NOTHROW(validate_scene(s));
+    // The arc's end is a handle the next segment snapped to.
+    const auto h = pick_handle(s, {0.0100001, 0.0}, 1e-4);
+    REQUIRE(h);
+    CHECK(glm::length(handle_position(s, *h) - Vec2(0.01, 0.0)) < 1e-12);
+}
