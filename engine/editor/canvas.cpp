@@ -2,6 +2,7 @@
 #include "engine/editor/canvas.hpp"
 
 #include "engine/render/frame_parts.hpp"
+#include "haptics/stimuli.hpp"
 
 #include <cmath>
 
@@ -219,6 +220,29 @@ void cmd_save(EditorState& s, const std::string& path) {
     } catch (const std::exception& e) {
         s.say(e.what(), true);
     }
+}
+
+bool cmd_generate(EditorState& s, const std::string& name) {
+    Scene g;
+    try {
+        if (name == "block") g = generate_block(0.06);          // seed 000 Fig. 9, d = 6 cm
+        else if (name == "bumps") g = generate_bumps(BumpsDef{}).scene;  // seed 002
+        else if (name == "arc") g = generate_arc(0.30, 0.020);  // seed 003: chord 30 cm, h 20 mm
+        else return false;
+    } catch (const std::exception& e) {
+        s.say(std::string("generate: ") + e.what(), true);
+        return true;
+    }
+    const Scene& cur = s.doc.scene();
+    g.finger = cur.finger;
+    g.force = cur.force;
+    g.contact_location = cur.contact_location;
+    s.doc.edit(std::move(g), "generate " + name);
+    s.selected.reset();
+    s.hovered.reset();
+    cmd_fit(s);
+    s.say("generated " + name + ": " + std::to_string(segment_count(s.doc.scene())) + " segments");
+    return true;
 }
 
 bool canvas_key(EditorState& s, const std::string& name) {

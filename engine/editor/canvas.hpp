@@ -29,6 +29,9 @@ void cmd_toggle_stop(EditorState& s);
 void cmd_set_tool(EditorState& s, Tool t);
 void cmd_rotate_finger(EditorState& s, double dphi);  // rad
 void cmd_save(EditorState& s, const std::string& path);  // empty: the document's own path
+// Replaces the contours with a seed stimulus ("block", "bumps", "arc"; haptics/stimuli.hpp),
+// keeping the finger, force and contact rule: one undoable edit. False for an unknown name.
+bool cmd_generate(EditorState& s, const std::string& name);
 
 // A key by name ("space", "delete", "ctrl+z", "ctrl+y", "ctrl+s", "escape", "f", "1".."5" for
 // the tools, "q", "e"); false for a name that means nothing to the canvas.

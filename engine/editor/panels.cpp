@@ -3,7 +3,6 @@
 
 #include "engine/editor/canvas.hpp"
 #include "haptics/scene_io.hpp"
-#include "haptics/stimuli.hpp"
 
 #include <imgui.h>
 
@@ -84,25 +83,9 @@ void menu_bar(EditorState& s) {
             ImGui::EndMenu();
         }
         if (ImGui::BeginMenu("Generate")) {
-            Scene g;
-            bool made = false;
-            if (ImGui::MenuItem("Block (seed 000, d = 6 cm)")) { g = generate_block(0.06); made = true; }
-            if (ImGui::MenuItem("Bumps (seed 002)")) {
-                try {
-                    g = generate_bumps(BumpsDef{}).scene;
-                    made = true;
-                } catch (const std::exception& e) {
-                    s.say(std::string("generate: ") + e.what(), true);
-                }
-            }
-            if (ImGui::MenuItem("Arc (seed 003, 30 cm / 20 mm)")) { g = generate_arc(0.30, 0.020); made = true; }
-            if (made) {
-                g.finger = s.doc.scene().finger;
-                g.force = s.doc.scene().force;
-                g.contact_location = s.doc.scene().contact_location;
-                s.doc.edit(std::move(g), "generate");
-                cmd_fit(s);
-            }
+            if (ImGui::MenuItem("Block (seed 000, d = 6 cm)")) cmd_generate(s, "block");
+            if (ImGui::MenuItem("Bumps (seed 002)")) cmd_generate(s, "bumps");
+            if (ImGui::MenuItem("Arc (seed 003, 30 cm / 20 mm)")) cmd_generate(s, "arc");
             ImGui::EndMenu();
         }
         ImGui::TextDisabled("  tool: %s  |  %s%s", to_string(s.tool),

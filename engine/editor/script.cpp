@@ -19,7 +19,7 @@ const std::map<std::string, std::pair<int, int>>& arity() {
         {"finger", {2, 3}}, {"key", {1, 1}},         {"set", {2, 2}},        {"undo", {0, 0}},
         {"redo", {0, 0}},   {"fit", {0, 0}},         {"save", {1, 1}},       {"open", {1, 1}},
         {"screenshot", {1, 1}}, {"estop", {1, 1}},   {"wait", {1, 1}},       {"frames", {1, 1}},
-        {"wait_contact", {1, 1}}, {"resize", {2, 2}}, {"wait_state", {2, 2}}, {"expect", {2, 2}}, {"quit", {0, 0}},
+        {"wait_contact", {1, 1}}, {"resize", {2, 2}}, {"generate", {1, 1}}, {"wait_state", {2, 2}}, {"expect", {2, 2}}, {"quit", {0, 0}},
     };
     return a;
 }
@@ -186,6 +186,8 @@ bool Script::run(EditorState& s, const Line& line, double now) {
     } else if (c == "open") {
         s.doc.open(w[1]);
         cmd_fit(s);
+    } else if (c == "generate") {
+        if (!cmd_generate(s, w[1])) throw ScriptError("unknown generator \"" + w[1] + "\" (block, bumps, arc)");
     } else if (c == "resize") {
         const double rw = number(w[1]), rh = number(w[2]);
         if (rw < 64 || rh < 64 || rw > 8192 || rh > 8192) throw ScriptError("resize: 64..8192 px");

@@ -7,6 +7,7 @@
 //                     model spring|ellipsoid; rule centroid|least_displacement; kp ki kd;
 //                     snap_mm MM: grid snapping for the authoring tools, 0 = off)
 //   undo  redo  fit  save PATH  open PATH  screenshot PATH  estop on|off  resize W H (px)
+//   generate block|bumps|arc
 //   wait SECONDS     frames N     wait_contact TIMEOUT_S     wait_state STATE TIMEOUT_S
 //   expect NAME VALUE  (contact 0|1, segments N, contours N, ke N/m, ke_effective N/m (within 1),
 //                       state NAME, stopped 0|1, valid 0|1, force_above N, force_below N,

@@ -3,6 +3,7 @@
 // no display at all (the message and exit code 2). Lavapipe and validation layers throughout.
 #include "engine/render/image.hpp"
 #include "haptics/scene_io.hpp"
+#include "haptics/stimuli.hpp"
 #include "process.hpp"
 
 #include <doctest/doctest.h>
@@ -13,6 +14,14 @@
 
 using namespace cli_test;
 using namespace contactlab;
+
+namespace {
+std::size_t segment_count_of(const Scene& s) {
+    std::size_t n = 0;
+    for (const Contour& c : s.contours) n += c.segments.size();
+    return n;
+}
+}  // namespace
 
 namespace {
 
@@ -246,4 +255,25 @@ TEST_CASE("drawing tools: a line, a three-point arc and a quadratic curve in one
     CHECK(quad.p1.x == doctest::Approx(0.020));
     CHECK(quad.p1.y == doctest::Approx(-0.010));
     CHECK(quad.p2.x == doctest::Approx(0.030));
+}
+
+TEST_CASE("generators from the menu replace the contours, keep the force settings, and undo") {
+    TempDir dir;
+    const std::string saved = dir.file("block.json");
+    const std::string script = dir.file("gen.txt");
+    write_text(script,
+               "set ke 800\n"
+               "generate block\nexpect valid 1\nexpect ke 800\n"
+               "save " + saved + "\n"
+               "generate arc\nexpect valid 1\n"
+               "undo\nundo\nexpect contours 0\nexpect ke 800\n"
+               "open " + saved + "\nexpect valid 1\nexpect dirty 0\nquit\n");
+    setenv("TMPDIR", dir.path().c_str(), 1);
+    const auto p = run_under_xvfb({"edit", "--script", script, "--software", "--validation", "--timeout", "100"});
+    INFO("stderr: " << p.err);
+    CHECK(p.exit_code == 0);
+    const Scene s = load_scene_file(saved);
+    const Scene block = generate_block(0.06);
+    CHECK(segment_count_of(s) == segment_count_of(block));
+    CHECK(s.force.stiffness == 800.0);
 }
