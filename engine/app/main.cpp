@@ -1,6 +1,7 @@
 // main.cpp — the `contactlab` executable: command line (CLI11) and exit codes.
 //
-// Each subcommand lives in its own file and registers itself here (subcommands.hpp).
+// Each subcommand lives in its own file and registers itself here (subcommands.hpp). With no
+// arguments at all, `contactlab` opens the editor (`contactlab edit`).
 // Exit codes: 0 success; 2 bad input (scene file, CSV, option value, usage); 1 anything else.
 #include "engine/app/subcommands.hpp"
 #include "engine/app/trace_csv.hpp"
@@ -15,7 +16,7 @@ int main(int argc, char** argv) {
     using namespace contactlab::app;
     CLI::App app{"ContactLab — haptic display of contact location: scenes, proxy, traces."};
     app.set_version_flag("--version", std::string("contactlab ") + CONTACTLAB_VERSION);
-    app.require_subcommand(1);
+    app.require_subcommand(0, 1);
 
     int rc = 0;
     // One line per subcommand file.
@@ -24,9 +25,12 @@ int main(int argc, char** argv) {
     register_simulate_command(app, rc);
     register_render_command(app, rc);
     register_bench_command(app, rc);
+    register_edit_command(app, rc);
 
     try {
         app.parse(argc, argv);
+        if (argc == 1) return run_edit_command();
+        if (app.get_subcommands().empty()) throw CLI::RequiredError("a subcommand");
     } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
     } catch (const CLI::CallForAllHelp& e) {

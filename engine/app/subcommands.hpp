@@ -28,5 +28,8 @@ void register_generate_command(CLI::App& app, int& rc);  // generate (generate_c
 void register_simulate_command(CLI::App& app, int& rc);  // simulate (simulate_cli.cpp)
 void register_render_command(CLI::App& app, int& rc);  // render (render_cli.cpp)
 void register_bench_command(CLI::App& app, int& rc);   // bench (bench_cli.cpp)
+void register_edit_command(CLI::App& app, int& rc);  // edit (edit_cli.cpp)
+// `edit` with its defaults: what `contactlab` with no arguments runs (edit_cli.cpp).
+int run_edit_command();
 
 }  // namespace contactlab::app

@@ -70,7 +70,7 @@ std::string no_vulkan_device_hint() {
            "(lavapipe, a CPU implementation: apt-get install mesa-vulkan-drivers)";
 }
 
-VulkanContext::VulkanContext(const ContextOptions& options) {
+VulkanContext::VulkanContext(const ContextOptions& options, const WindowSupport& window) {
     counts_.quiet = options.quiet;
     software_ = options.software;
     // --software: unless the user chose drivers, load only lavapipe's manifest (faster start,
@@ -79,9 +79,9 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
         std::filesystem::exists(kLavapipeIcd))
         setenv("VK_DRIVER_FILES", kLavapipeIcd, 0);
     try {
-        create_instance(options);
+        create_instance(options, window);
         pick_device(options.software);
-        create_device();
+        create_device(window.swapchain);
     } catch (...) {
         destroy();
         throw;
@@ -108,8 +108,9 @@ void VulkanContext::destroy() {
     instance_ = VK_NULL_HANDLE;
 }
 
-void VulkanContext::create_instance(const ContextOptions& options) {
-    // Instance: Vulkan 1.1, no surface extensions; debug utils only with validation.
+void VulkanContext::create_instance(const ContextOptions& options, const WindowSupport& window) {
+    // Instance: Vulkan 1.1; surface extensions only when a window asks for them; debug utils only
+    // with validation.
     VkApplicationInfo app{};
     app.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO;
     app.pApplicationName = "ContactLab";
@@ -129,6 +130,7 @@ void VulkanContext::create_instance(const ContextOptions& options) {
         extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
         info.pNext = &debug;  // also reports problems in vkCreateInstance itself
     }
+    for (const std::string& e : window.instance_extensions) extensions.push_back(e.c_str());
     info.enabledLayerCount = static_cast<uint32_t>(layers.size());
     info.ppEnabledLayerNames = layers.data();
     info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
@@ -184,8 +186,8 @@ void VulkanContext::pick_device(bool software) {
     vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);
 }
 
-void VulkanContext::create_device() {
-    // Logical device: one graphics queue, no extensions, no optional features.
+void VulkanContext::create_device(bool swapchain) {
+    // Logical device: one graphics queue, no optional features; VK_KHR_swapchain for a window.
     const float priority = 1.0f;
     VkDeviceQueueCreateInfo queue{};
     queue.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO;
@@ -196,6 +198,11 @@ void VulkanContext::create_device() {
     info.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
     info.queueCreateInfoCount = 1;
     info.pQueueCreateInfos = &queue;
+    const char* swapchain_extension = VK_KHR_SWAPCHAIN_EXTENSION_NAME;
+    if (swapchain) {
+        info.enabledExtensionCount = 1;
+        info.ppEnabledExtensionNames = &swapchain_extension;
+    }
     vk_check(vkCreateDevice(physical_, &info, nullptr, &device_), "vkCreateDevice");
     vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
 

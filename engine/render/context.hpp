@@ -9,6 +9,7 @@
 
 #include <atomic>
 #include <string>
+#include <vector>
 
 namespace contactlab::render {
 
@@ -16,6 +17,14 @@ struct ContextOptions {
     bool software = false;    // force the CPU device (lavapipe)
     bool validation = false;  // VK_LAYER_KHRONOS_validation + a messenger counting its messages
     bool quiet = false;       // do not print validation messages (they are still counted)
+};
+
+// What a window target adds: the instance extensions the window system needs (e.g. from
+// glfwGetRequiredInstanceExtensions) and VK_KHR_swapchain on the device. Offscreen contexts go
+// without (and create exactly what they did before).
+struct WindowSupport {
+    std::vector<std::string> instance_extensions;
+    bool swapchain = false;
 };
 
 // Counts of the validation messages seen since the context was created.
@@ -29,7 +38,7 @@ class VulkanContext {
 public:
     // Throws NoVulkanDevice when there is no Vulkan implementation or no device of the kind asked
     // for; VulkanError for other failures (and when validation is asked for but not installed).
-    explicit VulkanContext(const ContextOptions& options = {});
+    explicit VulkanContext(const ContextOptions& options = {}, const WindowSupport& window = {});
     ~VulkanContext();
     VulkanContext(const VulkanContext&) = delete;
     VulkanContext& operator=(const VulkanContext&) = delete;
@@ -53,9 +62,9 @@ public:
     uint32_t memory_type(uint32_t type_bits, VkMemoryPropertyFlags flags) const;
 
 private:
-    void create_instance(const ContextOptions& options);
+    void create_instance(const ContextOptions& options, const WindowSupport& window);
     void pick_device(bool software);
-    void create_device();
+    void create_device(bool swapchain);
     void destroy();  // releases whatever was created (also after a failed constructor)
 
     VkInstance instance_ = VK_NULL_HANDLE;

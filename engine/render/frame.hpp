@@ -32,6 +32,9 @@ struct FrameContent {
     bool text = false;
     // The roller's measured position on the pad (m, like l), when a device reports one.
     std::optional<double> roller_l;
+    // px of the top edge covered by something else (the editor's menu bar): the status line
+    // starts below it. 0 for offscreen pictures.
+    float top_inset_px = 0.0f;
 };
 
 // Tolerance (px) for flattening curves: chord error at most this.

@@ -85,7 +85,7 @@ void draw_legend(const FrameContent& c, const View& view, const Theme& theme, co
         else
             std::snprintf(status, sizeof status, "x_f (%.1f, %.1f) mm  phi %.1f deg  free  anticipated l_d %+.2f mm",
                           o.finger.x * 1e3, o.finger.y * 1e3, o.phi * 180.0 / kPi, o.l_d * 1e3);
-        draw_text(out, {pad, pad}, status, theme.legend, m.text_scale);
+        draw_text(out, {pad, pad + c.top_inset_px}, status, theme.legend, m.text_scale);
     }
 }
 

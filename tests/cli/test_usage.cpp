@@ -29,7 +29,6 @@ TEST_CASE("--help exits 0 and lists the subcommands") {
 
 TEST_CASE("usage errors exit 2") {
     for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
-             {},                                                 // no subcommand
              {"--bogus"},                                        // unknown option
              {"frobnicate"},                                     // unknown subcommand
              {"trace", "--bogus"},                               // unknown option on trace

@@ -1,0 +1,389 @@
+// editor.cpp — the editor's frame loop: events -> ImGui + canvas (or script) -> servo publish ->
+// draw list (the shared scene drawer + the editor's marks) -> window target (+ ImGui) -> present.
+#include "engine/editor/editor.hpp"
+
+#include "engine/editor/canvas.hpp"
+#include "engine/editor/display.hpp"
+#include "engine/editor/editor_state.hpp"
+#include "engine/editor/imgui_layer.hpp"
+#include "engine/editor/panels.hpp"
+#include "engine/editor/rulers.hpp"
+#include "engine/editor/script.hpp"
+#include "engine/editor/servo_view.hpp"
+#include "engine/editor/window.hpp"
+#include "engine/editor/window_target.hpp"
+#include "engine/render/finger_state.hpp"
+#include "engine/render/vk_check.hpp"
+#include "haptics/scene_io.hpp"
+
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <sched.h>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+namespace contactlab::editor {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+const char* present_mode_name(VkPresentModeKHR m) {
+    switch (m) {
+        case VK_PRESENT_MODE_FIFO_KHR: return "FIFO (vsync)";
+        case VK_PRESENT_MODE_MAILBOX_KHR: return "MAILBOX";
+        case VK_PRESENT_MODE_IMMEDIATE_KHR: return "IMMEDIATE";
+        default: return "other";
+    }
+}
+
+// The document to start with: the file, a new scene at that path, or (file unreadable) an empty
+// scene with the problem reported in the window.
+// With `strict` (--frames, --script: nobody is there to read the window) a scene that does not
+// load is an error instead (SceneError: exit 2).
+void open_initial(EditorState& s, const std::string& path, bool strict) {
+    if (path.empty()) {
+        s.say("new scene: draw with the Line tool (3), move the finger with the Finger tool (1)");
+        return;
+    }
+    if (!std::filesystem::exists(path)) {
+        s.doc = Document(Scene{}, path);
+        s.say("new scene; Save writes " + path);
+        return;
+    }
+    try {
+        s.doc.open(path);
+        s.say("opened " + path);
+    } catch (const SceneError& e) {
+        if (strict) throw;
+        s.say(std::string("could not open: ") + e.what(), true);
+        std::fprintf(stderr, "contactlab edit: %s\n", e.what());
+    }
+    const std::string rec = Document::recovery_path_for(path);
+    std::error_code ec;
+    if (std::filesystem::exists(rec, ec) &&
+        std::filesystem::last_write_time(rec, ec) > std::filesystem::last_write_time(path, ec))
+        s.say("a recovery file newer than the scene exists: " + rec + " (File > Open to recover it)", true);
+}
+
+// A finger start above the scene: free space, so the servo arms and ramps in before contact.
+MousePose initial_pose(const Scene& scene) {
+    MousePose p;
+    const Environment env = build_environment(scene);
+    if (!scene.contours.empty()) {
+        const render::FingerPose fp = render::default_finger_pose(env, proxy_def_of(scene));
+        p.finger = fp.center + Vec2(0.0, 0.5 * scene.finger.radius);
+    } else {
+        p.finger = Vec2(0.0, 0.03);
+    }
+    return p;
+}
+
+void handle_real_input(EditorState& s, GLFWwindow* window) {
+    ImGuiIO& io = ImGui::GetIO();
+    const double sx = io.DisplayFramebufferScale.x, sy = io.DisplayFramebufferScale.y;
+    if (!io.WantCaptureKeyboard) {
+        const bool ctrl = io.KeyCtrl;
+        struct K { int key; const char* name; const char* ctrl_name; };
+        static const K keys[] = {
+            {GLFW_KEY_SPACE, "space", nullptr}, {GLFW_KEY_DELETE, "delete", nullptr},
+            {GLFW_KEY_BACKSPACE, "delete", nullptr}, {GLFW_KEY_Z, nullptr, "ctrl+z"},
+            {GLFW_KEY_Y, nullptr, "ctrl+y"}, {GLFW_KEY_S, nullptr, "ctrl+s"},
+            {GLFW_KEY_ESCAPE, "escape", nullptr}, {GLFW_KEY_F, "f", nullptr},
+            {GLFW_KEY_1, "1", nullptr}, {GLFW_KEY_2, "2", nullptr}, {GLFW_KEY_3, "3", nullptr},
+            {GLFW_KEY_4, "4", nullptr}, {GLFW_KEY_5, "5", nullptr},
+            {GLFW_KEY_Q, "q", "ctrl+q"}, {GLFW_KEY_E, "e", nullptr},
+        };
+        for (const K& k : keys) {
+            if (!ImGui::IsKeyPressed(k.key)) continue;
+            const char* name = ctrl ? k.ctrl_name : k.name;
+            if (!name) continue;
+            if (std::string(name) == "ctrl+q") s.quit = true;
+            else canvas_key(s, name);
+        }
+    }
+    (void)window;
+    const double x = io.MousePos.x * sx, y = io.MousePos.y * sy;
+    const bool valid_pos = io.MousePos.x > -1e6f && io.MousePos.y > -1e6f;
+    static const Button buttons[3] = {Button::left, Button::right, Button::middle};
+    // Releases always reach the canvas (a drag may end over a panel); the rest only off-panel.
+    for (int b = 0; b < 3; ++b)
+        if (ImGui::IsMouseReleased(b)) canvas_release(s, buttons[b], x, y);
+    if (io.WantCaptureMouse || !valid_pos) return;
+    if (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f) canvas_move(s, x, y);
+    for (int b = 0; b < 3; ++b)
+        if (ImGui::IsMouseClicked(b)) canvas_press(s, buttons[b], x, y);
+    if (io.MouseWheel != 0.0f) canvas_wheel(s, x, y, io.MouseWheel, io.KeyShift || io.KeyCtrl);
+}
+
+struct FrameTimer {
+    Clock::time_point window_start = Clock::now();
+    int window_frames = 0;
+    double window_busy = 0.0;  // s of CPU-side frame work in the window
+    double frame_ms = 0.0, fps = 0.0;
+    // Whole run.
+    long frames = 0;
+    double busy = 0.0;
+    Clock::time_point first = Clock::now();
+
+    void add(double busy_s) {
+        ++window_frames;
+        window_busy += busy_s;
+        ++frames;
+        busy += busy_s;
+        const double w = since(window_start);
+        if (w >= 1.0) {
+            frame_ms = 1e3 * window_busy / window_frames;
+            fps = window_frames / w;
+            window_start = Clock::now();
+            window_frames = 0;
+            window_busy = 0.0;
+        }
+    }
+};
+
+}  // namespace
+
+int run_editor(const EditorOptions& o) {
+    const Clock::time_point t_start = Clock::now();
+    Script script;
+    const bool scripted = !o.script.empty();
+    if (scripted) script = Script::load(o.script);  // ScriptError: bad input, before any window
+
+    // GLFW: no display -> the clear message, exit 2.
+    GlfwSession glfw;
+    if (!glfw.ok()) {
+        std::fputs(no_display_message(glfw.reason()).c_str(), stderr);
+        return kExitNoDisplay;
+    }
+
+    EditorState s;
+    open_initial(s, o.scene_path, scripted || o.frames > 0);
+
+    // Threads: one core for the servo, the rest (the Vulkan driver's threads included) for the
+    // renderer and the UI. Lavapipe starts one rasteriser thread per core unless told otherwise.
+    const int servo_core = reserve_servo_core();
+    if (servo_core >= 0 && !std::getenv("LP_NUM_THREADS")) {
+        cpu_set_t set;
+        CPU_ZERO(&set);
+        sched_getaffinity(0, sizeof set, &set);
+        setenv("LP_NUM_THREADS", std::to_string(CPU_COUNT(&set)).c_str(), 0);
+    }
+
+    Window window(o.width, o.height, "ContactLab editor");
+    render::ContextOptions copt;
+    copt.software = o.software;
+    copt.validation = o.validation;
+    render::WindowSupport wsup;
+    wsup.instance_extensions = window_instance_extensions();
+    wsup.swapchain = true;
+    render::VulkanContext ctx(copt, wsup);
+    Surface surface(ctx.instance(), window);
+    WindowTarget target(ctx, surface.handle(), o.vsync);
+    int fbw = 0, fbh = 0;
+    window.framebuffer_size(fbw, fbh);
+    target.prepare(fbw, fbh);
+    ImGuiLayer imgui(ctx, window.handle(), target.render_pass(), target.min_image_count(), target.image_count());
+    uint32_t imgui_min_images = target.min_image_count();
+
+    // Live haptics: the mouse device and the servo thread, running from the first frame.
+    MouseDevice device;
+    s.pose = initial_pose(s.doc.last_valid());
+    device.set_pose(s.pose);
+    ServoParams published = servo_params_for(s.doc.last_valid(), s.roller, kMouseWatchdog);
+    LiveServo servo(device, o.rate, published);
+    servo.publish_scene(s.doc.last_valid());
+    std::uint64_t published_revision = s.doc.revision();
+    if (!servo.start(servo_core)) std::fprintf(stderr, "contactlab edit: device %s failed to open\n", device.name());
+    s.servo = &servo;
+    s.device = &device;
+    s.camera.resize(target.extent().width, target.extent().height);
+    cmd_fit(s);
+
+    // Drawing: the environment of the last valid scene, rebuilt when it changes.
+    std::unique_ptr<Environment> env = std::make_unique<Environment>(build_environment(s.doc.last_valid()));
+    std::uint64_t env_revision = s.doc.revision();
+    render::DrawList list(o.width, o.height);
+    const render::Theme& theme = render::dark_theme();
+    FrameTimer timer;
+    double window_open_ms = -1.0;
+    double last_autosave = 0.0;
+    int exit_code = 0;
+    std::string shown_title;
+    const Clock::time_point t_loop = Clock::now();
+
+    // The frame loop. Should anything throw (a Vulkan error, a full disk), the user's work is
+    // written to the recovery file before the error is reported.
+    const auto frame_loop = [&] {
+        while (!s.quit && !window.should_close()) {
+            glfwPollEvents();
+            const Clock::time_point t_frame = Clock::now();
+            window.framebuffer_size(fbw, fbh);
+            if (!target.prepare(fbw, fbh)) {  // minimised: nothing to draw into
+                glfwWaitEventsTimeout(0.05);
+                continue;
+            }
+            if (target.min_image_count() != imgui_min_images) {
+                imgui_min_images = target.min_image_count();
+                imgui.set_min_image_count(imgui_min_images);
+            }
+            const VkExtent2D ext = target.extent();
+            s.camera.resize(static_cast<int>(ext.width), static_cast<int>(ext.height));
+
+            // UI: ImGui frame, then the canvas (real input, or the script's actions).
+            imgui.new_frame();
+            if (scripted) {
+                script.step(s, since(t_loop));
+                if (const auto r = script.take_resize_request()) window.set_size(r->first, r->second);
+            }
+            else handle_real_input(s, window.handle());
+            FrameInfo info;
+            info.gpu = ctx.device_name();
+            info.present_mode = present_mode_name(target.present_mode());
+            info.frame_ms = timer.frame_ms;
+            info.fps = timer.fps;
+            info.width = static_cast<int>(ext.width);
+            info.height = static_cast<int>(ext.height);
+            info.validation_messages = ctx.validation_messages();
+            draw_panels(s, info);
+            const float menu_bar_height = ImGui::GetFrameHeight() * ImGui::GetIO().DisplayFramebufferScale.y;
+            imgui.render();
+
+            // Title: the file and whether it has unsaved changes.
+            const std::string title = "ContactLab editor - " +
+                                      (s.doc.path().empty() ? std::string("untitled") : s.doc.path()) +
+                                      (s.doc.dirty() ? " *" : "");
+            if (title != shown_title) {
+                window.set_title(title);
+                shown_title = title;
+            }
+
+            // Servo: a changed valid scene is published (built here, off the servo thread); Ke, max
+            // force and roller gains go as parameters (slew-limited by the servo).
+            if (s.doc.valid() && s.doc.revision() != published_revision) {
+                servo.publish_scene(s.doc.scene());
+                published_revision = s.doc.revision();
+            }
+            const ServoParams params = servo_params_for(s.doc.last_valid(), s.roller, kMouseWatchdog);
+            if (!same_params(params, published)) {
+                servo.publish_params(params);
+                published = params;
+            }
+            servo.reclaim();
+            for (drivers::TickRecord r; servo.pop_record(r);) {
+                s.history.push(r);
+                if (r.fault != ServoFault::none) {
+                    s.last_fault = r.fault;
+                    s.last_fault_t = r.t;
+                }
+            }
+
+            // Frame: the shared scene drawer, then the editor's marks.
+            if (s.doc.valid() && env_revision != s.doc.revision()) {
+                env = std::make_unique<Environment>(build_environment(s.doc.scene()));
+                env_revision = s.doc.revision();
+            }
+            const Scene& shown = s.doc.last_valid();
+            const ServoSnapshot snap = servo.snapshot();
+            render::FrameContent content;
+            content.scene = &shown;
+            content.env = env.get();
+            ServoSnapshot pose_snap = snap;
+            if (snap.ticks == 0) {
+                pose_snap.finger = s.pose.finger;
+                pose_snap.phi = s.pose.phi;
+            }
+            content.finger = proxy_output_from(pose_snap, shown.finger);
+            content.shape = finger_from_def(shown.finger);
+            content.max_force = shown.force.max_force;
+            content.overlays = s.overlays;
+            content.text = s.labels;
+            content.roller_l = snap.roller_l;
+            content.top_inset_px = menu_bar_height + kRulerBand;
+            if (list.width() != static_cast<int>(ext.width) || list.height() != static_cast<int>(ext.height))
+                list = render::DrawList(static_cast<int>(ext.width), static_cast<int>(ext.height));
+            render::build_frame(content, s.camera.view(), theme, list);
+            draw_canvas_marks(s, theme, list);
+            draw_rulers(s.camera.view(), menu_bar_height, theme, list);
+
+            // Screenshot: the last of --frames N, or when the script asks.
+            std::optional<std::string> shot;
+            if (scripted) shot = script.take_screenshot_request();
+            else if (o.frames > 0 && timer.frames + 1 == o.frames && !o.screenshot.empty()) shot = o.screenshot;
+            render::Image image;
+            const FrameOutcome out =
+                target.render(list, theme.background, [&](VkCommandBuffer cmd) { imgui.record(cmd); }, shot ? &image : nullptr);
+            if (out == FrameOutcome::skipped) continue;
+            if (shot) {
+                render::write_png(*shot, image);
+                std::fprintf(stderr, "contactlab edit: screenshot %dx%d written to %s\n", image.width, image.height, shot->c_str());
+            }
+            if (window_open_ms < 0.0) {
+                window_open_ms = 1e3 * since(t_start);
+                std::fprintf(stderr, "contactlab edit: window open, first frame presented %.0f ms after start (%s, %s)\n",
+                             window_open_ms, ctx.device_name().c_str(), present_mode_name(target.present_mode()));
+            }
+            timer.add(since(t_frame));
+
+            // Autosave (recovery file) now and then.
+            if (since(t_loop) - last_autosave > o.autosave_interval) {
+                last_autosave = since(t_loop);
+                const std::string r = s.doc.autosave();
+                if (r.rfind("error: ", 0) == 0) s.say("autosave failed: " + r.substr(7), true);
+            }
+
+            if (o.frames > 0 && timer.frames >= o.frames && !scripted) break;
+            if (scripted && script.finished()) break;
+            if (o.timeout > 0.0 && since(t_start) > o.timeout) {
+                std::fprintf(stderr, "contactlab edit: still running after --timeout %.0f s; giving up\n", o.timeout);
+                exit_code = 1;
+                break;
+            }
+        }
+    };
+    try {
+        frame_loop();
+    } catch (...) {
+        const std::string r = s.doc.dirty() ? s.doc.autosave() : std::string();
+        if (!r.empty()) std::fprintf(stderr, "contactlab edit: unsaved changes kept in %s\n", r.c_str());
+        throw;
+    }
+
+    // Work not saved goes to the recovery file, never lost silently.
+    if (s.doc.dirty()) {
+        const std::string r = s.doc.autosave();
+        if (!r.empty()) std::fprintf(stderr, "contactlab edit: unsaved changes kept in %s\n", r.c_str());
+    }
+    servo.stop();
+    const double run_s = since(t_loop);
+    const auto ps = s.history.period_stats(servo.period());
+    std::fprintf(stderr,
+                 "contactlab edit: %ld frames in %.2f s at %ux%u: %.2f ms/frame CPU+GPU work, %.1f fps; servo %.0f Hz "
+                 "period p50 %.0f us p99 %.0f us max %.0f us over the last %zu ticks, %llu overruns; %s\n",
+                 timer.frames, run_s, target.extent().width, target.extent().height,
+                 timer.frames ? 1e3 * timer.busy / timer.frames : 0.0, run_s > 0 ? timer.frames / run_s : 0.0, o.rate,
+                 ps.p50 * 1e6, ps.p99 * 1e6, ps.max * 1e6, ps.count,
+                 static_cast<unsigned long long>(servo.overruns()), servo.scheduling().c_str());
+    std::fprintf(stderr, "contactlab edit: swapchain recreated %d time(s) (resize, out-of-date, suboptimal)\n",
+                 target.recreations());
+    if (scripted && script.failures() > 0) {
+        std::fprintf(stderr, "contactlab edit: script: %d check(s) failed\n", script.failures());
+        exit_code = 1;
+    }
+    if (ctx.validation_messages() > 0) {
+        std::fprintf(stderr, "contactlab edit: %d Vulkan validation message(s)\n", ctx.validation_messages());
+        exit_code = 1;
+    } else if (o.validation) {
+        std::fprintf(stderr, "contactlab edit: validation layers on, 0 messages\n");
+    }
+    return exit_code;
+}
+
+}  // namespace contactlab::editor

@@ -1,0 +1,299 @@
+// panels.cpp — menus, tuning, status and plots (see panels.hpp).
+#include "engine/editor/panels.hpp"
+
+#include "engine/editor/canvas.hpp"
+#include "haptics/scene_io.hpp"
+
+#include <imgui.h>
+
+#include <cfloat>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+namespace contactlab::editor {
+namespace {
+
+// An ImGui slider bound to one double of the scene: one undoable edit per drag or entry.
+// `scale` converts the stored SI value to the displayed unit (e.g. 1e3 for mm).
+template <class Get>
+void edit_field(EditorState& s, const char* label, Get get, double lo, double hi, const char* fmt, double scale = 1.0,
+                bool log = false) {
+    Scene copy = s.doc.scene();
+    double shown = *get(copy) * scale;
+    const double slo = lo * scale, shi = hi * scale;
+    const bool changed = ImGui::SliderScalar(label, ImGuiDataType_Double, &shown, &slo, &shi, fmt,
+                                             log ? ImGuiSliderFlags_Logarithmic : 0);
+    if (ImGui::IsItemActivated()) s.doc.begin_continuous(label);
+    if (changed) {
+        *get(copy) = shown / scale;
+        s.doc.update_continuous(std::move(copy));
+    }
+    if (ImGui::IsItemDeactivated()) s.doc.end_continuous();
+}
+
+void menu_bar(EditorState& s) {
+    static char path_buf[1024] = "";
+    bool open_popup = false, save_popup = false;
+    if (ImGui::BeginMainMenuBar()) {
+        if (ImGui::BeginMenu("File")) {
+            if (ImGui::MenuItem("New")) {
+                s.doc = Document();
+                s.say("new scene");
+            }
+            if (ImGui::MenuItem("Open...")) open_popup = true;
+            if (ImGui::MenuItem("Save", "Ctrl+S", false, !s.doc.path().empty())) {
+                try {
+                    s.doc.save();
+                    s.say("saved " + s.doc.path());
+                } catch (const std::exception& e) {
+                    s.say(e.what(), true);
+                }
+            }
+            if (ImGui::MenuItem("Save As...")) save_popup = true;
+            ImGui::Separator();
+            if (ImGui::MenuItem("Quit", "Ctrl+Q")) s.quit = true;
+            ImGui::EndMenu();
+        }
+        if (ImGui::BeginMenu("Edit")) {
+            const std::string u = "Undo " + s.doc.undo_label(), r = "Redo " + s.doc.redo_label();
+            if (ImGui::MenuItem(u.c_str(), "Ctrl+Z", false, s.doc.can_undo())) cmd_undo(s);
+            if (ImGui::MenuItem(r.c_str(), "Ctrl+Y", false, s.doc.can_redo())) cmd_redo(s);
+            if (ImGui::MenuItem("Delete segment", "Del", false, s.selected.has_value())) cmd_delete(s);
+            if (ImGui::MenuItem("Flip solid side", nullptr, false, s.selected.has_value())) {
+                s.doc.edit(reverse_contour(s.doc.scene(), s.selected->contour), "flip solid side");
+                s.selected.reset();
+            }
+            ImGui::MenuItem("Snap to grid", nullptr, &s.snap_grid);
+            ImGui::EndMenu();
+        }
+        if (ImGui::BeginMenu("View")) {
+            if (ImGui::MenuItem("Fit to scene", "F")) cmd_fit(s);
+            ImGui::MenuItem("C-space boundary", nullptr, &s.overlays.cspace);
+            ImGui::MenuItem("Anticipation zones", nullptr, &s.overlays.zones);
+            ImGui::MenuItem("Labels", nullptr, &s.labels);
+            ImGui::EndMenu();
+        }
+        if (ImGui::BeginMenu("Tools")) {
+            if (ImGui::MenuItem("Finger (cursor drives x_f)", "1", s.tool == Tool::finger)) cmd_set_tool(s, Tool::finger);
+            if (ImGui::MenuItem("Select / move", "2", s.tool == Tool::select)) cmd_set_tool(s, Tool::select);
+            if (ImGui::MenuItem("Line", "3", s.tool == Tool::line)) cmd_set_tool(s, Tool::line);
+            if (ImGui::MenuItem("Quadratic curve (start, control, end)", "4", s.tool == Tool::quad)) cmd_set_tool(s, Tool::quad);
+            if (ImGui::MenuItem("Arc (start, through, end)", "5", s.tool == Tool::arc)) cmd_set_tool(s, Tool::arc);
+            ImGui::EndMenu();
+        }
+        if (ImGui::BeginMenu("Generate")) {
+            if (ImGui::MenuItem("Block (seed 000, d = 6 cm)")) cmd_generate(s, "block");
+            if (ImGui::MenuItem("Bumps (seed 002)")) cmd_generate(s, "bumps");
+            if (ImGui::MenuItem("Arc (seed 003, 30 cm / 20 mm)")) cmd_generate(s, "arc");
+            ImGui::EndMenu();
+        }
+        ImGui::TextDisabled("  tool: %s  |  %s%s", to_string(s.tool),
+                            s.doc.path().empty() ? "(untitled)" : s.doc.path().c_str(), s.doc.dirty() ? " *" : "");
+        ImGui::EndMainMenuBar();
+    }
+    if (open_popup) {
+        std::snprintf(path_buf, sizeof path_buf, "%s", s.doc.path().c_str());
+        ImGui::OpenPopup("Open scene");
+    }
+    if (save_popup) {
+        std::snprintf(path_buf, sizeof path_buf, "%s", s.doc.path().c_str());
+        ImGui::OpenPopup("Save scene as");
+    }
+    for (const bool opening : {true, false}) {
+        if (ImGui::BeginPopupModal(opening ? "Open scene" : "Save scene as", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+            ImGui::InputText("file", path_buf, sizeof path_buf);
+            if (ImGui::Button("OK")) {
+                try {
+                    if (opening) {
+                        s.doc.open(path_buf);
+                        cmd_fit(s);
+                        s.say("opened " + s.doc.path());
+                    } else {
+                        s.doc.save(path_buf);
+                        s.say("saved " + s.doc.path());
+                    }
+                } catch (const std::exception& e) {
+                    s.say(e.what(), true);
+                }
+                ImGui::CloseCurrentPopup();
+            }
+            ImGui::SameLine();
+            if (ImGui::Button("Cancel")) ImGui::CloseCurrentPopup();
+            ImGui::EndPopup();
+        }
+    }
+}
+
+// Exact numeric editing of the selected point, in mm (one undoable edit per entry).
+void selection_editor(EditorState& s) {
+    if (s.selected && !valid_handle(s.doc.scene(), *s.selected)) s.selected.reset();  // scene replaced
+    if (s.hovered && !valid_handle(s.doc.scene(), *s.hovered)) s.hovered.reset();
+    if (!s.selected) return;
+    ImGui::Separator();
+    const Handle h = *s.selected;
+    ImGui::TextDisabled("selected point: contour %d, segment %d, point %d", h.contour, h.segment, h.point);
+    const Vec2 p = handle_position(s.doc.scene(), h);
+    double mm[2] = {p.x * 1e3, p.y * 1e3};
+    if (ImGui::InputScalarN("x, y (mm)", ImGuiDataType_Double, mm, 2, nullptr, nullptr, "%.3f",
+                            ImGuiInputTextFlags_EnterReturnsTrue)) {
+        s.doc.edit(move_handle(s.doc.scene(), h, Vec2(mm[0] * 1e-3, mm[1] * 1e-3)), "point position");
+    }
+}
+
+void tuning_window(EditorState& s) {
+    ImGui::SetNextWindowPos(ImVec2(52, 80), ImGuiCond_FirstUseEver);  // below the frame's status line
+    ImGui::SetNextWindowSize(ImVec2(330, 470), ImGuiCond_FirstUseEver);
+    if (!ImGui::Begin("Tuning")) {
+        ImGui::End();
+        return;
+    }
+    ImGui::PushItemWidth(170);
+    const Scene& sc = s.doc.scene();
+    ImGui::TextDisabled("force model (scene, undoable)");
+    int model = sc.force.law.model == ForceModel::spring ? 0 : 1;
+    if (ImGui::Combo("model", &model, "spring\0ellipsoid\0")) {
+        Scene c = sc;
+        c.force.law.model = model == 0 ? ForceModel::spring : ForceModel::ellipsoid;
+        s.doc.edit(std::move(c), "force model");
+    }
+    const double kmax = s.device ? s.device->limits().max_stable_stiffness : 2000.0;
+    edit_field(s, "Ke (N/m)", [](Scene& x) { return &x.force.stiffness; }, 10.0, 5000.0, "%.0f", 1.0, true);
+    if (s.servo) {
+        // Discrete stability bound for a spring through the device's damping: K < 2 b / T.
+        const double bound = 2.0 * s.device->limits().damping / s.servo->period();
+        ImGui::TextColored(sc.force.stiffness > kmax ? ImVec4(1, 0.4f, 0.3f, 1) : ImVec4(0.6f, 0.8f, 0.6f, 1),
+                           "device stable limit %.0f N/m, 2b/T = %.0f N/m", kmax, bound);
+    }
+    edit_field(s, "max force (N)", [](Scene& x) { return &x.force.max_force; }, 0.0, 5.0, "%.2f");
+    if (sc.force.law.model == ForceModel::ellipsoid) {
+        edit_field(s, "k tangential (N/m)", [](Scene& x) { return &x.force.law.k_tangential; }, 10.0, 5000.0, "%.0f", 1.0, true);
+        edit_field(s, "k normal (N/m)", [](Scene& x) { return &x.force.law.k_normal; }, 10.0, 5000.0, "%.0f", 1.0, true);
+    }
+    edit_field(s, "damping (N s/m)", [](Scene& x) { return &x.force.law.damping; }, 0.0, 10.0, "%.2f");
+    edit_field(s, "mu static", [](Scene& x) { return &x.force.law.mu_static; }, 0.0, 2.0, "%.2f");
+    edit_field(s, "mu dynamic", [](Scene& x) { return &x.force.law.mu_dynamic; }, 0.0, 2.0, "%.2f");
+    int rule = sc.contact_location.rule == ContactRule::centroid ? 0 : 1;
+    if (ImGui::Combo("contact rule", &rule, "centroid (seed 000)\0least displacement (seed 002)\0")) {
+        Scene c = s.doc.scene();
+        c.contact_location.rule = rule == 0 ? ContactRule::centroid : ContactRule::least_displacement;
+        s.doc.edit(std::move(c), "contact rule");
+    }
+    edit_field(s, "finger R (mm)", [](Scene& x) { return &x.finger.radius; }, 0.005, 0.05, "%.1f", 1e3);
+    edit_field(s, "pad L (mm)", [](Scene& x) { return &x.finger.length; }, 0.002, 0.06, "%.1f", 1e3);
+
+    selection_editor(s);
+    ImGui::Separator();
+    ImGui::TextDisabled("roller PID (live, not in the scene)");
+    ImGui::InputDouble("Kp (V/m)", &s.roller.kp, 1000.0, 10000.0, "%.0f");
+    ImGui::InputDouble("Ki (V/(m s))", &s.roller.ki, 1e4, 1e5, "%.0f");
+    ImGui::InputDouble("Kd (V s/m)", &s.roller.kd, 1.0, 10.0, "%.1f");
+    ImGui::InputDouble("max drive (V)", &s.roller.max_drive, 0.5, 1.0, "%.1f");
+    s.roller.kp = std::max(0.0, s.roller.kp);
+    s.roller.ki = std::max(0.0, s.roller.ki);
+    s.roller.kd = std::max(0.0, s.roller.kd);
+    s.roller.max_drive = std::clamp(s.roller.max_drive, 0.0, 24.0);
+    ImGui::PopItemWidth();
+    ImGui::End();
+}
+
+const char* to_text(drivers::DeviceState d) { return drivers::to_string(d); }
+
+void status_window(EditorState& s, const FrameInfo& info) {
+    ImGui::SetNextWindowPos(ImVec2(static_cast<float>(info.width) - 350.0f, 50), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(340, 330), ImGuiCond_FirstUseEver);
+    if (!ImGui::Begin("Haptics")) {
+        ImGui::End();
+        return;
+    }
+    if (s.servo) {
+        const ServoSnapshot snap = s.servo->snapshot();
+        const bool stopped = s.servo->stopped();
+        ImGui::PushStyleColor(ImGuiCol_Button, stopped ? ImVec4(0.3f, 0.5f, 0.3f, 1) : ImVec4(0.8f, 0.1f, 0.1f, 1));
+        if (ImGui::Button(stopped ? "RELEASE STOP (space)" : "EMERGENCY STOP (space)", ImVec2(-1, 34))) cmd_toggle_stop(s);
+        ImGui::PopStyleColor();
+        ImGui::Text("device: %s, %s", s.device->name(), to_text(s.device->state()));
+        const bool fault = snap.state == ServoState::fault;
+        ImGui::TextColored(fault ? ImVec4(1, 0.35f, 0.3f, 1) : ImVec4(0.7f, 0.9f, 0.7f, 1), "servo: %s%s%s",
+                           stopped ? "STOPPED (idle)" : to_string(snap.state), fault ? " - " : "",
+                           fault ? to_string(snap.fault) : "");
+        if (snap.fault_count) {
+            ImGui::Text("faults: %u, last: %s at %.1f s", snap.fault_count, to_string(s.last_fault), s.last_fault_t);
+            ImGui::SameLine();
+            if (ImGui::SmallButton("clear fault")) s.servo->clear_fault();
+        }
+        ImGui::Text("x_f (%.2f, %.2f) mm  phi %.1f deg", snap.finger.x * 1e3, snap.finger.y * 1e3, snap.phi * 180.0 / kPi);
+        ImGui::Text("%s  |F| %.3f N  depth %.3f mm", snap.contact ? "CONTACT" : "free",
+                    std::hypot(snap.force.x, snap.force.y), snap.depth * 1e3);
+        ImGui::Text("l_d %.2f mm  roller %.2f mm", snap.l_d * 1e3, snap.roller_l * 1e3);
+        ImGui::Text("Ke in effect %.0f N/m, max %.2f N", snap.stiffness, snap.max_force);
+        const auto ps = s.history.period_stats(s.servo->period());
+        ImGui::Text("period p50 %.0f us  p99 %.0f us  max %.0f us", ps.p50 * 1e6, ps.p99 * 1e6, ps.max * 1e6);
+        ImGui::Text("late ticks (>1.5 T) %zu / %zu (5 s), overruns %llu", ps.late, ps.count,
+                    static_cast<unsigned long long>(s.servo->overruns()));
+        ImGui::TextDisabled("%s", s.servo->scheduling().c_str());
+    }
+    ImGui::Separator();
+    ImGui::Text("%s, %d x %d, %.1f ms/frame (%.0f fps)", info.present_mode.c_str(), info.width, info.height,
+                info.frame_ms, info.fps);
+    ImGui::TextDisabled("%s", info.gpu.c_str());
+    if (info.validation_messages) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "validation messages: %d", info.validation_messages);
+    ImGui::Text("%d contours, %d segments, undo %zu", static_cast<int>(s.doc.scene().contours.size()),
+                segment_count(s.doc.scene()), s.doc.undo_depth());
+    if (!s.doc.valid()) {
+        ImGui::PushTextWrapPos(0.0f);
+        ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "Invalid geometry (not sent to the servo, not saved): %s",
+                           s.doc.problem().c_str());
+        ImGui::PopTextWrapPos();
+    }
+    ImGui::End();
+}
+
+void plots_window(EditorState& s, const FrameInfo& info) {
+    ImGui::SetNextWindowPos(ImVec2(static_cast<float>(info.width) - 350.0f, 385), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(340, 300), ImGuiCond_FirstUseEver);
+    if (!ImGui::Begin("Plots (last 5 s)")) {
+        ImGui::End();
+        return;
+    }
+    const auto plot = [&](const char* label, PlotHistory::Column c, float lo, float hi) {
+        const auto& v = s.history.column(c);
+        float cur = v.empty() ? 0.0f : v.back();
+        char overlay[64];
+        std::snprintf(overlay, sizeof overlay, "%.3f", cur);
+        ImGui::TextUnformatted(label);
+        ImGui::PushID(label);
+        ImGui::SetNextItemWidth(-1.0f);  // PlotLines takes a width of 0 as "the item width"
+        ImGui::PlotLines("##plot", v.data(), static_cast<int>(v.size()), 0, overlay, lo, hi, ImVec2(0.0f, 38.0f));
+        ImGui::PopID();
+    };
+    const float fmax = static_cast<float>(std::max(0.1, s.doc.scene().force.max_force));
+    plot("|F| (N)", PlotHistory::force_n, 0.0f, fmax * 1.05f);
+    plot("depth (mm)", PlotHistory::depth_mm, 0.0f, FLT_MAX);
+    plot("l_d (mm)", PlotHistory::l_d_mm, -10.0f, 10.0f);
+    plot("roller err (mm)", PlotHistory::roller_error_mm, FLT_MAX, FLT_MAX);
+    plot("period (us)", PlotHistory::period_us, 0.0f, FLT_MAX);
+    ImGui::End();
+}
+
+}  // namespace
+
+void draw_panels(EditorState& s, const FrameInfo& info) {
+    menu_bar(s);
+    tuning_window(s);
+    status_window(s, info);
+    plots_window(s, info);
+    if (!s.message.empty()) {
+        // Status line along the bottom edge.
+        ImGui::SetNextWindowPos(ImVec2(0, static_cast<float>(info.height) - 26.0f));
+        ImGui::SetNextWindowSize(ImVec2(static_cast<float>(info.width), 26.0f));
+        ImGui::Begin("##status", nullptr,
+                     ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoSavedSettings |
+                         ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav);
+        ImGui::TextColored(s.message_is_error ? ImVec4(1, 0.4f, 0.3f, 1) : ImVec4(0.8f, 0.85f, 0.9f, 1), "%s",
+                           s.message.c_str());
+        ImGui::End();
+    }
+}
+
+}  // namespace contactlab::editor

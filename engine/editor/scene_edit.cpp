@@ -1,0 +1,227 @@
+// scene_edit.cpp — handles, picking and edits (see scene_edit.hpp).
+#include "engine/editor/scene_edit.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "haptics/scene_io.hpp"  // kSceneJoinTolerance
+
+namespace contactlab::editor {
+namespace {
+
+Vec2* point_ref(Segment& s, int i) {
+    if (auto* l = std::get_if<LineSegment>(&s)) return i == 0 ? &l->from : i == 1 ? &l->to : nullptr;
+    if (auto* q = std::get_if<QuadSegment>(&s)) return i == 0 ? &q->p0 : i == 1 ? &q->p1 : i == 2 ? &q->p2 : nullptr;
+    if (auto* c = std::get_if<CubicSegment>(&s))
+        return i == 0 ? &c->p0 : i == 1 ? &c->p1 : i == 2 ? &c->p2 : i == 3 ? &c->p3 : nullptr;
+    return nullptr;  // arcs
+}
+
+Segment reversed(const Segment& s) {
+    if (auto* l = std::get_if<LineSegment>(&s)) return LineSegment{l->to, l->from};
+    if (auto* q = std::get_if<QuadSegment>(&s)) return QuadSegment{q->p2, q->p1, q->p0};
+    if (auto* c = std::get_if<CubicSegment>(&s)) return CubicSegment{c->p3, c->p2, c->p1, c->p0};
+    const auto& a = std::get<ArcSegment>(s);
+    return ArcSegment{a.center, a.radius, a.end_angle, a.start_angle};
+}
+
+// Moves a segment's first / last point (arcs: their end is already where it must be, to rounding).
+void set_start(Segment& s, Vec2 p) {
+    if (Vec2* q = point_ref(s, 0)) *q = p;
+}
+void set_end(Segment& s, Vec2 p) {
+    if (Vec2* q = point_ref(s, handle_count(s) - 1)) *q = p;
+}
+
+}  // namespace
+
+bool valid_handle(const Scene& scene, const Handle& h) {
+    return h.contour >= 0 && h.contour < static_cast<int>(scene.contours.size()) && h.segment >= 0 &&
+           h.segment < static_cast<int>(scene.contours[h.contour].segments.size()) && h.point >= 0 &&
+           h.point < handle_count(scene.contours[h.contour].segments[h.segment]);
+}
+
+int handle_count(const Segment& s) {
+    if (std::holds_alternative<LineSegment>(s) || std::holds_alternative<ArcSegment>(s)) return 2;
+    if (std::holds_alternative<QuadSegment>(s)) return 3;
+    if (std::holds_alternative<CubicSegment>(s)) return 4;
+    return 0;
+}
+
+Vec2 handle_position(const Scene& scene, const Handle& h) {
+    if (!valid_handle(scene, h)) return Vec2{0.0};
+    Segment s = scene.contours[h.contour].segments[h.segment];
+    if (std::holds_alternative<ArcSegment>(s)) return h.point == 0 ? segment_start(s) : segment_end(s);
+    return *point_ref(s, h.point);
+}
+
+bool handle_is_end(const Scene& scene, const Handle& h) {
+    if (!valid_handle(scene, h)) return false;
+    return h.point == 0 || h.point == handle_count(scene.contours[h.contour].segments[h.segment]) - 1;
+}
+
+std::optional<Handle> pick_handle(const Scene& scene, Vec2 p, double radius) {
+    std::optional<Handle> best;
+    double best_d = radius;
+    bool best_end = false;
+    for (int c = 0; c < static_cast<int>(scene.contours.size()); ++c) {
+        const auto& segs = scene.contours[c].segments;
+        for (int s = 0; s < static_cast<int>(segs.size()); ++s) {
+            const int n = handle_count(segs[s]);
+            for (int i = 0; i < n; ++i) {
+                const Handle h{c, s, i};
+                const double d = glm::length(handle_position(scene, h) - p);
+                const bool end = i == 0 || i == n - 1;
+                if (d < best_d || (d <= best_d && end && !best_end && best)) {
+                    best = h;
+                    best_d = d;
+                    best_end = end;
+                }
+            }
+        }
+    }
+    return best;
+}
+
+std::optional<Handle> pick_open_end(const Scene& scene, Vec2 p, double radius) {
+    std::optional<Handle> best;
+    double best_d = radius;
+    for (int c = 0; c < static_cast<int>(scene.contours.size()); ++c) {
+        const Contour& k = scene.contours[c];
+        if (k.closed || k.segments.empty()) continue;
+        const int last = static_cast<int>(k.segments.size()) - 1;
+        const double d_end = glm::length(segment_end(k.segments[last]) - p);
+        const double d_start = glm::length(segment_start(k.segments[0]) - p);
+        if (d_end <= best_d) {
+            best = Handle{c, last, std::max(0, handle_count(k.segments[last]) - 1)};
+            best_d = d_end;
+        }
+        if (d_start < best_d) {
+            best = Handle{c, 0, 0};
+            best_d = d_start;
+        }
+    }
+    return best;
+}
+
+Scene move_handle(const Scene& scene, const Handle& h, Vec2 to) {
+    Scene out = scene;
+    if (!valid_handle(scene, h)) return out;
+    Contour& k = out.contours[h.contour];
+    const int n = static_cast<int>(k.segments.size());
+    Vec2* p = point_ref(k.segments[h.segment], h.point);
+    if (!p) return out;
+    *p = to;
+    const int last = handle_count(k.segments[h.segment]) - 1;
+    // Joined neighbour: the previous segment's end (for point 0) or the next one's start.
+    if (h.point == 0 && (h.segment > 0 || k.closed)) {
+        Segment& prev = k.segments[(h.segment + n - 1) % n];
+        if (Vec2* q = point_ref(prev, handle_count(prev) - 1)) *q = to;
+    } else if (h.point == last && (h.segment < n - 1 || k.closed)) {
+        Segment& next = k.segments[(h.segment + 1) % n];
+        if (Vec2* q = point_ref(next, 0)) *q = to;
+    }
+    return out;
+}
+
+Scene add_line(const Scene& scene, Vec2 a, Vec2 b, double join_radius) {
+    return add_segment(scene, LineSegment{a, b}, join_radius);
+}
+
+Scene add_segment(const Scene& scene, const Segment& segment, double join_radius) {
+    Scene out = scene;
+    const Vec2 a = segment_start(segment);
+    if (const auto end = pick_open_end(scene, a, join_radius)) {
+        Contour& k = out.contours[end->contour];
+        if (end->segment == static_cast<int>(k.segments.size()) - 1 && end->point > 0) {
+            Segment seg = segment;
+            set_start(seg, segment_end(k.segments.back()));  // exact join
+            k.segments.push_back(seg);
+        } else if (end->segment == 0 && end->point == 0) {
+            Segment seg = reversed(segment);  // keep the chain's direction (and solid side)
+            set_end(seg, segment_start(k.segments.front()));
+            k.segments.insert(k.segments.begin(), seg);
+        }
+        // Back at the chain's other end: the contour closes (drawn clockwise it is solid inside).
+        if (k.segments.size() >= 2 && glm::length(segment_end(k.segments.back()) - segment_start(k.segments.front())) <=
+                                          kSceneJoinTolerance) {
+            set_end(k.segments.back(), segment_start(k.segments.front()));
+            k.closed = k.segments.size() >= 3 || !std::holds_alternative<LineSegment>(k.segments.back());
+        }
+        return out;
+    }
+    Contour c;
+    c.closed = false;
+    c.segments.push_back(segment);
+    out.contours.push_back(std::move(c));
+    return out;
+}
+
+std::optional<ArcSegment> arc_through(Vec2 a, Vec2 m, Vec2 b) {
+    // Circumcentre of the triangle a, m, b.
+    const Vec2 ab = b - a, am = m - a;
+    const double d = 2.0 * (am.x * ab.y - am.y * ab.x);
+    const double scale = std::max(glm::length(ab), glm::length(am));
+    if (!(scale > 0.0) || std::abs(d) < 1e-9 * scale * scale) return std::nullopt;
+    const double am2 = glm::dot(am, am), ab2 = glm::dot(ab, ab);
+    const Vec2 c = a + Vec2(ab.y * am2 - am.y * ab2, am.x * ab2 - ab.x * am2) / d;
+    ArcSegment arc;
+    arc.center = c;
+    arc.radius = glm::length(a - c);
+    const double a0 = std::atan2(a.y - c.y, a.x - c.x);
+    const auto ccw_from_a0 = [&](Vec2 p) {
+        double t = std::atan2(p.y - c.y, p.x - c.x) - a0;
+        while (t < 0.0) t += 2.0 * kPi;
+        while (t >= 2.0 * kPi) t -= 2.0 * kPi;
+        return t;
+    };
+    const double to_b = ccw_from_a0(b), to_m = ccw_from_a0(m);
+    arc.start_angle = a0;
+    // Counter-clockwise if m lies on the way from a to b going that way, else clockwise.
+    arc.end_angle = to_m < to_b ? a0 + to_b : a0 - (2.0 * kPi - to_b);
+    return arc;
+}
+
+Scene delete_segment(const Scene& scene, int contour, int segment) {
+    Scene out = scene;
+    if (contour < 0 || contour >= static_cast<int>(out.contours.size())) return out;
+    Contour& k = out.contours[contour];
+    const int n = static_cast<int>(k.segments.size());
+    if (segment < 0 || segment >= n) return out;
+    if (k.closed) {
+        // Rotate so the chain starts after the removed segment, then open it.
+        std::vector<Segment> segs;
+        for (int i = 1; i < n; ++i) segs.push_back(k.segments[(segment + i) % n]);
+        k.segments = std::move(segs);
+        k.closed = false;
+    } else if (segment == 0 || segment == n - 1) {
+        k.segments.erase(k.segments.begin() + segment);
+    } else {
+        Contour tail;
+        tail.closed = false;
+        tail.segments.assign(k.segments.begin() + segment + 1, k.segments.end());
+        k.segments.erase(k.segments.begin() + segment, k.segments.end());
+        out.contours.insert(out.contours.begin() + contour + 1, std::move(tail));
+    }
+    out.contours.erase(std::remove_if(out.contours.begin(), out.contours.end(),
+                                      [](const Contour& c) { return c.segments.empty(); }),
+                       out.contours.end());
+    return out;
+}
+
+Scene reverse_contour(const Scene& scene, int contour) {
+    Scene out = scene;
+    if (contour < 0 || contour >= static_cast<int>(out.contours.size())) return out;
+    auto& segs = out.contours[contour].segments;
+    std::reverse(segs.begin(), segs.end());
+    for (Segment& s : segs) s = reversed(s);
+    return out;
+}
+
+int segment_count(const Scene& scene) {
+    int n = 0;
+    for (const Contour& c : scene.contours) n += static_cast<int>(c.segments.size());
+    return n;
+}
+
+}  // namespace contactlab::editor

@@ -1,0 +1,60 @@
+// scene_edit.hpp — the authoring operations on a Scene, as pure functions (the editor's tools
+// call them and hand the result to Document::edit): handles (segment end points and Bezier
+// control points), picking, moving a handle with its joined neighbour, adding a line (a new chain
+// or appended to an open chain's end), deleting a segment.
+#pragma once
+
+#include "haptics/scene.hpp"
+
+#include <optional>
+#include <string>
+
+namespace contactlab::editor {
+
+// A point of the geometry the user can grab. `point` indexes the segment's points in travel
+// order: line 0 = from, 1 = to; quad p0, p1, p2; cubic p0..p3; arc 0 = start, 1 = end (shown and
+// snapped to, but fixed: they follow from centre, radius and angles, so moves leave them alone).
+struct Handle {
+    int contour = -1;
+    int segment = -1;
+    int point = -1;
+    bool operator==(const Handle&) const = default;
+};
+
+int handle_count(const Segment& s);              // points of a segment
+bool valid_handle(const Scene& scene, const Handle& h);  // names an existing point
+Vec2 handle_position(const Scene& scene, const Handle& h);
+bool handle_is_end(const Scene& scene, const Handle& h);  // first or last point of its segment
+
+// The handle nearest `p` within `radius` (m); end points win ties over control points.
+std::optional<Handle> pick_handle(const Scene& scene, Vec2 p, double radius);
+// The open chain end (first point of its first segment or last of its last) within `radius` (m).
+std::optional<Handle> pick_open_end(const Scene& scene, Vec2 p, double radius);
+
+// Moves the handle to `to` (m). An end point shared with the neighbouring segment (joined chain,
+// also across a closed contour's seam) moves with it, so chains stay joined.
+Scene move_handle(const Scene& scene, const Handle& h, Vec2 to);
+
+// A line from `a` to `b` (m). If `a` is an open chain's last point it is appended there; if it is
+// a chain's first point the line is prepended (travelling from b to a, so the chain's direction,
+// and with it the solid side, is kept); a chain whose ends meet that way becomes closed. Otherwise
+// it starts a new open contour.
+Scene add_line(const Scene& scene, Vec2 a, Vec2 b, double join_radius);
+// The same for any segment (travelling from segment_start to segment_end).
+Scene add_segment(const Scene& scene, const Segment& segment, double join_radius);
+
+// The circular arc from a through m to b (m); nullopt when the points are (nearly) collinear or
+// coincide. Its end points are a and b to rounding (cos/sin of the angles).
+std::optional<ArcSegment> arc_through(Vec2 a, Vec2 m, Vec2 b);
+
+// Removes one segment. A chain broken in the middle becomes two open chains; a closed contour
+// becomes one open chain starting after the gap; an empty contour disappears.
+Scene delete_segment(const Scene& scene, int contour, int segment);
+
+// Reverses a contour's direction of travel (flips the solid side).
+Scene reverse_contour(const Scene& scene, int contour);
+
+// Total number of segments (for the status line and tests).
+int segment_count(const Scene& scene);
+
+}  // namespace contactlab::editor

@@ -1,0 +1,257 @@
+// script.cpp — the --script runner (see script.hpp).
+#include "engine/editor/script.hpp"
+
+#include "engine/editor/canvas.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace contactlab::editor {
+namespace {
+
+// Command -> (min, max) argument count.
+const std::map<std::string, std::pair<int, int>>& arity() {
+    static const std::map<std::string, std::pair<int, int>> a = {
+        {"tool", {1, 1}},   {"click", {2, 2}},       {"rclick", {2, 2}},     {"drag", {4, 4}},
+        {"finger", {2, 3}}, {"key", {1, 1}},         {"set", {2, 2}},        {"undo", {0, 0}},
+        {"redo", {0, 0}},   {"fit", {0, 0}},         {"save", {1, 1}},       {"open", {1, 1}},
+        {"screenshot", {1, 1}}, {"estop", {1, 1}},   {"wait", {1, 1}},       {"frames", {1, 1}},
+        {"wait_contact", {1, 1}}, {"resize", {2, 2}}, {"generate", {1, 1}}, {"wait_state", {2, 2}}, {"expect", {2, 2}}, {"quit", {0, 0}},
+    };
+    return a;
+}
+
+double number(const std::string& w) {
+    std::size_t used = 0;
+    double v = 0.0;
+    try {
+        v = std::stod(w, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used != w.size() || !std::isfinite(v)) throw ScriptError("not a number: \"" + w + "\"");
+    return v;
+}
+
+// World mm -> canvas px (double precision, so a scripted finger lands where it was asked).
+void px_of(const EditorState& s, double x_mm, double y_mm, double& px, double& py) {
+    const render::View& v = s.camera.view();
+    px = 0.5 * v.width + (x_mm * 1e-3 - v.center.x) * v.px_per_m;
+    py = 0.5 * v.height - (y_mm * 1e-3 - v.center.y) * v.px_per_m;
+}
+
+}  // namespace
+
+Script Script::load(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw ScriptError("cannot read script " + path);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return parse(text.str(), path);
+}
+
+Script Script::parse(const std::string& text, const std::string& origin) {
+    Script sc;
+    sc.origin_ = origin;
+    std::istringstream lines(text);
+    std::string raw;
+    int number = 0;
+    while (std::getline(lines, raw)) {
+        ++number;
+        std::istringstream ws(raw);
+        Line line;
+        line.number = number;
+        for (std::string w; ws >> w;) line.words.push_back(w);
+        if (line.words.empty() || line.words[0][0] == '#') continue;
+        const auto it = arity().find(line.words[0]);
+        if (it == arity().end())
+            throw ScriptError(origin + ":" + std::to_string(number) + ": unknown command \"" + line.words[0] + "\"");
+        const int n = static_cast<int>(line.words.size()) - 1;
+        if (n < it->second.first || n > it->second.second)
+            throw ScriptError(origin + ":" + std::to_string(number) + ": " + line.words[0] + " takes " +
+                              std::to_string(it->second.first) +
+                              (it->second.first == it->second.second ? "" : ".." + std::to_string(it->second.second)) +
+                              " argument(s), got " + std::to_string(n));
+        sc.lines_.push_back(std::move(line));
+    }
+    return sc;
+}
+
+std::optional<std::pair<int, int>> Script::take_resize_request() {
+    auto r = resize_;
+    resize_.reset();
+    return r;
+}
+
+std::optional<std::string> Script::take_screenshot_request() {
+    auto r = std::move(screenshot_);
+    screenshot_.reset();
+    return r;
+}
+
+void Script::fail(const Line& line, const std::string& why) {
+    ++failures_;
+    std::fprintf(stderr, "script %s:%d: FAILED: %s\n", origin_.c_str(), line.number, why.c_str());
+}
+
+void Script::step(EditorState& s, double now) {
+    while (next_ < lines_.size()) {
+        const Line& line = lines_[next_];
+        bool done = true;
+        try {
+            done = run(s, line, now);
+        } catch (const std::exception& e) {
+            fail(line, e.what());
+        }
+        if (!done) return;
+        ++next_;
+        wait_until_ = -1.0;
+        frames_left_ = -1;
+        // One visible action per frame so the window shows each step (and screenshots see it).
+        if (line.words[0] == "screenshot" || line.words[0] == "resize") return;
+    }
+}
+
+bool Script::run(EditorState& s, const Line& line, double now) {
+    const auto& w = line.words;
+    const std::string& c = w[0];
+    double px = 0.0, py = 0.0;
+    if (c == "tool") {
+        if (w[1] == "finger") cmd_set_tool(s, Tool::finger);
+        else if (w[1] == "select") cmd_set_tool(s, Tool::select);
+        else if (w[1] == "line") cmd_set_tool(s, Tool::line);
+        else if (w[1] == "quad") cmd_set_tool(s, Tool::quad);
+        else if (w[1] == "arc") cmd_set_tool(s, Tool::arc);
+        else throw ScriptError("unknown tool \"" + w[1] + "\" (finger, select, line, quad, arc)");
+    } else if (c == "click" || c == "rclick") {
+        px_of(s, number(w[1]), number(w[2]), px, py);
+        const Button b = c == "click" ? Button::left : Button::right;
+        canvas_press(s, b, px, py);
+        canvas_release(s, b, px, py);
+    } else if (c == "drag") {
+        px_of(s, number(w[1]), number(w[2]), px, py);
+        canvas_press(s, Button::left, px, py);
+        double qx = 0.0, qy = 0.0;
+        px_of(s, number(w[3]), number(w[4]), qx, qy);
+        for (int i = 1; i <= 4; ++i) canvas_move(s, px + (qx - px) * i / 4.0, py + (qy - py) * i / 4.0);
+        canvas_release(s, Button::left, qx, qy);
+    } else if (c == "finger") {
+        if (s.tool != Tool::finger) cmd_set_tool(s, Tool::finger);
+        if (w.size() > 3) {
+            s.pose.phi = number(w[3]) * kPi / 180.0;
+        }
+        px_of(s, number(w[1]), number(w[2]), px, py);
+        canvas_move(s, px, py);
+    } else if (c == "key") {
+        if (!canvas_key(s, w[1])) throw ScriptError("unknown key \"" + w[1] + "\"");
+    } else if (c == "set") {
+        Scene sc = s.doc.scene();
+        const std::string& n = w[1];
+        if (n == "model") {
+            if (w[2] != "spring" && w[2] != "ellipsoid") throw ScriptError("model: spring or ellipsoid");
+            sc.force.law.model = w[2] == "spring" ? ForceModel::spring : ForceModel::ellipsoid;
+        } else if (n == "rule") {
+            if (w[2] != "centroid" && w[2] != "least_displacement") throw ScriptError("rule: centroid or least_displacement");
+            sc.contact_location.rule = w[2] == "centroid" ? ContactRule::centroid : ContactRule::least_displacement;
+        } else if (n == "snap_mm") {
+            s.grid_mm = number(w[2]);
+            s.snap_grid = s.grid_mm > 0.0;
+            return true;
+        } else if (n == "kp" || n == "ki" || n == "kd") {
+            (n == "kp" ? s.roller.kp : n == "ki" ? s.roller.ki : s.roller.kd) = number(w[2]);
+            return true;
+        } else {
+            const double v = number(w[2]);
+            if (n == "ke") sc.force.stiffness = v;
+            else if (n == "max_force") sc.force.max_force = v;
+            else if (n == "damping") sc.force.law.damping = v;
+            else if (n == "mu_s") sc.force.law.mu_static = v;
+            else if (n == "mu_d") sc.force.law.mu_dynamic = v;
+            else if (n == "k_t") sc.force.law.k_tangential = v;
+            else if (n == "k_n") sc.force.law.k_normal = v;
+            else throw ScriptError("unknown parameter \"" + n + "\"");
+        }
+        s.doc.edit(std::move(sc), n);
+    } else if (c == "undo") {
+        cmd_undo(s);
+    } else if (c == "redo") {
+        cmd_redo(s);
+    } else if (c == "fit") {
+        cmd_fit(s);
+    } else if (c == "save") {
+        cmd_save(s, w[1]);  // the outcome is checked with `expect error 0|1`
+    } else if (c == "open") {
+        s.doc.open(w[1]);
+        cmd_fit(s);
+    } else if (c == "generate") {
+        if (!cmd_generate(s, w[1])) throw ScriptError("unknown generator \"" + w[1] + "\" (block, bumps, arc)");
+    } else if (c == "resize") {
+        const double rw = number(w[1]), rh = number(w[2]);
+        if (rw < 64 || rh < 64 || rw > 8192 || rh > 8192) throw ScriptError("resize: 64..8192 px");
+        resize_ = std::make_pair(static_cast<int>(rw), static_cast<int>(rh));
+        return true;
+    } else if (c == "screenshot") {
+        screenshot_ = w[1];
+    } else if (c == "estop") {
+        if (w[1] != "on" && w[1] != "off") throw ScriptError("estop on|off");
+        if (s.servo && s.servo->stopped() != (w[1] == "on")) cmd_toggle_stop(s);
+    } else if (c == "wait") {
+        if (wait_until_ < 0.0) wait_until_ = now + number(w[1]);
+        return now >= wait_until_;
+    } else if (c == "frames") {
+        if (frames_left_ < 0) frames_left_ = static_cast<long>(number(w[1]));
+        return frames_left_-- <= 0;
+    } else if (c == "wait_contact" || c == "wait_state") {
+        const double timeout = number(w[c == "wait_contact" ? 1 : 2]);
+        if (wait_until_ < 0.0) wait_until_ = now + timeout;
+        const ServoSnapshot snap = s.servo ? s.servo->snapshot() : ServoSnapshot{};
+        const bool ok = c == "wait_contact" ? snap.contact : std::string(to_string(snap.state)) == w[1];
+        if (ok) return true;
+        if (now < wait_until_) return false;
+        fail(line, c == "wait_contact" ? "no contact within " + w[1] + " s"
+                                       : "servo state is " + std::string(to_string(snap.state)) + ", not " + w[1] +
+                                             " after " + w[2] + " s");
+    } else if (c == "expect") {
+        const ServoSnapshot snap = s.servo ? s.servo->snapshot() : ServoSnapshot{};
+        const std::string& n = w[1];
+        const double f = std::hypot(snap.force.x, snap.force.y);
+        std::string got;
+        bool ok = false;
+        if (n == "state") {
+            got = to_string(snap.state);
+            ok = got == w[2];
+        } else {
+            const double want = number(w[2]);
+            double v = 0.0;
+            if (n == "contact") v = snap.contact ? 1 : 0;
+            else if (n == "segments") v = segment_count(s.doc.scene());
+            else if (n == "contours") v = static_cast<double>(s.doc.scene().contours.size());
+            else if (n == "ke") v = s.doc.scene().force.stiffness;
+            else if (n == "ke_effective") v = snap.stiffness;
+            else if (n == "stopped") v = s.servo && s.servo->stopped() ? 1 : 0;
+            else if (n == "valid") v = s.doc.valid() ? 1 : 0;
+            else if (n == "undo_depth") v = static_cast<double>(s.doc.undo_depth());
+            else if (n == "dirty") v = s.doc.dirty() ? 1 : 0;
+            else if (n == "error") v = s.message_is_error ? 1 : 0;
+            else if (n == "force_above" || n == "force_below") v = f;
+            else throw ScriptError("unknown expectation \"" + n + "\"");
+            if (n == "force_above") ok = v > want;
+            else if (n == "force_below") ok = v < want;
+            else if (n == "ke_effective") ok = std::abs(v - want) <= 1.0;
+            else ok = v == want;
+            char buf[64];
+            std::snprintf(buf, sizeof buf, "%.6g", v);
+            got = buf;
+        }
+        if (!ok) fail(line, "expected " + n + " " + w[2] + ", got " + got);
+        else std::fprintf(stderr, "script %s:%d: ok: %s = %s\n", origin_.c_str(), line.number, n.c_str(), got.c_str());
+    } else if (c == "quit") {
+        s.quit = true;
+    }
+    return true;
+}
+
+}  // namespace contactlab::editor

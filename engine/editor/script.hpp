@@ -1,0 +1,67 @@
+// script.hpp — `contactlab edit --script FILE`: UI actions and checks, one command per line, run
+// through the same canvas functions the mouse and keys use. Coordinates are world mm; angles deg.
+//
+//   tool finger|select|line|quad|arc   click X Y        rclick X Y       drag X0 Y0 X1 Y1
+//   finger X Y [PHI]               key NAME (space, delete, ctrl+z, ctrl+y, f, 1, 2, 3, q, e)
+//   set NAME VALUE   (ke, max_force, damping, mu_s, mu_d, k_t, k_n  SI units;
+//                     model spring|ellipsoid; rule centroid|least_displacement; kp ki kd;
+//                     snap_mm MM: grid snapping for the authoring tools, 0 = off)
+//   undo  redo  fit  save PATH  open PATH  screenshot PATH  estop on|off  resize W H (px)
+//   generate block|bumps|arc
+//   wait SECONDS     frames N     wait_contact TIMEOUT_S     wait_state STATE TIMEOUT_S
+//   expect NAME VALUE  (contact 0|1, segments N, contours N, ke N/m, ke_effective N/m (within 1),
+//                       state NAME, stopped 0|1, valid 0|1, force_above N, force_below N,
+//                       undo_depth N, dirty 0|1, error 0|1: the last action's message was an error)
+//   quit
+// Blank lines and lines starting with # are ignored. A failed expectation is reported with its
+// line number and the run goes on; the editor exits 1 if any failed.
+#pragma once
+
+#include "engine/editor/editor_state.hpp"
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace contactlab::editor {
+
+struct ScriptError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+class Script {
+public:
+    // Reads and checks every line (command name and argument count); throws ScriptError.
+    static Script load(const std::string& path);
+    static Script parse(const std::string& text, const std::string& origin = "script");
+
+    // Runs commands until one has to wait for later frames (or the end). `now`: s, monotonic.
+    void step(EditorState& s, double now);
+    bool finished() const { return next_ >= lines_.size(); }
+    int failures() const { return failures_; }
+    // A screenshot the script asked for this frame (the editor takes it and writes the PNG).
+    std::optional<std::string> take_screenshot_request();
+    // A window size (px) the script asked for this frame.
+    std::optional<std::pair<int, int>> take_resize_request();
+
+private:
+    struct Line {
+        int number = 0;
+        std::vector<std::string> words;
+    };
+    // One command; false when it must be retried next frame (a wait not yet over).
+    bool run(EditorState& s, const Line& line, double now);
+    void fail(const Line& line, const std::string& why);
+
+    std::string origin_;
+    std::vector<Line> lines_;
+    std::size_t next_ = 0;
+    int failures_ = 0;
+    double wait_until_ = -1.0;
+    long frames_left_ = -1;
+    std::optional<std::string> screenshot_;
+    std::optional<std::pair<int, int>> resize_;
+};
+
+}  // namespace contactlab::editor

@@ -1,0 +1,233 @@
+// window_target.cpp — acquire, record, submit, present, read back (see window_target.hpp).
+#include "engine/editor/window_target.hpp"
+
+#include "engine/render/vk_check.hpp"
+
+#include <cstring>
+
+namespace contactlab::editor {
+
+using render::vk_check;
+
+WindowTarget::WindowTarget(const render::VulkanContext& ctx, VkSurfaceKHR surface, bool vsync)
+    : ctx_(ctx), vsync_(vsync), stencil_format_(render::pick_stencil_format(ctx)), swapchain_(ctx, surface) {
+    const VkDevice dev = ctx_.device();
+    try {
+        // Render pass: the renderer's layout (colour cleared and stored, stencil cleared), ending
+        // ready for presentation.
+        render_pass_ = render::create_render_pass(dev, render::kColorFormat, stencil_format_,
+                                                  VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
+        // Pipelines: the same three the offscreen target builds, for this render pass.
+        pipelines_ = std::make_unique<render::Pipelines>(ctx_, render_pass_);
+
+        // Per frame in flight: a command buffer, a fence (created signalled: the first wait passes)
+        // and the image-acquired semaphore.
+        for (Frame& f : frames_) {
+            VkCommandBufferAllocateInfo alloc{};
+            alloc.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
+            alloc.commandPool = ctx_.command_pool();
+            alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+            alloc.commandBufferCount = 1;
+            vk_check(vkAllocateCommandBuffers(dev, &alloc, &f.cmd), "vkAllocateCommandBuffers");
+            VkFenceCreateInfo fence{};
+            fence.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
+            fence.flags = VK_FENCE_CREATE_SIGNALED_BIT;
+            vk_check(vkCreateFence(dev, &fence, nullptr, &f.done), "vkCreateFence");
+            VkSemaphoreCreateInfo sem{};
+            sem.sType = VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO;
+            vk_check(vkCreateSemaphore(dev, &sem, nullptr, &f.acquired), "vkCreateSemaphore");
+        }
+    } catch (...) {
+        destroy();
+        throw;
+    }
+}
+
+WindowTarget::~WindowTarget() { destroy(); }
+
+void WindowTarget::destroy() {
+    const VkDevice dev = ctx_.device();
+    vkDeviceWaitIdle(dev);
+    for (VkSemaphore s : rendered_) vkDestroySemaphore(dev, s, nullptr);
+    rendered_.clear();
+    for (Frame& f : frames_) {
+        if (f.acquired) vkDestroySemaphore(dev, f.acquired, nullptr);
+        if (f.done) vkDestroyFence(dev, f.done, nullptr);
+        if (f.cmd) vkFreeCommandBuffers(dev, ctx_.command_pool(), 1, &f.cmd);
+        f = Frame{};
+    }
+    readback_.reset();
+    swapchain_.destroy();
+    pipelines_.reset();
+    if (render_pass_) vkDestroyRenderPass(dev, render_pass_, nullptr);
+    render_pass_ = VK_NULL_HANDLE;
+}
+
+void WindowTarget::recreate(int width, int height) {
+    const VkDevice dev = ctx_.device();
+    // Swapchain recreation: nothing may still use the old images.
+    vkDeviceWaitIdle(dev);
+    for (VkSemaphore s : rendered_) vkDestroySemaphore(dev, s, nullptr);
+    rendered_.clear();
+    const bool had = swapchain_.valid();
+    if (!swapchain_.create(render_pass_, stencil_format_, width, height, vsync_)) return;
+    if (had) ++recreations_;
+    // Render-finished semaphores: one per swapchain image (presentation has no fence to tell
+    // when a semaphore may be reused, the image's next acquisition does).
+    rendered_.resize(swapchain_.images().size(), VK_NULL_HANDLE);
+    for (VkSemaphore& s : rendered_) {
+        VkSemaphoreCreateInfo sem{};
+        sem.sType = VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO;
+        vk_check(vkCreateSemaphore(dev, &sem, nullptr, &s), "vkCreateSemaphore");
+    }
+    width_ = width;
+    height_ = height;
+    out_of_date_ = false;
+}
+
+bool WindowTarget::prepare(int width, int height) {
+    if (width <= 0 || height <= 0) return false;  // minimised: keep the old swapchain, draw nothing
+    if (!swapchain_.valid() || rendered_.empty() || out_of_date_ || width != width_ || height != height_)
+        recreate(width, height);
+    return swapchain_.valid() && !rendered_.empty();
+}
+
+void WindowTarget::record_readback(VkCommandBuffer cmd, VkImage image) {
+    const VkExtent2D e = swapchain_.extent();
+    // Barrier: the presentable image (colour writes done) becomes a transfer source.
+    VkImageMemoryBarrier to_src{};
+    to_src.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
+    to_src.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    to_src.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+    to_src.oldLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
+    to_src.newLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    to_src.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    to_src.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    to_src.image = image;
+    to_src.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0,
+                         nullptr, 0, nullptr, 1, &to_src);
+
+    // Copy: the whole image into the host-visible buffer, tightly packed BGRA rows.
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {e.width, e.height, 1};
+    vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.buffer(), 1, &region);
+
+    // Barriers: the image back to the presentation layout; the copy visible to the host.
+    VkImageMemoryBarrier to_present = to_src;
+    to_present.srcAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+    to_present.dstAccessMask = 0;
+    to_present.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    to_present.newLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
+    VkBufferMemoryBarrier to_host{};
+    to_host.sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER;
+    to_host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    to_host.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    to_host.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    to_host.buffer = readback_.buffer();
+    to_host.size = VK_WHOLE_SIZE;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT,
+                         0, 0, nullptr, 1, &to_host, 1, &to_present);
+}
+
+FrameOutcome WindowTarget::render(const render::DrawList& list, render::Color background,
+                                  const std::function<void(VkCommandBuffer)>& overlay, render::Image* screenshot) {
+    const VkDevice dev = ctx_.device();
+    if (!swapchain_.valid() || rendered_.empty()) return FrameOutcome::skipped;
+    Frame& f = frames_[frame_index_];
+
+    // Wait for this slot's previous frame: its command buffer, geometry and semaphore are free.
+    vk_check(vkWaitForFences(dev, 1, &f.done, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+
+    // Acquire: out-of-date means recreate and skip; suboptimal still signalled the semaphore.
+    uint32_t image_index = 0;
+    VkResult r = vkAcquireNextImageKHR(dev, swapchain_.handle(), UINT64_MAX, f.acquired, VK_NULL_HANDLE, &image_index);
+    if (r == VK_ERROR_OUT_OF_DATE_KHR) {
+        out_of_date_ = true;
+        return FrameOutcome::skipped;
+    }
+    if (r == VK_SUBOPTIMAL_KHR) out_of_date_ = true;
+    else vk_check(r, "vkAcquireNextImageKHR");
+    vk_check(vkResetFences(dev, 1, &f.done), "vkResetFences");
+
+    const SwapchainImage& target = swapchain_.images()[image_index];
+    const VkExtent2D e = swapchain_.extent();
+    render::upload_draw_list(ctx_, list, f.geometry);
+    if (screenshot)
+        render::ensure_buffer(ctx_, readback_, static_cast<VkDeviceSize>(e.width) * e.height * 4,
+                              VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+
+    // Command buffer: re-recorded every frame.
+    vk_check(vkResetCommandBuffer(f.cmd, 0), "vkResetCommandBuffer");
+    VkCommandBufferBeginInfo begin{};
+    begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    vk_check(vkBeginCommandBuffer(f.cmd, &begin), "vkBeginCommandBuffer");
+
+    // Render pass: clear to the theme background, the draw list, then the overlay (ImGui).
+    VkClearValue clear[2]{};
+    clear[0].color = {{background.r / 255.0f, background.g / 255.0f, background.b / 255.0f, background.a / 255.0f}};
+    clear[1].depthStencil = {1.0f, 0};
+    VkRenderPassBeginInfo rp{};
+    rp.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO;
+    rp.renderPass = render_pass_;
+    rp.framebuffer = target.framebuffer;
+    rp.renderArea = {{0, 0}, e};
+    rp.clearValueCount = 2;
+    rp.pClearValues = clear;
+    vkCmdBeginRenderPass(f.cmd, &rp, VK_SUBPASS_CONTENTS_INLINE);
+    render::record_draw_list(f.cmd, *pipelines_, list, f.geometry);
+    if (overlay) overlay(f.cmd);
+    vkCmdEndRenderPass(f.cmd);  // the image is now in PRESENT_SRC_KHR
+
+    // Screenshot: copy the very image that is presented.
+    if (screenshot) record_readback(f.cmd, target.image);
+    vk_check(vkEndCommandBuffer(f.cmd), "vkEndCommandBuffer");
+
+    // Submit: wait for the acquisition before writing colour; signal the image's semaphore.
+    const VkPipelineStageFlags wait_stage = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    VkSubmitInfo submit{};
+    submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
+    submit.waitSemaphoreCount = 1;
+    submit.pWaitSemaphores = &f.acquired;
+    submit.pWaitDstStageMask = &wait_stage;
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &f.cmd;
+    submit.signalSemaphoreCount = 1;
+    submit.pSignalSemaphores = &rendered_[image_index];
+    vk_check(vkQueueSubmit(ctx_.queue(), 1, &submit, f.done), "vkQueueSubmit");
+
+    // Present: out-of-date or suboptimal marks the swapchain for recreation before the next frame.
+    VkSwapchainKHR sc = swapchain_.handle();
+    VkPresentInfoKHR present{};
+    present.sType = VK_STRUCTURE_TYPE_PRESENT_INFO_KHR;
+    present.waitSemaphoreCount = 1;
+    present.pWaitSemaphores = &rendered_[image_index];
+    present.swapchainCount = 1;
+    present.pSwapchains = &sc;
+    present.pImageIndices = &image_index;
+    r = vkQueuePresentKHR(ctx_.queue(), &present);
+    if (r == VK_ERROR_OUT_OF_DATE_KHR || r == VK_SUBOPTIMAL_KHR) out_of_date_ = true;
+    else vk_check(r, "vkQueuePresentKHR");
+    frame_index_ = (frame_index_ + 1) % kFramesInFlight;
+
+    // Readback: wait for this frame, then BGRA -> RGBA.
+    if (screenshot) {
+        vk_check(vkWaitForFences(dev, 1, &f.done, VK_TRUE, UINT64_MAX), "vkWaitForFences (screenshot)");
+        screenshot->width = static_cast<int>(e.width);
+        screenshot->height = static_cast<int>(e.height);
+        screenshot->rgba.resize(static_cast<size_t>(e.width) * e.height * 4);
+        const auto* src = static_cast<const uint8_t*>(readback_.data());
+        for (size_t i = 0; i < screenshot->rgba.size(); i += 4) {
+            screenshot->rgba[i + 0] = src[i + 2];
+            screenshot->rgba[i + 1] = src[i + 1];
+            screenshot->rgba[i + 2] = src[i + 0];
+            screenshot->rgba[i + 3] = 255;  // the window is opaque
+        }
+    }
+    return FrameOutcome::presented;
+}
+
+}  // namespace contactlab::editor

@@ -1,0 +1,93 @@
+// test_document.cpp — undo/redo of every edit, validation messages, atomic save, recovery file.
+#include "engine/editor/document.hpp"
+#include "engine/editor/scene_edit.hpp"
+#include "haptics/scene_io.hpp"
+#include "process.hpp"
+
+#include <doctest/doctest.h>
+
+#include <filesystem>
+
+using namespace contactlab;
+using namespace contactlab::editor;
+
+namespace {
+
+Scene floor_scene() {
+    Scene s;
+    Contour c;
+    c.segments.push_back(LineSegment{{-0.05, 0.0}, {0.05, 0.0}});
+    s.contours.push_back(c);
+    return s;
+}
+
+}  // namespace
+
+TEST_CASE("every edit can be undone and redone, in order") {
+    Document d(floor_scene());
+    CHECK_FALSE(d.dirty());
+    CHECK(d.valid());
+    Scene k = d.scene();
+    k.force.stiffness = 500.0;
+    d.edit(k, "Ke");
+    d.edit(add_line(d.scene(), {0.05, 0.0}, {0.08, -0.02}, 1e-9), "add line");
+    CHECK(segment_count(d.scene()) == 2);
+    CHECK(d.scene().force.stiffness == 500.0);
+    CHECK(d.undo_label() == "add line");
+    REQUIRE(d.undo());
+    CHECK(segment_count(d.scene()) == 1);
+    REQUIRE(d.undo());
+    CHECK(d.scene().force.stiffness == 1000.0);
+    CHECK_FALSE(d.undo());
+    REQUIRE(d.redo());
+    REQUIRE(d.redo());
+    CHECK(segment_count(d.scene()) == 2);
+    CHECK(d.scene().force.stiffness == 500.0);
+    CHECK_FALSE(d.redo());
+}
+
+TEST_CASE("a drag is one undo step and a click without a move records nothing") {
+    Document d(floor_scene());
+    d.begin_continuous("move point");
+    d.end_continuous();
+    CHECK(d.undo_depth() == 0);
+    d.begin_continuous("move point");
+    for (int i = 1; i <= 5; ++i) d.update_continuous(move_handle(d.scene(), {0, 0, 1}, {0.05 + 0.001 * i, 0.0}));
+    d.end_continuous();
+    CHECK(d.undo_depth() == 1);
+    CHECK(segment_end(d.scene().contours[0].segments[0]).x == doctest::Approx(0.055));
+    d.undo();
+    CHECK(segment_end(d.scene().contours[0].segments[0]).x == 0.05);
+}
+
+TEST_CASE("invalid geometry is reported, kept out of last_valid, refused by save") {
+    cli_test::TempDir dir;
+    Document d(floor_scene());
+    d.edit(move_handle(d.scene(), {0, 0, 1}, {-0.05, 0.0}), "move point");  // zero-length line
+    CHECK_FALSE(d.valid());
+    CHECK(d.problem().find("contours[0].segments[0]") != std::string::npos);
+    CHECK(segment_end(d.last_valid().contours[0].segments[0]).x == 0.05);
+    CHECK_THROWS_AS(d.save(dir.file("bad.json")), SceneError);
+    CHECK_FALSE(std::filesystem::exists(dir.file("bad.json")));
+    d.undo();
+    CHECK(d.valid());
+}
+
+TEST_CASE("save writes the scene atomically and round-trips and autosave writes the recovery file") {
+    cli_test::TempDir dir;
+    const std::string path = dir.file("scene.json");
+    Document d(floor_scene(), path);
+    Scene k = d.scene();
+    k.force.stiffness = 750.0;
+    d.edit(k, "Ke");
+    const std::string rec = d.autosave();
+    CHECK(rec == path + ".recovery.json");
+    CHECK(load_scene_file(rec).force.stiffness == 750.0);
+    CHECK(d.autosave().empty());  // nothing changed since
+    d.save();
+    CHECK_FALSE(d.dirty());
+    CHECK(load_scene_file(path).force.stiffness == 750.0);
+    CHECK_FALSE(std::filesystem::exists(rec));  // the recovery file goes once the work is saved
+    // Only the scene is left: no temporary file beside it.
+    CHECK(dir.entries() == std::vector<std::string>{"scene.json"});
+}
