@@ -14,6 +14,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cstddef>
+#include <algorithm>
 #include <cstring>
 #include <stdexcept>
 #include <vector>
@@ -40,10 +41,16 @@ double seconds() {
 
 }  // namespace
 
+namespace {
+gboolean on_ioctl_cb(UMockdevIoctlBase*, UMockdevIoctlClient* client, gpointer self);
+}  // namespace
+
 struct HapioEmulator::Impl {
     Config cfg;
     UMockdevTestbed* testbed = nullptr;
-    UMockdevIoctlBase* handler = nullptr;
+    // One ioctl handler per plug-in: a handler shared by the old node (closed by libusb after the
+    // unplug) and the new one was seen to drop the new node's connection.
+    std::vector<UMockdevIoctlBase*> handlers;
     mutable std::mutex mu;
 
     int address = 1;  // devnum; a replug gets the next one, as on a real bus
@@ -67,9 +74,12 @@ struct HapioEmulator::Impl {
     double t0 = seconds();
 
     // URBs: kept referenced from submit until reaped (libusb owns their memory meanwhile).
+    // Each URB belongs to one open descriptor (client): a URB submitted before an unplug must
+    // never be handed to the descriptor of the replugged device.
     struct Urb {
         UMockdevIoctlData* data;
         usbdevfs_urb* urb;
+        UMockdevIoctlClient* client;
     };
     std::deque<Urb> pending_in;  // IN transfers waiting for a frame
     std::deque<Urb> ready;       // completed, waiting to be reaped (status/length already set)
@@ -222,7 +232,7 @@ struct HapioEmulator::Impl {
                 // The parent keeps the resolved buffer alive and writes it back when the URB is reaped.
                 umockdev_ioctl_data_unref(umockdev_ioctl_data_resolve(data, offsetof(usbdevfs_urb, buffer),
                                                                       static_cast<gsize>(urb->buffer_length), nullptr));
-                Urb u{data, urb};  // our reference until reaped
+                Urb u{data, urb, client};  // our reference until reaped
                 if (urb->type == USBDEVFS_URB_TYPE_CONTROL) {
                     control(u);
                 } else if (urb->endpoint == kEndpointIn) {
@@ -258,11 +268,13 @@ struct HapioEmulator::Impl {
             }
             case USBDEVFS_REAPURB:
             case USBDEVFS_REAPURBNDELAY: {
-                if (ready.empty() && !pending_in.empty() && streaming && !silent) {
+                auto mine = [client](const Urb& u) { return u.client == client; };
+                auto in = std::find_if(pending_in.begin(), pending_in.end(), mine);
+                if (in != pending_in.end() && streaming && !silent) {
                     const double now = seconds();
                     if (halted || stall_next) {
-                        Urb u = pending_in.front();
-                        pending_in.pop_front();
+                        Urb u = *in;
+                        pending_in.erase(in);
                         u.urb->status = -EPIPE;
                         u.urb->actual_length = 0;
                         stall_next = false;
@@ -270,18 +282,19 @@ struct HapioEmulator::Impl {
                         ready.push_back(u);
                     } else if (cfg.frame_period <= 0.0 || now >= next_frame) {
                         next_frame = std::max(now, next_frame + cfg.frame_period);
-                        Urb u = pending_in.front();
-                        pending_in.pop_front();
+                        Urb u = *in;
+                        pending_in.erase(in);
                         fill_state(u);
                         ready.push_back(u);
                     }
                 }
-                if (ready.empty()) {
+                auto done = std::find_if(ready.begin(), ready.end(), mine);
+                if (done == ready.end()) {
                     umockdev_ioctl_client_complete(client, -1, EAGAIN);
                     return TRUE;
                 }
-                Urb u = ready.front();
-                ready.pop_front();
+                Urb u = *done;
+                ready.erase(done);
                 UMockdevIoctlData* ptr = umockdev_ioctl_data_resolve(arg, 0, sizeof(gpointer), nullptr);
                 umockdev_ioctl_data_set_ptr(ptr, 0, u.data);
                 umockdev_ioctl_client_complete(client, 0, 0);
@@ -304,6 +317,9 @@ struct HapioEmulator::Impl {
     void add_device() {
         const std::string n = node();
         GError* err = nullptr;
+        UMockdevIoctlBase* handler = umockdev_ioctl_base_new();
+        g_signal_connect(handler, "handle-ioctl", G_CALLBACK(on_ioctl_cb), this);
+        handlers.push_back(handler);
         if (!umockdev_testbed_attach_ioctl(testbed, n.c_str(), handler, &err)) {
             const std::string msg = err ? err->message : "?";
             if (err) g_error_free(err);
@@ -334,8 +350,9 @@ struct HapioEmulator::Impl {
     }
 };
 
+
 namespace {
-gboolean on_ioctl(UMockdevIoctlBase*, UMockdevIoctlClient* client, gpointer self) {
+gboolean on_ioctl_cb(UMockdevIoctlBase*, UMockdevIoctlClient* client, gpointer self) {
     return static_cast<HapioEmulator::Impl*>(self)->handle(client);
 }
 }  // namespace
@@ -344,8 +361,6 @@ HapioEmulator::HapioEmulator(const Config& c) : impl_(std::make_unique<Impl>()) 
     impl_->cfg = c;
     impl_->kernel_driver = c.kernel_driver_bound;
     impl_->testbed = umockdev_testbed_new();
-    impl_->handler = umockdev_ioctl_base_new();
-    g_signal_connect(impl_->handler, "handle-ioctl", G_CALLBACK(on_ioctl), impl_.get());
     if (c.plugged) plug();
 }
 
@@ -357,8 +372,8 @@ HapioEmulator::~HapioEmulator() {
         impl_->pending_in.clear();
         impl_->ready.clear();
     }
-    g_clear_object(&impl_->handler);
     g_clear_object(&impl_->testbed);
+    for (UMockdevIoctlBase* h : impl_->handlers) g_object_unref(h);
 }
 
 void HapioEmulator::plug() {
@@ -387,7 +402,11 @@ void HapioEmulator::unplug() {
         impl_->motors_on = false;
         path = impl_->syspath;
     }
-    umockdev_testbed_remove_device(impl_->testbed, path.c_str());
+    // Only the udev "remove" event, not umockdev_testbed_remove_device(): removing the record
+    // also closes the ioctl socket under descriptors libusb still holds open (it closes them
+    // only after it has seen ENODEV), and umockdev's preload aborts the process on that EOF.
+    // The device already answers ENODEV to everything, as an unplugged one does.
+    umockdev_testbed_uevent(impl_->testbed, path.c_str(), "remove");
 }
 
 void HapioEmulator::deny_permission() {

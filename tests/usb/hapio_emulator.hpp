@@ -35,7 +35,7 @@ public:
     HapioEmulator& operator=(const HapioEmulator&) = delete;
 
     void plug();      // appears on the bus with a new address (udev "add")
-    void unplug();    // every ioctl now fails with ENODEV, then udev "remove"
+    void unplug();    // every ioctl now fails with ENODEV, and udev says "remove"
     // Makes the device node unreadable for this process (drops CAP_DAC_OVERRIDE when root).
     void deny_permission();
 
