@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
     register_generate_command(app, rc);
     register_simulate_command(app, rc);
     register_render_command(app, rc);
+    register_devices_command(app, rc);
 
     try {
         app.parse(argc, argv);

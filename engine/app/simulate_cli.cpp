@@ -9,7 +9,7 @@ void register_simulate_command(CLI::App& app, int& rc) {
     static bool virtual_time = false, real_time = false;
     CLI::App* cmd = app.add_subcommand("simulate", "Run the servo loop against a simulated or replayed device");
     cmd->add_option("scene", o.scene_path, "Scene file (JSON, scenes/README.md)")->required();
-    cmd->add_option("--device", o.device, "sim-cld (simulated CLD rig + scripted hand) or replay:FILE")
+    cmd->add_option("--device", o.device, "sim-cld (simulated CLD rig + scripted hand), replay:FILE, or usb:hapio (a hapio board; real time, needs --duration)")
         ->default_val("sim-cld");
     cmd->add_option("--hand", o.hand, "Scripted hand path, header t,x,y,phi (s, m, m, rad), linearly interpolated");
     cmd->add_option("--task", o.task, "Built-in hand path instead of --hand: contour-block (seed 000 Fig. 9)");

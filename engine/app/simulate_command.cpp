@@ -8,6 +8,7 @@
 #include "drivers/servo_loop.hpp"
 #include "drivers/sim/sim_cld_device.hpp"
 #include "drivers/tasks.hpp"
+#include "drivers/usb/hapio_device.hpp"
 #include "haptics/scene_io.hpp"
 
 #include <cmath>
@@ -20,7 +21,16 @@ using namespace contactlab::drivers;
 
 namespace {
 
+bool is_usb(const std::string& device) { return device.rfind("usb:", 0) == 0; }
+
 std::unique_ptr<Device> make_device(const SimulateOptions& o, const Scene& scene, double& path_duration) {
+    if (is_usb(o.device)) {
+        // A real device: the user's hand moves it, so there is no path, and time is real.
+        if (!o.hand.empty() || !o.task.empty()) throw BadInput("--device " + o.device + " takes no --hand or --task");
+        if (o.duration < 0.0) throw BadInput("--device " + o.device + " needs --duration (s)");
+        if (o.device == "usb:hapio") return std::make_unique<hapio::HapioDevice>();
+        throw BadInput("--device: unknown USB device \"" + o.device + "\" (usb:hapio; see contactlab devices)");
+    }
     if (o.device.rfind("replay:", 0) == 0) {
         if (!o.hand.empty() || !o.task.empty()) throw BadInput("--device replay:FILE takes no --hand or --task");
         const std::string file = o.device.substr(7);
@@ -34,7 +44,7 @@ std::unique_ptr<Device> make_device(const SimulateOptions& o, const Scene& scene
         path_duration = static_cast<double>(dev->size()) / o.rate;
         return dev;
     }
-    if (o.device != "sim-cld") throw BadInput("--device: unknown device \"" + o.device + "\" (sim-cld, replay:FILE)");
+    if (o.device != "sim-cld") throw BadInput("--device: unknown device \"" + o.device + "\" (sim-cld, replay:FILE, usb:hapio)");
     if (o.hand.empty() == o.task.empty()) throw BadInput("sim-cld needs exactly one of --hand HAND.csv or --task contour-block");
     HandPath path;
     if (!o.task.empty()) {
@@ -85,8 +95,10 @@ int run_simulate(const SimulateOptions& o) {
         std::fprintf(stderr, "simulate: device %s failed to open: %s\n", dev->name(), dev->fault().detail);
         return 1;
     }
+    // A real device cannot run in virtual time.
+    const bool realtime = o.realtime || is_usb(o.device);
     RealtimeReport rt;
-    if (o.realtime) {
+    if (realtime) {
         rt = run_realtime(loop, ticks);
     } else {
         loop.run_virtual(ticks);
@@ -95,12 +107,26 @@ int run_simulate(const SimulateOptions& o) {
     const ServoSnapshot snap = tick.snapshot();
 
     std::fprintf(stderr, "simulate: %s, %s time, %.0f Hz, %llu ticks (%.3f s), %llu in contact, max |F| %.3f N\n",
-                 dev->name(), o.realtime ? "real" : "virtual", o.rate, static_cast<unsigned long long>(sum.rows),
+                 dev->name(), realtime ? "real" : "virtual", o.rate, static_cast<unsigned long long>(sum.rows),
                  duration, static_cast<unsigned long long>(sum.contact_rows), sum.max_force);
     std::fprintf(stderr, "simulate: roller |target - measured| max %.4f mm while engaged in contact; state %s, %u fault(s)%s%s\n",
                  sum.max_roller_error * 1e3, to_string(snap.state), snap.fault_count,
                  snap.fault_count ? ", last: " : "", snap.fault_count ? to_string(tick.snapshot().fault) : "");
-    if (o.realtime) {
+    if (dev->state() == DeviceState::fault) {
+        std::fprintf(stderr, "simulate: device %s ended in fault (%s): %s\n", dev->name(), to_string(dev->fault().code),
+                     dev->fault().detail);
+    }
+    if (const auto* h = dynamic_cast<const hapio::HapioDevice*>(dev.get())) {
+        const hapio::HapioStats st = h->stats();
+        std::fprintf(stderr, "simulate: %s: %llu frames, %llu commands, %llu rejected, %llu lost, %llu timeouts, "
+                     "%llu stalls, %llu unplugs, %llu replugs; round trip mean %.3f ms, max %.3f ms\n",
+                     dev->name(), static_cast<unsigned long long>(st.frames), static_cast<unsigned long long>(st.commands),
+                     static_cast<unsigned long long>(st.rejected()), static_cast<unsigned long long>(st.sequence_gaps),
+                     static_cast<unsigned long long>(st.timeouts), static_cast<unsigned long long>(st.stalls),
+                     static_cast<unsigned long long>(st.disconnects), static_cast<unsigned long long>(st.reconnects),
+                     st.rtt_mean * 1e3, st.rtt_max * 1e3);
+    }
+    if (realtime) {
         std::fprintf(stderr, "simulate: %s; %s\n", rt.scheduling.c_str(), rt.memory_lock.c_str());
         std::fprintf(stderr, "simulate: period p50 %.2f us, p99 %.2f us, max %.2f us, mean %.3f us, %llu overruns, %llu records dropped\n",
                      rt.p50 * 1e6, rt.p99 * 1e6, rt.max * 1e6, rt.mean * 1e6,

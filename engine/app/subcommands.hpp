@@ -27,5 +27,6 @@ void register_trace_commands(CLI::App& app, int& rc);  // trace, demo (trace_cli
 void register_generate_command(CLI::App& app, int& rc);  // generate (generate_cli.cpp)
 void register_simulate_command(CLI::App& app, int& rc);  // simulate (simulate_cli.cpp)
 void register_render_command(CLI::App& app, int& rc);  // render (render_cli.cpp)
+void register_devices_command(CLI::App& app, int& rc);  // devices (devices_cli.cpp)
 
 }  // namespace contactlab::app
