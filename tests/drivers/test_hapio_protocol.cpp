@@ -75,7 +75,7 @@ TEST_CASE("hapio frames: short, bad magic, bad version, bad CRC and bad counts a
     CHECK(unpack(b, sizeof b, r) == FrameError::bad_counts);
 }
 
-TEST_CASE("hapio command frame round-trips; -32768 (no positive twin) is refused") {
+TEST_CASE("hapio command frame round-trips, and -32768 (no positive twin) is refused") {
     Command c;
     c.sequence = 7;
     c.motors = 3;

@@ -97,7 +97,7 @@ TEST_CASE("stall on the IN endpoint: fault, halt cleared, streaming resumes") {
     CHECK(dev.fault().code == DeviceFaultCode::none);
 }
 
-TEST_CASE("timeout: a silent board is a Fault(timeout) and no valid reading; it recovers when it speaks") {
+TEST_CASE("timeout: a silent board is a Fault(timeout) and no valid reading, and it recovers when it speaks") {
     HapioEmulator emu;
     hapio::HapioOptions o = tolerant();
     o.transfer_timeout_ms = 30;
@@ -149,7 +149,7 @@ TEST_CASE("malformed frames: short, bad magic, bad version, bad CRC and bad coun
     CHECK(dev.state() == DeviceState::ready);
 }
 
-TEST_CASE("board faults: emergency stop is a device fault; cleared when the board reports none") {
+TEST_CASE("board faults: emergency stop is a device fault, cleared when the board reports none") {
     HapioEmulator emu;
     hapio::HapioDevice dev(tolerant());
     REQUIRE(dev.open());
