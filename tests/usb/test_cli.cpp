@@ -7,6 +7,7 @@
 
 #include <doctest/doctest.h>
 
+#include <cstdio>
 #include <cstdlib>
 
 using namespace contactlab::test;
@@ -46,6 +47,7 @@ TEST_CASE("contactlab simulate --device usb:hapio streams the emulated board in 
     const std::string csv = dir.file("out.csv");
     const ProcessResult p = run_contactlab(
         {"simulate", scene("block.json"), "--device", "usb:hapio", "--duration", "0.5", "-o", csv});
+    std::printf("%s", p.err.c_str());  // the run's own figures, for the log
     CHECK(p.exit_code == 0);
     CHECK(contains(p.err, "usb:hapio, real time"));
     CHECK(contains(p.err, "0 rejected"));
