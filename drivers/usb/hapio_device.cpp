@@ -61,6 +61,8 @@ bool HapioDevice::read(DeviceReading& out) noexcept {
     out.t = now();  // host clock: keeps running through unplugs, so the servo's timing stays sane
     const DeviceState st = state();
     if (st == DeviceState::disconnected || st == DeviceState::opening) return false;
+    // Unplugged: the last frame describes a device that is gone.
+    if (st == DeviceState::fault && fault_code_.load(std::memory_order_acquire) == DeviceFaultCode::disconnected) return false;
     const Sample s = latest_.load();
     if (s.count == 0 || out.t - s.rx_time > opt_.stale_after) return false;
     model_.to_reading(s.state, out);

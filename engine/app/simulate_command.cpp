@@ -8,6 +8,7 @@
 #include "drivers/servo_loop.hpp"
 #include "drivers/sim/sim_cld_device.hpp"
 #include "drivers/tasks.hpp"
+#include "drivers/usb/falcon_device.hpp"
 #include "drivers/usb/hapio_device.hpp"
 #include "haptics/scene_io.hpp"
 
@@ -29,7 +30,12 @@ std::unique_ptr<Device> make_device(const SimulateOptions& o, const Scene& scene
         if (!o.hand.empty() || !o.task.empty()) throw BadInput("--device " + o.device + " takes no --hand or --task");
         if (o.duration < 0.0) throw BadInput("--device " + o.device + " needs --duration (s)");
         if (o.device == "usb:hapio") return std::make_unique<hapio::HapioDevice>();
-        throw BadInput("--device: unknown USB device \"" + o.device + "\" (usb:hapio; see contactlab devices)");
+        if (o.device == "usb:falcon") {
+            falcon::FalconOptions fo;
+            fo.firmware = o.firmware;
+            return std::make_unique<falcon::FalconDevice>(fo);
+        }
+        throw BadInput("--device: unknown USB device \"" + o.device + "\" (usb:hapio, usb:falcon; see contactlab devices)");
     }
     if (o.device.rfind("replay:", 0) == 0) {
         if (!o.hand.empty() || !o.task.empty()) throw BadInput("--device replay:FILE takes no --hand or --task");
@@ -44,7 +50,7 @@ std::unique_ptr<Device> make_device(const SimulateOptions& o, const Scene& scene
         path_duration = static_cast<double>(dev->size()) / o.rate;
         return dev;
     }
-    if (o.device != "sim-cld") throw BadInput("--device: unknown device \"" + o.device + "\" (sim-cld, replay:FILE, usb:hapio)");
+    if (o.device != "sim-cld") throw BadInput("--device: unknown device \"" + o.device + "\" (sim-cld, replay:FILE, usb:hapio, usb:falcon)");
     if (o.hand.empty() == o.task.empty()) throw BadInput("sim-cld needs exactly one of --hand HAND.csv or --task contour-block");
     HandPath path;
     if (!o.task.empty()) {
@@ -125,6 +131,15 @@ int run_simulate(const SimulateOptions& o) {
                      static_cast<unsigned long long>(st.timeouts), static_cast<unsigned long long>(st.stalls),
                      static_cast<unsigned long long>(st.disconnects), static_cast<unsigned long long>(st.reconnects),
                      st.rtt_mean * 1e3, st.rtt_max * 1e3);
+    }
+    if (const auto* f = dynamic_cast<const falcon::FalconDevice*>(dev.get())) {
+        const falcon::FalconStats st = f->stats();
+        std::fprintf(stderr, "simulate: %s: %llu packets, %llu commands, %llu malformed, %llu timeouts, %llu unplugs, "
+                     "%llu replugs, %llu firmware uploads\n",
+                     dev->name(), static_cast<unsigned long long>(st.packets), static_cast<unsigned long long>(st.commands),
+                     static_cast<unsigned long long>(st.malformed), static_cast<unsigned long long>(st.timeouts),
+                     static_cast<unsigned long long>(st.disconnects), static_cast<unsigned long long>(st.reconnects),
+                     static_cast<unsigned long long>(st.firmware_uploads));
     }
     if (realtime) {
         std::fprintf(stderr, "simulate: %s; %s\n", rt.scheduling.c_str(), rt.memory_lock.c_str());
