@@ -111,8 +111,9 @@ void FalconDevice::teardown(bool device_gone) {
         libusb_close(handle_);
         handle_ = nullptr;
     }
-    if (in_ != nullptr) libusb_free_transfer(in_);
-    if (out_ != nullptr) libusb_free_transfer(out_);
+    // Still in flight after the bounded wait: leak rather than free under libusb.
+    if (in_ != nullptr && !in_active_) libusb_free_transfer(in_);
+    if (out_ != nullptr && !out_active_) libusb_free_transfer(out_);
     in_ = out_ = nullptr;
     in_active_ = out_active_ = false;
     if (dev_ != nullptr) libusb_unref_device(dev_);

@@ -161,12 +161,14 @@ void HapioDevice::teardown(bool device_gone) {
         libusb_close(handle_);
         handle_ = nullptr;
     }
-    for (auto& t : in_) {
-        if (t != nullptr) libusb_free_transfer(t);
-        t = nullptr;
+    // A transfer still in flight after the bounded wait is left allocated (a leak) rather than
+    // freed under libusb: never seen, but a use-after-free would be far worse.
+    for (int i = 0; i < kInFlight; ++i) {
+        if (in_[i] != nullptr && !in_active_[i]) libusb_free_transfer(in_[i]);
+        in_[i] = nullptr;
     }
     in_active_ = {};
-    if (out_ != nullptr) libusb_free_transfer(out_);
+    if (out_ != nullptr && !out_active_) libusb_free_transfer(out_);
     out_ = nullptr;
     out_active_ = false;
     if (dev_ != nullptr) libusb_unref_device(dev_);
