@@ -2,6 +2,7 @@
 // inherits the testbed (UMOCKDEV_DIR) and loads umockdev's preload library, so its libusb talks
 // to this process's emulator exactly as it would to a plugged-in board.
 #include "hapio_emulator.hpp"
+#include "usb_fixture.hpp"
 
 #include "../cli/process.hpp"
 
@@ -12,11 +13,6 @@
 
 using namespace contactlab::test;
 using namespace cli_test;
-
-namespace {
-// Children only: this process already has the preload library linked in.
-void preload_umockdev_in_children() { ::setenv("LD_PRELOAD", "libumockdev-preload.so.0", 1); }
-}  // namespace
 
 TEST_CASE("contactlab devices lists the emulated board and exits 0") {
     HapioEmulator emu;

@@ -186,7 +186,7 @@ TEST_CASE("falcon: contactlab simulate --device usb:falcon uploads the firmware 
     FalconEmulator emu({fw});
     emu.set_homed(0x7);
     emu.set_encoders(counts_at(FalconKinematics{}, {0.0, 0.0, 0.11}));
-    ::setenv("LD_PRELOAD", "libumockdev-preload.so.0", 1);  // children only (see test_cli.cpp)
+    preload_umockdev_in_children();
     cli_test::TempDir dir;
     const auto p = cli_test::run_contactlab({"simulate", cli_test::scene("block.json"), "--device", "usb:falcon",
                                              "--firmware", write_file(dir, fw), "--duration", "0.3", "-o",

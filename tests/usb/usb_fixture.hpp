@@ -7,9 +7,21 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <string>
 #include <thread>
 
 namespace contactlab::test {
+
+// Child processes (the real `contactlab`) get umockdev's preload library through LD_PRELOAD; this
+// process has it linked in already. Under ASan the child would abort on the preload coming before
+// the ASan runtime, so that check is switched off for children (umockdev only wraps libc calls).
+inline void preload_umockdev_in_children() {
+    ::setenv("LD_PRELOAD", "libumockdev-preload.so.0", 1);
+    const char* asan = std::getenv("ASAN_OPTIONS");
+    std::string opts = asan != nullptr && *asan ? std::string(asan) + ":" : std::string();
+    ::setenv("ASAN_OPTIONS", (opts + "verify_asan_link_order=0").c_str(), 1);
+}
 
 // Polls `done` every 0.5 ms for at most `timeout` s (the transport runs on its own thread).
 template <class Pred>
