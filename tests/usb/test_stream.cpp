@@ -160,3 +160,25 @@ TEST_CASE("board faults: emergency stop is a device fault, cleared when the boar
     emu.set_faults(0);
     CHECK(wait_until([&] { return dev.state() == DeviceState::ready; }));
 }
+
+TEST_CASE("paced like a real board (one frame per ms): every frame answered with a command, none lost") {
+    HapioEmulator::Config c;
+    c.frame_period = 1e-3;  // s
+    HapioEmulator emu(c);
+    hapio::HapioDevice dev(tolerant());
+    REQUIRE(dev.open());
+    REQUIRE(wait_until([&] { return dev.stats().frames >= 50; }));
+    const hapio::HapioStats a = dev.stats();
+    const auto t0 = std::chrono::steady_clock::now();
+    REQUIRE(wait_until([&] { return dev.stats().frames >= a.frames + 1000; }, 30.0));
+    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const hapio::HapioStats b = dev.stats();
+    CHECK(b.rejected() == 0);
+    CHECK(b.sequence_gaps == 0);
+    CHECK(b.commands - a.commands >= 500);
+    std::printf("hapio emulated, paced at 1 kHz: %llu frames and %llu commands in %.3f s = %.0f frames/s; round trip "
+                "mean %.3f ms, max %.3f ms\n",
+                static_cast<unsigned long long>(b.frames - a.frames),
+                static_cast<unsigned long long>(b.commands - a.commands), secs,
+                static_cast<double>(b.frames - a.frames) / secs, b.rtt_mean * 1e3, b.rtt_max * 1e3);
+}
