@@ -13,8 +13,7 @@ inline constexpr const char* kUdevHint =
     "permission denied opening the USB device: install the udev rule (sudo cp assets/udev/70-contactlab.rules "
     "/etc/udev/rules.d/ && sudo udevadm control --reload && sudo udevadm trigger), then unplug and replug it";
 
-// A libusb_error (negative int, LIBUSB_SUCCESS is 0) as a fault; `during` says what was being
-// done ("open", "claim", ...) and is kept only when the code itself does not say enough.
+// A libusb_error (negative int; LIBUSB_SUCCESS, 0, is no fault) as a fault.
 DeviceFault fault_of_error(int libusb_error) noexcept;
 // A libusb_transfer_status (completed is no fault).
 DeviceFault fault_of_transfer(int libusb_transfer_status) noexcept;
