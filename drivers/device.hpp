@@ -26,9 +26,13 @@ const char* to_string(DeviceState s) noexcept;
 
 // Why a device is in DeviceState::fault. `detail` is a static string (no allocation on the servo
 // thread), e.g. "USB transfer timed out".
+// disconnected and permission_denied were added for USB devices: unplugging and a missing udev
+// rule are the two faults a user meets most, and each needs its own message and recovery.
 enum class DeviceFaultCode : std::uint8_t {
-    none, not_found, open_failed, io_error, timeout, watchdog, non_finite_command, over_limit, end_of_data
+    none, not_found, open_failed, io_error, timeout, watchdog, non_finite_command, over_limit, end_of_data,
+    disconnected, permission_denied
 };
+const char* to_string(DeviceFaultCode c) noexcept;
 struct DeviceFault {
     DeviceFaultCode code = DeviceFaultCode::none;
     const char* detail = "";

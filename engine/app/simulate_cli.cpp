@@ -9,8 +9,10 @@ void register_simulate_command(CLI::App& app, int& rc) {
     static bool virtual_time = false, real_time = false;
     CLI::App* cmd = app.add_subcommand("simulate", "Run the servo loop against a simulated or replayed device");
     cmd->add_option("scene", o.scene_path, "Scene file (JSON, scenes/README.md)")->required();
-    cmd->add_option("--device", o.device, "sim-cld (simulated CLD rig + scripted hand) or replay:FILE")
+    cmd->add_option("--device", o.device, "sim-cld (simulated CLD rig + scripted hand), replay:FILE, usb:hapio or usb:falcon (real devices: real time, need --duration)")
         ->default_val("sim-cld");
+    cmd->add_option("--firmware", o.firmware,
+                    "usb:falcon: Novint's Falcon firmware file, uploaded when the Falcon has none running (not shipped)");
     cmd->add_option("--hand", o.hand, "Scripted hand path, header t,x,y,phi (s, m, m, rad), linearly interpolated");
     cmd->add_option("--task", o.task, "Built-in task instead of --hand: contour-block (seed 000 Fig. 9), or roller-bandwidth "
                                         "(the roller alone, 1 cm sine sweep; writes freq,gain,phase_deg,element_gain,max_error)");

@@ -9,6 +9,8 @@
 #include "drivers/sim/roller_sine.hpp"
 #include "drivers/sim/sim_cld_device.hpp"
 #include "drivers/tasks.hpp"
+#include "drivers/usb/falcon_device.hpp"
+#include "drivers/usb/hapio_device.hpp"
 #include "haptics/scene_io.hpp"
 
 #include <algorithm>
@@ -26,8 +28,21 @@ namespace {
 // s: a stall is a gap of more than a few periods (DESIGN.md), and never less than the 5 ms the
 // servo and the simulated amplifiers use at 1 kHz and above.
 double watchdog_timeout_for(double rate) { return std::max(0.005, 3.0 / rate); }
+bool is_usb(const std::string& device) { return device.rfind("usb:", 0) == 0; }
 
 std::unique_ptr<Device> make_device(const SimulateOptions& o, const Scene& scene, double& path_duration) {
+    if (is_usb(o.device)) {
+        // A real device: the user's hand moves it, so there is no path, and time is real.
+        if (!o.hand.empty() || !o.task.empty()) throw BadInput("--device " + o.device + " takes no --hand or --task");
+        if (o.duration < 0.0) throw BadInput("--device " + o.device + " needs --duration (s)");
+        if (o.device == "usb:hapio") return std::make_unique<hapio::HapioDevice>();
+        if (o.device == "usb:falcon") {
+            falcon::FalconOptions fo;
+            fo.firmware = o.firmware;
+            return std::make_unique<falcon::FalconDevice>(fo);
+        }
+        throw BadInput("--device: unknown USB device \"" + o.device + "\" (usb:hapio, usb:falcon; see contactlab devices)");
+    }
     if (o.device.rfind("replay:", 0) == 0) {
         if (!o.hand.empty() || !o.task.empty()) throw BadInput("--device replay:FILE takes no --hand or --task");
         const std::string file = o.device.substr(7);
@@ -41,7 +56,7 @@ std::unique_ptr<Device> make_device(const SimulateOptions& o, const Scene& scene
         path_duration = static_cast<double>(dev->size()) / o.rate;
         return dev;
     }
-    if (o.device != "sim-cld") throw BadInput("--device: unknown device \"" + o.device + "\" (sim-cld, replay:FILE)");
+    if (o.device != "sim-cld") throw BadInput("--device: unknown device \"" + o.device + "\" (sim-cld, replay:FILE, usb:hapio, usb:falcon)");
     if (o.hand.empty() == o.task.empty()) throw BadInput("sim-cld needs exactly one of --hand HAND.csv or --task contour-block");
     HandPath path;
     if (!o.task.empty()) {
@@ -159,8 +174,10 @@ int run_simulate(const SimulateOptions& o) {
         std::fprintf(stderr, "simulate: device %s failed to open: %s\n", dev->name(), dev->fault().detail);
         return 1;
     }
+    // A real device cannot run in virtual time.
+    const bool realtime = o.realtime || is_usb(o.device);
     RealtimeReport rt;
-    if (o.realtime) {
+    if (realtime) {
         rt = run_realtime(loop, ticks);
     } else {
         loop.run_virtual(ticks);
@@ -169,7 +186,7 @@ int run_simulate(const SimulateOptions& o) {
     const ServoSnapshot snap = tick.snapshot();
 
     std::fprintf(stderr, "simulate: %s, %s time, %.0f Hz, %llu ticks (%.3f s), %llu in contact, max |F| %.3f N\n",
-                 dev->name(), o.realtime ? "real" : "virtual", o.rate, static_cast<unsigned long long>(sum.rows),
+                 dev->name(), realtime ? "real" : "virtual", o.rate, static_cast<unsigned long long>(sum.rows),
                  duration, static_cast<unsigned long long>(sum.contact_rows), sum.max_force);
     std::fprintf(stderr, "simulate: roller |target - measured| max %.4f mm while engaged in contact; state %s, %u fault(s)%s%s\n",
                  sum.max_roller_error * 1e3, to_string(snap.state), snap.fault_count,
@@ -178,7 +195,30 @@ int run_simulate(const SimulateOptions& o) {
         std::fprintf(stderr, "simulate: roller travel limited to %.1f mm (%+.1f..%+.1f mm)\n", o.roller_travel * 1e3,
                      config.roller_travel.min * 1e3, config.roller_travel.max * 1e3);
     }
-    if (o.realtime) {
+    if (dev->state() == DeviceState::fault) {
+        std::fprintf(stderr, "simulate: device %s ended in fault (%s): %s\n", dev->name(), to_string(dev->fault().code),
+                     dev->fault().detail);
+    }
+    if (const auto* h = dynamic_cast<const hapio::HapioDevice*>(dev.get())) {
+        const hapio::HapioStats st = h->stats();
+        std::fprintf(stderr, "simulate: %s: %llu frames, %llu commands, %llu rejected, %llu lost, %llu timeouts, "
+                     "%llu stalls, %llu unplugs, %llu replugs; round trip mean %.3f ms, max %.3f ms\n",
+                     dev->name(), static_cast<unsigned long long>(st.frames), static_cast<unsigned long long>(st.commands),
+                     static_cast<unsigned long long>(st.rejected()), static_cast<unsigned long long>(st.sequence_gaps),
+                     static_cast<unsigned long long>(st.timeouts), static_cast<unsigned long long>(st.stalls),
+                     static_cast<unsigned long long>(st.disconnects), static_cast<unsigned long long>(st.reconnects),
+                     st.rtt_mean * 1e3, st.rtt_max * 1e3);
+    }
+    if (const auto* f = dynamic_cast<const falcon::FalconDevice*>(dev.get())) {
+        const falcon::FalconStats st = f->stats();
+        std::fprintf(stderr, "simulate: %s: %llu packets, %llu commands, %llu malformed, %llu timeouts, %llu unplugs, "
+                     "%llu replugs, %llu firmware uploads\n",
+                     dev->name(), static_cast<unsigned long long>(st.packets), static_cast<unsigned long long>(st.commands),
+                     static_cast<unsigned long long>(st.malformed), static_cast<unsigned long long>(st.timeouts),
+                     static_cast<unsigned long long>(st.disconnects), static_cast<unsigned long long>(st.reconnects),
+                     static_cast<unsigned long long>(st.firmware_uploads));
+    }
+    if (realtime) {
         std::fprintf(stderr, "simulate: %s; %s\n", rt.scheduling.c_str(), rt.memory_lock.c_str());
         std::fprintf(stderr, "simulate: period p50 %.2f us, p99 %.2f us, max %.2f us, mean %.3f us, %llu overruns, %llu records dropped\n",
                      rt.p50 * 1e6, rt.p99 * 1e6, rt.max * 1e6, rt.mean * 1e6,

@@ -11,7 +11,8 @@ namespace contactlab::app {
 
 struct SimulateOptions {
     std::string scene_path;
-    std::string device = "sim-cld";   // "sim-cld" or "replay:FILE"
+    std::string device = "sim-cld";   // "sim-cld", "replay:FILE", "usb:hapio" or "usb:falcon"
+    std::string firmware;             // usb:falcon: firmware file to upload (never shipped)
     std::string hand;                 // HAND.csv (t,x,y,phi), or empty with task
     std::string task;                 // "contour-block"
     double task_speed = 0.05;         // m/s, hand speed on the built-in task

@@ -13,7 +13,7 @@ namespace {
 constexpr double R = 0.026;  // m
 }
 
-TEST_CASE("ellipsoid field: magnitude |E p| along -p; e = 1 is the spring; extremes stay finite") {
+TEST_CASE("ellipsoid field: magnitude |E p| along -p, e = 1 is the spring, extremes stay finite") {
     const Vec2 n{0.0, 1.0};
     for (const Vec2 p : {Vec2{0.001, -0.002}, Vec2{-0.003, -0.0005}, Vec2{0.0, -0.001}, Vec2{0.002, 0.0}}) {
         const double kt = 400.0, kn = 1300.0;

@@ -522,7 +522,7 @@ TEST_CASE("scene io error: stiffness must be > 0 and not absurd") {
     check_error(force("1000", "1e6"), "force.max_force", "got 1e+06");
 }
 
-TEST_CASE("scene io: every force-law field round-trips; contacts defaults to proxy") {
+TEST_CASE("scene io: every force-law field round-trips, contacts defaults to proxy") {
     const Scene a = parse_scene(doc("[" + kFloor + "]",
         R"(, "force": {"model": "ellipsoid", "k_tangential": 412.5, "k_normal": 1300.25, "max_force": 2,
               "damping": 0.75, "friction": {"static": 0.6, "dynamic": 0.45}, "contacts": "sum"})"));

@@ -43,7 +43,7 @@ TEST_CASE("draw list: sub-pixel strokes fade instead of thinning, duplicate poin
     CHECK(list.vertices()[1].color.a == 100);
 }
 
-TEST_CASE("draw list: consecutive plain draws merge into one command; stencil fills add mark + cover") {
+TEST_CASE("draw list: consecutive plain draws merge into one command, stencil fills add mark + cover") {
     DrawList list(64, 64);
     list.line({0, 0}, {10, 10}, 1.0f, Color{});
     list.fill_disc({30, 30}, 5.0f, Color{});

@@ -51,7 +51,7 @@ Scene scene_of(std::vector<Contour> contours) {
 
 }  // namespace
 
-TEST_CASE("frame: requested size; solid below a floor is the fill colour, free space is not") {
+TEST_CASE("frame: requested size, solid below a floor is the fill colour, free space is not") {
     const Scene scene = load_scene("flat.json");
     RenderRequest req;
     req.width = 400;
@@ -70,7 +70,7 @@ TEST_CASE("frame: requested size; solid below a floor is the fill colour, free s
     CHECK(lavapipe().validation_messages() == 0);
 }
 
-TEST_CASE("frame: closed clockwise contour filled inside; a ceiling drawn right to left filled above") {
+TEST_CASE("frame: closed clockwise contour filled inside, a ceiling drawn right to left filled above") {
     Contour square{true, {LineSegment{{-0.05, -0.05}, {-0.05, 0.0}}, LineSegment{{-0.05, 0.0}, {0.0, 0.0}},
                           LineSegment{{0.0, 0.0}, {0.0, -0.05}}, LineSegment{{0.0, -0.05}, {-0.05, -0.05}}}};
     Contour ceiling{false, {LineSegment{{0.1, 0.05}, {0.02, 0.05}}}};
@@ -149,7 +149,7 @@ TEST_CASE("frame: two renders of the same scene are byte-identical (fresh target
     CHECK(lavapipe().validation_messages() == 0);
 }
 
-TEST_CASE("frame: themes differ; an empty scene is mostly the theme background") {
+TEST_CASE("frame: themes differ, an empty scene is mostly the theme background") {
     Scene empty;
     RenderRequest req;
     req.width = 64;
@@ -185,7 +185,7 @@ TEST_CASE("frame: a chain of 100 000 segments renders and fills below") {
     CHECK(lavapipe().validation_messages() == 0);
 }
 
-TEST_CASE("frame: labels are drawn only when asked (goldens carry no text); the roller dot sits on the pad") {
+TEST_CASE("frame: labels are drawn only when asked (goldens carry no text), the roller dot sits on the pad") {
     const Scene scene = load_scene("flat.json");
     const Environment env = build_environment(scene);
     const ProxyDef def = proxy_def_of(scene);

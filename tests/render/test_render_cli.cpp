@@ -9,7 +9,7 @@
 
 using namespace cli_test;
 
-TEST_CASE("render cli: writes a PNG of the requested size; identical inputs give identical bytes") {
+TEST_CASE("render cli: writes a PNG of the requested size, identical inputs give identical bytes") {
     TempDir dir;
     const std::string a = dir.file("a.png"), b = dir.file("b.png");
     const std::vector<std::string> common = {"render", scene("steps.json"), "--width", "200", "--height", "120",

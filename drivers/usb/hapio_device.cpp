@@ -1,0 +1,131 @@
+// hapio_device.cpp — the servo-facing half of HapioDevice: lock-free reads and writes, states,
+// open/close (which hand the USB work to the event thread; see hapio_transport.cpp).
+#include "drivers/usb/hapio_device.hpp"
+#include "drivers/usb/hapio_counters.hpp"
+
+#include <libusb.h>
+
+#include <ctime>
+
+namespace contactlab::drivers::hapio {
+
+namespace {
+double monotonic() noexcept {
+    timespec ts{};
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+}  // namespace
+
+HapioDevice::HapioDevice(const HapioOptions& o, std::shared_ptr<usb::UsbContext> ctx)
+    : opt_(o), model_(o.calibration), ctx_(std::move(ctx)), epoch_(monotonic()),
+      counters_(std::make_unique<Counters>()) {}
+
+HapioDevice::~HapioDevice() { close(); }
+
+double HapioDevice::now() const noexcept { return monotonic() - epoch_; }
+
+DeviceCapabilities HapioDevice::capabilities() const noexcept {
+    DeviceCapabilities c;
+    c.planar_force = true;
+    c.finger_angle = true;
+    c.roller = true;
+    return c;
+}
+
+DeviceFault HapioDevice::fault() const noexcept {
+    return {fault_code_.load(std::memory_order_acquire), fault_detail_.load(std::memory_order_acquire)};
+}
+
+void HapioDevice::set_fault(DeviceFaultCode code, const char* detail) noexcept {
+    fault_detail_.store(detail, std::memory_order_release);
+    fault_code_.store(code, std::memory_order_release);
+    state_.store(DeviceState::fault, std::memory_order_release);
+}
+
+void HapioDevice::clear_fault_to_ready() noexcept {
+    fault_code_.store(DeviceFaultCode::none, std::memory_order_release);
+    fault_detail_.store("", std::memory_order_release);
+    state_.store(DeviceState::ready, std::memory_order_release);
+}
+
+void HapioDevice::set_engaged(bool on) noexcept {
+    want_engaged_.store(on, std::memory_order_release);
+    DeviceState expect = on ? DeviceState::ready : DeviceState::engaged;
+    state_.compare_exchange_strong(expect, on ? DeviceState::engaged : DeviceState::ready,
+                                   std::memory_order_acq_rel);
+}
+
+bool HapioDevice::read(DeviceReading& out) noexcept {
+    out = DeviceReading{};
+    out.t = now();  // host clock: keeps running through unplugs, so the servo's timing stays sane
+    const DeviceState st = state();
+    if (st == DeviceState::disconnected || st == DeviceState::opening) return false;
+    // Unplugged: the last frame describes a device that is gone.
+    if (st == DeviceState::fault && fault_code_.load(std::memory_order_acquire) == DeviceFaultCode::disconnected) return false;
+    const Sample s = latest_.load();
+    if (s.count == 0 || out.t - s.rx_time > opt_.stale_after) return false;
+    model_.to_reading(s.state, out);
+    out.t = now();
+    return true;
+}
+
+void HapioDevice::write(const DeviceCommand& cmd) noexcept { command_.store(cmd); }
+
+bool HapioDevice::open() {
+    if (!ctx_) ctx_ = std::make_shared<usb::UsbContext>();
+    if (!ctx_->ok()) {
+        set_fault(DeviceFaultCode::not_found, "no USB subsystem (libusb_init failed): no device can be found");
+        return false;
+    }
+    wanted_.store(true);
+    if (ctx_->has_hotplug() && !hotplug_registered_) {
+        const int rc = libusb_hotplug_register_callback(
+            ctx_->raw(), LIBUSB_HOTPLUG_EVENT_DEVICE_ARRIVED | LIBUSB_HOTPLUG_EVENT_DEVICE_LEFT,
+            LIBUSB_HOTPLUG_NO_FLAGS, opt_.vendor_id, opt_.product_id, LIBUSB_HOTPLUG_MATCH_ANY,
+            reinterpret_cast<libusb_hotplug_callback_fn>(&HapioDevice::hotplug_callback), this, &hotplug_handle_);
+        hotplug_registered_ = rc == LIBUSB_SUCCESS;
+    }
+    bool ok = false;
+    ctx_->run([&] { ok = bring_up_with_retries(); });
+    return ok;
+}
+
+void HapioDevice::close() {
+    wanted_.store(false);
+    if (!ctx_ || !ctx_->ok()) return;
+    if (hotplug_registered_) {
+        libusb_hotplug_deregister_callback(ctx_->raw(), hotplug_handle_);
+        hotplug_registered_ = false;
+    }
+    ctx_->run([&] { teardown(false); });
+    fault_code_.store(DeviceFaultCode::none);
+    fault_detail_.store("");
+    state_.store(DeviceState::disconnected);
+}
+
+HapioStats HapioDevice::stats() const noexcept {
+    const Counters& c = *counters_;
+    HapioStats s;
+    s.frames = c.frames.load();
+    s.commands = c.commands.load();
+    s.short_frames = c.short_frames.load();
+    s.bad_magic = c.bad_magic.load();
+    s.bad_version = c.bad_version.load();
+    s.bad_crc = c.bad_crc.load();
+    s.bad_counts = c.bad_counts.load();
+    s.sequence_gaps = c.sequence_gaps.load();
+    s.timeouts = c.timeouts.load();
+    s.stalls = c.stalls.load();
+    s.transfer_errors = c.transfer_errors.load();
+    s.disconnects = c.disconnects.load();
+    s.reconnects = c.reconnects.load();
+    s.rtt_count = c.rtt_count.load();
+    s.rtt_min = c.rtt_min.load();
+    s.rtt_max = c.rtt_max.load();
+    s.rtt_mean = s.rtt_count ? c.rtt_sum.load() / static_cast<double>(s.rtt_count) : 0.0;
+    s.board_rejected_commands = c.board_rejected.load();
+    return s;
+}
+
+}  // namespace contactlab::drivers::hapio

@@ -1,0 +1,145 @@
+// hapio_device.hpp — a hapio board (HAPIO.md) driving seed 000's CLD rig, behind the Device
+// interface, over the libusb transport.
+//
+// Threads: the servo thread calls read()/write()/set_engaged() and only loads/stores lock-free
+// seqlocks and atomics. All USB work (bring-up, streaming transfers, hot-plug, teardown) runs on
+// the UsbContext's event thread. The board streams one state frame per millisecond; each frame
+// that arrives is answered at once with the newest command the servo published, so the device's
+// clock paces the USB exchange and the servo only ever sees the freshest frame (older than
+// `stale_after`: no valid reading, which the servo treats as a device fault and zeroes force).
+#pragma once
+
+#include "drivers/device.hpp"
+#include "drivers/usb/hapio_cld_model.hpp"
+#include "drivers/usb/hapio_protocol.hpp"
+#include "drivers/usb/usb_context.hpp"
+#include "haptics/servo_seqlock.hpp"
+
+#include <array>
+#include <atomic>
+#include <memory>
+
+struct libusb_device;
+struct libusb_device_handle;
+struct libusb_transfer;
+
+namespace contactlab::drivers::hapio {
+
+struct HapioOptions {
+    std::uint16_t vendor_id = kVendorId;
+    std::uint16_t product_id = kProductId;
+    int bus = -1, address = -1;          // pick one board when several are plugged in (-1: any)
+    CldCalibration calibration;
+    double stale_after = 0.005;          // s: a newer frame must have arrived within this
+    unsigned transfer_timeout_ms = 100;  // IN/OUT transfer timeout (a silent board is a fault)
+    unsigned control_timeout_ms = 200;   // handshake requests
+    int open_attempts = 3;               // bounded bring-up retries for transient errors
+    double retry_delay = 0.05;           // s between attempts
+    std::uint16_t watchdog_ms = 20;      // firmware stops its motors without a command this long
+};
+
+// Counters since construction (monotone; read from any thread).
+struct HapioStats {
+    std::uint64_t frames = 0;            // valid state frames
+    std::uint64_t commands = 0;          // command frames the board accepted (OUT completed)
+    std::uint64_t short_frames = 0, bad_magic = 0, bad_version = 0, bad_crc = 0, bad_counts = 0;
+    std::uint64_t rejected() const { return short_frames + bad_magic + bad_version + bad_crc + bad_counts; }
+    std::uint64_t sequence_gaps = 0;     // frames the board sent that never arrived
+    std::uint64_t timeouts = 0, stalls = 0, transfer_errors = 0;
+    std::uint64_t disconnects = 0, reconnects = 0;
+    std::uint64_t rtt_count = 0;         // command -> acknowledging state frame round trips
+    double rtt_min = 0.0, rtt_mean = 0.0, rtt_max = 0.0;  // s
+    std::uint16_t board_rejected_commands = 0;  // as the board reports it
+};
+
+class HapioDevice final : public Device {
+public:
+    // `ctx`: share one libusb context between devices; null creates one on open().
+    explicit HapioDevice(const HapioOptions& o = {}, std::shared_ptr<usb::UsbContext> ctx = nullptr);
+    ~HapioDevice() override;
+
+    const char* name() const noexcept override { return "usb:hapio"; }
+    DeviceCapabilities capabilities() const noexcept override;
+    DeviceLimits limits() const noexcept override { return model_.limits(); }
+    bool open() override;
+    void close() override;
+    DeviceState state() const noexcept override { return state_.load(std::memory_order_acquire); }
+    DeviceFault fault() const noexcept override;
+    void set_engaged(bool on) noexcept override;
+    bool read(DeviceReading& out) noexcept override;
+    void write(const DeviceCommand& cmd) noexcept override;
+
+    HapioStats stats() const noexcept;
+    Info info() const noexcept { return info_.load(); }
+    const std::shared_ptr<usb::UsbContext>& context() const noexcept { return ctx_; }
+    // The last valid frame (tests, diagnostics).
+    State last_state() const noexcept { return latest_.load().state; }
+
+private:
+    struct Sample {
+        State state;
+        double rx_time = 0.0;            // s on this device's clock (now())
+        std::uint64_t count = 0;
+    };
+    struct Counters;
+
+    double now() const noexcept;         // s since construction, CLOCK_MONOTONIC
+    void set_fault(DeviceFaultCode code, const char* detail) noexcept;
+    void set_fault(const DeviceFault& f) noexcept { set_fault(f.code, f.detail); }
+    void clear_fault_to_ready() noexcept;
+
+    // --- event thread only (hapio_transport.cpp) ------------------------------------------------
+    bool bring_up_with_retries();
+    DeviceFault bring_up();
+    void teardown(bool device_gone);
+    void on_gone() noexcept;
+    void on_in(libusb_transfer* t) noexcept;
+    void on_out(libusb_transfer* t) noexcept;
+    void process_frame(const std::uint8_t* data, int length) noexcept;
+    void send_command(const State& s) noexcept;
+    void submit_in(int i) noexcept;
+    void clear_stall(unsigned char endpoint);
+    static void in_callback(libusb_transfer* t);
+    static void out_callback(libusb_transfer* t);
+    static int hotplug_callback(struct libusb_context* ctx, libusb_device* dev, int event, void* user);
+
+    HapioOptions opt_;
+    CldModel model_;
+    std::shared_ptr<usb::UsbContext> ctx_;
+    double epoch_ = 0.0;
+
+    std::atomic<DeviceState> state_{DeviceState::disconnected};
+    std::atomic<DeviceFaultCode> fault_code_{DeviceFaultCode::none};
+    std::atomic<const char*> fault_detail_{""};
+    std::atomic<bool> wanted_{false};      // opened by the user: hot-plug may bring it back
+    std::atomic<bool> want_engaged_{false};
+
+    Seqlock<Sample> latest_;               // event thread -> servo
+    Seqlock<DeviceCommand> command_;       // servo -> event thread
+    Seqlock<Info> info_;
+    std::unique_ptr<Counters> counters_;
+
+    // Event-thread state.
+    static constexpr int kInFlight = 2;    // IN transfers queued so no frame waits for a resubmit
+    libusb_device_handle* handle_ = nullptr;
+    libusb_device* dev_ = nullptr;
+    int iface_ = 0;
+    std::array<libusb_transfer*, kInFlight> in_{};
+    std::array<bool, kInFlight> in_active_{};
+    libusb_transfer* out_ = nullptr;
+    bool out_active_ = false;
+    bool stopping_ = false;
+    bool gone_ = false;
+    std::array<std::array<std::uint8_t, kStateSize>, kInFlight> in_buf_{};
+    std::uint8_t out_buf_[kCommandSize]{};
+    std::uint16_t out_seq_ = 0;
+    std::uint16_t last_in_seq_ = 0;
+    bool have_in_seq_ = false;
+    std::array<double, 64> sent_at_{};     // s, per command sequence % 64, for round trips
+    std::array<std::uint16_t, 64> sent_seq_{};
+    std::array<bool, 64> sent_open_{};
+    int hotplug_handle_ = 0;
+    bool hotplug_registered_ = false;
+};
+
+}  // namespace contactlab::drivers::hapio
