@@ -12,7 +12,7 @@ nlohmann::json stats_json(const TickStats& s) {
 }
 
 std::string fmt(const char* f, double v) {
-    char buf[64];
+    char buf[256];
     std::snprintf(buf, sizeof buf, f, v);
     return buf;
 }
@@ -61,6 +61,14 @@ nlohmann::json results_json(const BenchResults& r) {
                                {"proxy_error_p99", p.proxy_error_p99},
                                {"tick_ns", stats_json(p.stats)}});
     }
+    for (const StabilityRow& s : r.stability)
+        j["stability"].push_back({{"rate_hz", s.rate_hz}, {"passivity_bound", s.passivity_bound},
+                                  {"k_no_fault", s.k_no_fault}, {"k_settles", s.k_settles},
+                                  {"k_ideal_settles", s.k_ideal_settles}});
+    for (const RollerTrackingRow& t : r.roller)
+        j["roller_tracking"].push_back({{"gain_scale", t.gain_scale}, {"finger_speed", t.finger_speed},
+                                        {"rate_hz", t.rate_hz}, {"max_error", t.max_error}, {"rms_error", t.rms_error}});
+    j["roller_bandwidth_hz"] = r.roller_bandwidth_hz;
     return j;
 }
 
@@ -103,6 +111,19 @@ std::string results_markdown(const BenchResults& r) {
               " | " + metres(p.depth_error_p99) + " / " + metres(p.depth_error_max) + " | " + metres(p.proxy_error_p99) +
               " / " + metres(p.proxy_error_max) + " |\n";
     }
+    md += "\n## Rate against stiffness (closed loop, simulated arm)\n\n"
+          "Largest stable Ke (N/m) by bisection next to the discrete passivity bound 2b/T.\n\n"
+          "| rate | 2b/T | no fault | settles | ideal arm, settles |\n| ---: | ---: | ---: | ---: | ---: |\n";
+    for (const StabilityRow& s : r.stability)
+        md += fmt("| %.0f Hz", s.rate_hz) + fmt(" | %.0f", s.passivity_bound) + fmt(" | %.0f", s.k_no_fault) +
+              fmt(" | %.0f", s.k_settles) + fmt(" | %.0f |\n", s.k_ideal_settles);
+    md += "\n## Roller tracking (seed 000 block task)\n\n"
+          "| pole scale | finger speed | rate | max error | RMS error |\n| ---: | ---: | ---: | ---: | ---: |\n";
+    for (const RollerTrackingRow& t : r.roller)
+        md += fmt("| %.2g", t.gain_scale) + fmt(" | %.0f mm/s", t.finger_speed * 1e3) + fmt(" | %.0f Hz", t.rate_hz) +
+              " | " + metres(t.max_error) + " | " + metres(t.rms_error) + " |\n";
+    md += fmt("\nRoller 1 cm sine bandwidth (-3 dB, 1 kHz): %.2f Hz (seed 000: about 8 Hz).\n", r.roller_bandwidth_hz);
+    md += "\nRender frame time: `build/tests/render/bench_render` (Google Benchmark; README, Rendering).\n";
     return md;
 }
 

@@ -240,6 +240,10 @@ BenchResults run_suites(const BenchOptions& options) {
     cost_growth(options, r);
     feature_costs(options, r);
     pareto(options, r);
+    // Closed-loop simulation in virtual time (drivers/sim/bench_probes.hpp): no timing involved.
+    r.stability = stability_table(options.quick);
+    r.roller = roller_tracking_table(options.quick);
+    r.roller_bandwidth_hz = roller_bandwidth_hz(options.quick);
     return r;
 }
 

@@ -7,6 +7,7 @@
 
 #include "engine/bench/cost_scenes.hpp"
 #include "engine/bench/tick_stats.hpp"
+#include "drivers/sim/bench_probes.hpp"
 #include "haptics/scene.hpp"
 
 #include <optional>
@@ -51,6 +52,9 @@ struct ParetoRow {
 
 struct BenchResults {
     bool quick = false;
+    std::vector<StabilityRow> stability;          // rate vs stiffness, closed loop (drivers)
+    std::vector<RollerTrackingRow> roller;        // roller error vs gains and finger speed
+    double roller_bandwidth_hz = 0.0;             // 1 cm sine, -3 dB, 1 kHz
     std::vector<CostRow> cost;
     std::vector<FeatureRow> features;
     std::vector<ParetoRow> pareto;
