@@ -48,7 +48,7 @@ int trace_main(const std::string& scene_path, const std::string& input, const st
 int demo_main(const std::string& scene_path, const SceneOverrides& overrides) {
     Scene scene = load_scene_file(scene_path);
     apply_overrides(scene, overrides);
-    std::printf("ContactLab %s — headless demo (the editor is not built yet).\n", CONTACTLAB_VERSION);
+    std::printf("ContactLab %s — headless demo (the editor: contactlab edit).\n", CONTACTLAB_VERSION);
     std::printf("Scene %s: finger R = %.1f mm, L = %.1f mm; Ke = %.0f N/m, max force %.2f N.\n",
                 scene_path.c_str(), scene.finger.radius * 1e3, scene.finger.length * 1e3, scene.force.stiffness,
                 scene.force.max_force);
