@@ -7,23 +7,15 @@
 
 namespace contactlab {
 
-namespace {
-constexpr double kTwoPiTree = 6.283185307179586;
-double wrap_0_2pi(double a) {
-    a = std::fmod(a, kTwoPiTree);
-    return a < 0.0 ? a + kTwoPiTree : a;
-}
-}  // namespace
-
 NormalCone merge_cones(const NormalCone& a, const NormalCone& b) {
     if (a.width < 0.0) return b;
     if (b.width < 0.0) return a;
-    if (a.width >= kTwoPiTree || b.width >= kTwoPiTree) return {0.0, kTwoPiTree};
+    if (a.width >= kTwoPi || b.width >= kTwoPi) return {0.0, kTwoPi};
     // The smallest covering arc starts at one of the two starts.
-    const double from_a = std::max(a.width, wrap_0_2pi(b.start - a.start) + b.width);
-    const double from_b = std::max(b.width, wrap_0_2pi(a.start - b.start) + a.width);
+    const double from_a = std::max(a.width, wrap_2pi(b.start - a.start) + b.width);
+    const double from_b = std::max(b.width, wrap_2pi(a.start - b.start) + a.width);
     NormalCone c = from_a <= from_b ? NormalCone{a.start, from_a} : NormalCone{b.start, from_b};
-    if (c.width >= kTwoPiTree) c = {0.0, kTwoPiTree};
+    if (c.width >= kTwoPi) c = {0.0, kTwoPi};
     return c;
 }
 
@@ -49,7 +41,7 @@ int AabbTree::build(const std::vector<Aabb>& boxes, const std::vector<NormalCone
     const int index = static_cast<int>(nodes_.size());
     nodes_.push_back({});
     Aabb box;
-    NormalCone cone = normals ? NormalCone{} : NormalCone{0.0, kTwoPiTree};
+    NormalCone cone = normals ? NormalCone{} : NormalCone{0.0, kTwoPi};
     for (int i = first; i < first + count; ++i) {
         box.grow(boxes[items_[i]]);
         if (normals) cone = merge_cones(cone, (*normals)[static_cast<std::size_t>(items_[i])]);
@@ -94,28 +86,16 @@ void AabbTree::query(const Aabb& box, std::vector<int>& out) const {
     }
 }
 
-// Bounding box of the arc {p + r u(theta) : theta in [start, start + width]}: its ends and the
-// axis extremes it passes.
-namespace {
-Aabb arc_box(Vec2 p, double r, double start, double width) {
+Aabb arc_bounds(Vec2 c, double r, double start, double width) {
     Aabb b;
-    b.grow(p + r * Vec2{std::cos(start), std::sin(start)});
-    b.grow(p + r * Vec2{std::cos(start + width), std::sin(start + width)});
+    b.grow(c + r * unit_at(start));
+    b.grow(c + r * unit_at(start + width));
     for (int k = 0; k < 4; ++k) {
-        const double axis = k * 0.25 * kTwoPiTree;
-        if (wrap_0_2pi(axis - start) <= width) b.grow(p + r * Vec2{std::cos(axis), std::sin(axis)});
+        const double axis = 0.5 * kPi * k;
+        if (wrap_2pi(axis - start) <= width) b.grow(c + r * unit_at(axis));
     }
     return b;
 }
-double max_distance(const Aabb& b, Vec2 p) {
-    const Vec2 d = glm::max(glm::abs(p - b.lo), glm::abs(b.hi - p));
-    return glm::length(d);
-}
-double box_gap(const Aabb& a, const Aabb& b) {
-    const Vec2 d = glm::max(glm::max(a.lo - b.hi, b.lo - a.hi), Vec2(0.0));
-    return glm::length(d);
-}
-}  // namespace
 
 void AabbTree::query_offset_reach(Vec2 p, double r, double reach, std::vector<int>& out) const {
     if (nodes_.empty()) return;
@@ -125,11 +105,11 @@ void AabbTree::query_offset_reach(Vec2 p, double r, double reach, std::vector<in
     while (top > 0) {
         const Node& n = nodes_[stack[--top]];
         if (n.box.distance_to(p) > r + reach) continue;
-        if (n.normals.width < 0.5 * kTwoPiTree) {
+        if (n.normals.width < kPi) {
             // q + r n within reach of p  <=>  q within reach of p - r n: the node's box must come
             // within reach of the arc of points p - r n, n in the cone.
-            if (box_gap(arc_box(p, r, n.normals.start + 0.5 * kTwoPiTree, n.normals.width), n.box) > reach) continue;
-        } else if (max_distance(n.box, p) < r - reach) {
+            if (arc_bounds(p, r, n.normals.start + kPi, n.normals.width).gap_to(n.box) > reach) continue;
+        } else if (n.box.max_distance_to(p) < r - reach) {
             continue;  // every q within r - reach of p: |q + r n - p| >= r - |q - p| > reach
         }
         if (n.left < 0) {

@@ -29,7 +29,18 @@ struct Aabb {
         const Vec2 d = glm::max(glm::max(lo - p, p - hi), Vec2(0.0));
         return glm::length(d);
     }
+    // Distance (m) from p to the box's farthest point.
+    double max_distance_to(Vec2 p) const { return glm::length(glm::max(glm::abs(p - lo), glm::abs(hi - p))); }
+    // Distance (m) between the two boxes; 0 when they overlap.
+    double gap_to(const Aabb& b) const { return glm::length(glm::max(glm::max(lo - b.hi, b.lo - hi), Vec2(0.0))); }
+    bool contains(Vec2 p) const { return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y; }
+    // The box grown by `by` (m) on every side.
+    Aabb grown(double by) const { return {lo - Vec2(by), hi + Vec2(by)}; }
 };
+
+// Bounding box of the arc of radius r (m) about c over the CCW angles [start, start + width] (rad):
+// its ends and the axis extremes it passes.
+Aabb arc_bounds(Vec2 c, double r, double start, double width);
 
 // A cone of directions: the CCW arc of angles [start, start + width] (rad). Empty when width < 0,
 // every direction when width >= 2 pi.

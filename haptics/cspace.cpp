@@ -230,18 +230,6 @@ double piece_contact_location(const CPiece& piece, const FingerShape& finger, do
     return l;
 }
 
-Aabb arc_bounds(Vec2 c, double r, double start, double width) {
-    Aabb b;
-    b.grow(c + r * unit_at(start));
-    b.grow(c + r * unit_at(start + width));
-    // The axis-extreme points the arc passes through.
-    for (int k = 0; k < 4; ++k) {
-        const double axis = 0.5 * kPi * k;
-        if (wrap_2pi(axis - start) <= width) b.grow(c + r * unit_at(axis));
-    }
-    return b;
-}
-
 Aabb piece_box(const CPiece& piece) {
     if (piece.kind == CPiece::Kind::line) {
         Aabb b;

@@ -87,8 +87,6 @@ bool piece_param_inside(const CPiece& piece, double param, double slack);
 Vec2 piece_point(const CPiece& piece, double param);
 // Bounding box of the piece (m).
 Aabb piece_box(const CPiece& piece);
-// Bounding box of the arc of radius r about c over the CCW angles [start, start + width] (rad).
-Aabb arc_bounds(Vec2 c, double r, double start, double width);
 
 // Where the pad touches the contour when x_f is at c on this piece (world point, m), and the
 // contact location l (m) on the pad.

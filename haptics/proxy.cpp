@@ -47,12 +47,6 @@ constexpr int kMaxDepenetrationIterations = 4;
 // Boxes used to reject pieces far from a walk step are grown by this much (m), well beyond every
 // tolerance the entry tests accept (kOnTolerance along a piece, t_slack along the motion).
 constexpr double kBoxSlack = 1e-8;
-Aabb grown(Aabb b, double by) {
-    b.lo -= Vec2(by);
-    b.hi += Vec2(by);
-    return b;
-}
-bool contains(const Aabb& b, Vec2 p) { return p.x >= b.lo.x && p.x <= b.hi.x && p.y >= b.lo.y && p.y <= b.hi.y; }
 // Sub-steps of a finger-angle change (see Proxy::update): the pad end's chord per sub-step (m) is
 // a quarter of the scene's smallest feature, within these bounds, and the count is capped so a
 // wild jump of phi costs a bounded time (at the cap a feature thinner than
@@ -134,6 +128,7 @@ ProxyDef proxy_def_of(const Scene& scene) {
 Proxy::Proxy(const Environment& env, const ProxyDef& def) : env_(&env), def_(def) {
     segment_ids_.reserve(1024);
     pieces_.reserve(4096);
+    piece_boxes_.reserve(4096);
 }
 
 void Proxy::reset(Vec2 finger, double phi) {
@@ -173,6 +168,9 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
     } else {
         build_pieces(phi);
     }
+    // Boxes of the final pieces only: the walk is the one user (not the re-projection sub-steps).
+    piece_boxes_.clear();
+    for (const CPiece& piece : pieces_) piece_boxes_.push_back(piece_box(piece).grown(kBoxSlack));
     proxy_ = walk(proxy_, finger);
     phi_ = phi;
     // A finger within rounding of the boundary is touching, not pressing: call it free, so that
@@ -232,9 +230,7 @@ void Proxy::gather_for_motion(Vec2 finger, double phi, double reach) {
             Aabb box;
             box.grow(finger + shape.radius * unit_at(pad_mid_angle(phi_) + side * h));
             box.grow(finger + shape.radius * unit_at(pad_mid_angle(phi) + side * h));
-            box.lo -= Vec2(2.0 * reach);
-            box.hi += Vec2(2.0 * reach);
-            env_->tree.query(box, segment_ids_);
+            env_->tree.query(box.grown(2.0 * reach), segment_ids_);
         }
     }
     // Sorted and unique, so the pieces' order (and thus tie-breaks) does not depend on the queries.
@@ -246,8 +242,6 @@ void Proxy::build_pieces(double phi) {
     pieces_.clear();
     const PadFrame pad = make_pad_frame(def_.finger, phi);
     for (int id : segment_ids_) append_cspace_pieces(*env_, id, pad, pieces_);
-    piece_boxes_.clear();
-    for (const CPiece& piece : pieces_) piece_boxes_.push_back(grown(piece_box(piece), kBoxSlack));
     active_count_ = 0;
 }
 
@@ -310,7 +304,7 @@ bool Proxy::inside_or_past_concave_end(const CPiece& piece, double param, double
 bool Proxy::handed_over(int i, Vec2 at, Vec2 t) const {
     if (!leaves_range(pieces_[i], at, t)) return false;
     for (int j = 0; j < static_cast<int>(pieces_.size()); ++j) {
-        if (j == i || !contains(piece_boxes_[static_cast<std::size_t>(j)], at)) continue;
+        if (j == i || !piece_boxes_[static_cast<std::size_t>(j)].contains(at)) continue;
         const CPiece& other = pieces_[j];
         if (std::abs(piece_signed_distance(other, at)) > kOnTolerance) continue;
         const double slack = other.kind == CPiece::Kind::line ? kOnTolerance : kOnTolerance / other.radius;
@@ -413,7 +407,7 @@ Proxy::Hit Proxy::first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b)
     Aabb motion;
     motion.grow(p);
     motion.grow(q);
-    motion = grown(motion, kBoxSlack);
+    motion = motion.grown(kBoxSlack);
     for (int i = 0; i < static_cast<int>(pieces_.size()); ++i) {
         if (i == exclude_a || i == exclude_b) continue;
         if (!piece_boxes_[static_cast<std::size_t>(i)].overlaps(motion)) continue;  // far from this step
@@ -485,7 +479,7 @@ Proxy::Hit Proxy::first_entry_arc(const CPiece& on, double s0, double s1, int ex
         if (handed_over(i, x, t)) return;
         best = {true, std::max(s, 0.0), s < 0.0 ? proxy_ : x, i};
     };
-    const Aabb motion = grown(arc_bounds(on.center, on.radius, on.span.start + std::min(s0, s1), std::abs(ds)), kBoxSlack);
+    const Aabb motion = arc_bounds(on.center, on.radius, on.span.start + std::min(s0, s1), std::abs(ds)).grown(kBoxSlack);
     for (int i = 0; i < static_cast<int>(pieces_.size()); ++i) {
         if (i == exclude || !piece_boxes_[static_cast<std::size_t>(i)].overlaps(motion)) continue;
         const CPiece& piece = pieces_[i];
