@@ -144,8 +144,11 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
     const double previous_l_d = out_.l_d;
     const double R = def_.finger.radius;
     // How far any c-space piece can have moved since the last tick: only pieces made by the pad's
-    // ends move with phi, by the chord their end swept.
-    const double dphi = std::min(std::abs(phi - phi_), kPi);
+    // ends move with phi, by the chord their end swept. The pad's geometry repeats every 2 pi, so
+    // the rotation is the shortest turn between the two angles (a jump from -1e3 to 0.5 rad is a
+    // turn of 1000.5 - 159 x 2 pi = 1.49 rad, not 1000.5 rad in a few large sub-steps).
+    const double turn = wrap_pi(phi - phi_);  // rad, in [-pi, pi]
+    const double dphi = std::abs(turn);
     const double max_push = dphi > 0.0 ? 2.0 * R * std::sin(0.5 * dphi) * (1.0 + 1e-9) + kOnTolerance
                                         : 0.0;
     // Every position the motion can visit lies within |proxy - finger| of the finger, and every
@@ -162,7 +165,7 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
         const int steps = std::clamp(static_cast<int>(std::ceil(max_push / chord_step)), 1, kMaxRotationSteps);
         const double sub_push = 2.0 * R * std::sin(0.5 * dphi / steps) * (1.0 + 1e-9) + kOnTolerance;
         for (int k = 1; k <= steps; ++k) {
-            build_pieces(phi_ + (phi - phi_) * k / steps);
+            build_pieces(k == steps ? phi : phi_ + turn * k / steps);
             depenetrate(sub_push);
         }
     } else {

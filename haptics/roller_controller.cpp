@@ -17,8 +17,14 @@ void RollerController::reset(double l) noexcept {
     saturated_ = false;
 }
 
+bool roller_gains_usable(const RollerGains& g) noexcept {
+    auto gain = [](double v) { return std::isfinite(v) && v >= 0.0; };
+    auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
+    return gain(g.kp) && gain(g.ki) && gain(g.kd) && gain(g.kff) && positive(g.d_cutoff_hz) && positive(g.max_drive);
+}
+
 double RollerController::step(double l_d, double l, double dt) noexcept {
-    if (!std::isfinite(l_d) || !std::isfinite(l) || !(dt > 0.0) || !std::isfinite(dt)) {
+    if (!std::isfinite(l_d) || !std::isfinite(l) || !(dt > 0.0) || !std::isfinite(dt) || !roller_gains_usable(gains_)) {
         reset(l);
         return 0.0;
     }

@@ -39,6 +39,11 @@ struct RollerTravel {
     double max = 0.010;   // m
 };
 
+// False when a gain is NaN/Inf or negative, or the cut-off or saturation is not positive: the
+// controller then outputs zero drive (the leadscrew holds the roller) instead of a wild or
+// non-finite one. servo_params_check.hpp says which gain and why, for the user.
+bool roller_gains_usable(const RollerGains& g) noexcept;
+
 class RollerController {
 public:
     RollerController() = default;

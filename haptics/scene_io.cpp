@@ -10,6 +10,7 @@
 #include "haptics/atomic_file.hpp"
 
 #include "haptics/bezier.hpp"
+#include "haptics/parameter_limits.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -50,18 +51,7 @@ std::string fmt(double v) {
     return buf;
 }
 
-// Limits on the finger (m). The lower bound keeps c-space pieces well conditioned; the upper
-// bound catches values typed in millimetres by mistake (26 instead of 0.026).
-constexpr double kMinFingerRadius = 1e-4;
-constexpr double kMaxFingerRadius = 1.0;
-constexpr double kMinSegmentLength = 1e-9;   // m: shorter lines/arcs are "zero-length"
-constexpr double kMaxCoordinate = 1e6;       // m: beyond this, double spacing > 1e-10 m
-constexpr double kMaxStiffness = 1e7;        // N/m: far above any device's stable stiffness
-constexpr double kMaxForceLimit = 1e4;       // N
-constexpr double kMinCurveTolerance = 1e-9;  // m, flatten mode's chord tolerance
-constexpr double kMaxDamping = 1e3;          // N s/m
-constexpr double kMaxFriction = 10.0;        // friction coefficients
-constexpr double kMaxCurveTolerance = 1e-2;  // m
+using namespace limits;  // parameter_limits.hpp: the ranges scene files and the servo share
 
 //-------------------------------------------------------------------------------------------------
 // [SECTION] Reading

@@ -154,8 +154,14 @@ const ServoCommand& ServoTick::tick(const ServoInput& in) noexcept {
         // Instability watch while force is being applied.
         const ServoState st = safety_.state();
         if (st == ServoState::ramping || st == ServoState::engaged) {
-            const double stored = scale * spring_energy(proxy_out_.depth, current_.stiffness, current_.max_force);
-            const bool linear = proxy_out_.contact && proxy_out_.depth > 0.0 &&
+            // The device's per-axis saturation may pass on only part of the (already clamped)
+            // rendered force; the spring the finger meets is weakened by that fraction, and so is
+            // the energy it stores. Without this a device with a small axis limit looks like a
+            // loop generating energy (the spring "stores" what the motors never pushed).
+            const double asked = scale * rendered_mag;  // N
+            const double kept = asked > 0.0 ? std::min(1.0, glm::length(f) / asked) : 1.0;
+            const double stored = scale * kept * spring_energy(proxy_out_.depth, current_.stiffness, current_.max_force);
+            const bool linear = proxy_out_.contact && proxy_out_.depth > 0.0 && kept > 1.0 - 1e-9 &&
                                 current_.stiffness * proxy_out_.depth < current_.max_force;
             if (observer_.step(in.finger, applied_, stored, dt, linear)) {
                 fault_tick(in, dt, ServoFault::instability);
