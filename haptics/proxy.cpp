@@ -42,7 +42,7 @@ double graze_tolerance(const CPiece& piece) {
 // crosses a vertex every few micrometres (2 iterations each): at 100,000 segments on 0.4 m and
 // 5 cm/s that is ~25 per tick, and a cap below that makes the proxy lag and dig in, as if sticky.
 // The bound keeps a pathological tick's cost finite.
-constexpr int kMaxWalkIterations = 256;
+constexpr int kMaxWalkIterations = kProxyMaxWalkSteps;
 constexpr int kMaxDepenetrationIterations = 4;
 // Boxes used to reject pieces far from a walk step are grown by this much (m), well beyond every
 // tolerance the entry tests accept (kOnTolerance along a piece, t_slack along the motion).
@@ -53,7 +53,7 @@ constexpr double kBoxSlack = 1e-8;
 // 4 * 2R / kMaxRotationSteps ~ 0.2 mm could be crossed by a half-turn jump in one tick).
 constexpr double kMinRotationChord = 1e-6;
 constexpr double kMaxRotationChord = 2.5e-4;
-constexpr int kMaxRotationSteps = 1024;
+constexpr int kMaxRotationSteps = kProxyMaxRotationSteps;
 
 // True when the straight motion from `at` (on the piece) toward `goal` heads into the obstacle
 // across this piece. For a line that is "goal behind the line"; for a circle it is not the same as
@@ -164,11 +164,13 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
         const double chord_step = std::clamp(0.25 * env_->min_feature, kMinRotationChord, kMaxRotationChord);
         const int steps = std::clamp(static_cast<int>(std::ceil(max_push / chord_step)), 1, kMaxRotationSteps);
         const double sub_push = 2.0 * R * std::sin(0.5 * dphi / steps) * (1.0 + 1e-9) + kOnTolerance;
+        work_.rotation_steps = steps;
         for (int k = 1; k <= steps; ++k) {
             build_pieces(k == steps ? phi : phi_ + turn * k / steps);
             depenetrate(sub_push);
         }
     } else {
+        work_.rotation_steps = 0;
         build_pieces(phi);
     }
     // Boxes of the final pieces only: the walk is the one user (not the re-projection sub-steps).
@@ -182,6 +184,9 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
     if (glm::length(proxy_ - finger) <= kOnTolerance) proxy_ = finger;
 
     out_ = ProxyOutput{};
+    work_.segments = static_cast<int>(segment_ids_.size());
+    work_.pieces = static_cast<int>(pieces_.size());
+    out_.work = work_;
     out_.finger = finger;
     out_.phi = phi;
     out_.proxy = proxy_;
@@ -323,7 +328,9 @@ Vec2 Proxy::walk(Vec2 p, Vec2 goal) {
     int excluded = -1;     // the piece just slid off the end of (not re-entered at its end)
     int idle_steps = 0;    // consecutive steps that did not move the proxy
     proxy_ = p;
+    work_.walk_steps = 0;
     for (int it = 0; it < kMaxWalkIterations; ++it) {
+        work_.walk_steps = it + 1;
         if (active_count_ == 0) {
             const Hit hit = first_entry_line(proxy_, goal, excluded, -1);
             excluded = -1;

@@ -46,6 +46,17 @@ struct ProxyContact {
     CPiece::Source source = CPiece::Source::line_offset;
 };
 
+// The work one update did: how tick cost is bounded whatever the input (the extremes suite
+// checks these; `contactlab bench` measures the time they take).
+inline constexpr int kProxyMaxWalkSteps = 256;       // constrained-motion iterations per tick
+inline constexpr int kProxyMaxRotationSteps = 1024;  // finger-angle re-projection sub-steps per tick
+struct ProxyWork {
+    int walk_steps = 0;      // iterations of the constrained motion (<= kProxyMaxWalkSteps)
+    int rotation_steps = 0;  // re-projection sub-steps for a change of phi (<= kProxyMaxRotationSteps)
+    int segments = 0;        // scene segments gathered near the motion
+    int pieces = 0;          // c-space pieces built from them at the final angle
+};
+
 struct ProxyOutput {
     Vec2 finger{0.0};         // x_f as measured, m
     double phi = 0.0;         // rad
@@ -61,6 +72,7 @@ struct ProxyOutput {
     // Free space: the c-space piece the finger is nearest to (seed 000 §3.2), if any.
     bool anticipating = false;
     Vec2 anticipated_point{0.0};  // on the contour, m
+    ProxyWork work;
 };
 
 class Proxy {
@@ -118,6 +130,7 @@ private:
     bool has_stiction_ = false;   // friction: a stiction point is held
     Vec2 stiction_{0.0};          // m
     double previous_depth_ = 0.0; // m, for damping
+    ProxyWork work_;              // this tick's, copied into out_
 };
 
 }  // namespace contactlab

@@ -75,10 +75,14 @@ inline bool all_finite(const ProxyOutput& o) {
     return ok;
 }
 
-// The output is finite and its force within the clamp (N), to rounding.
+// The output is finite, its force within the clamp (N) to rounding, and the tick's work within
+// the proxy's fixed bounds (so its cost is bounded whatever the input).
 inline void check_usable(const ProxyOutput& o, double max_force) {
     REQUIRE(all_finite(o));
     CHECK(glm::length(o.force) <= max_force * (1.0 + 4.0 * kEps));
+    CHECK(o.work.walk_steps >= 1);
+    CHECK(o.work.walk_steps <= kProxyMaxWalkSteps);
+    CHECK(o.work.rotation_steps <= kProxyMaxRotationSteps);
 }
 
 }  // namespace contactlab::extremes

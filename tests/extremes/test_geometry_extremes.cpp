@@ -266,3 +266,39 @@ TEST_CASE("the finger spun by 1e3 rad in one tick while pressed into a floor: fi
         }
     }
 }
+
+TEST_CASE("a jump across 20,000 segments and a half-turn of the finger in one tick: the work stops at its bounds") {
+    // A 0.4 m sinusoid (1 cm amplitude, 50 periods) in 20,000 chords of ~27 um each.
+    Scene s;
+    Contour c;
+    constexpr int n = 20000;
+    auto at = [](int i) {
+        const double x = -0.2 + 0.4 * i / n;  // m
+        return Vec2{x, 0.01 * std::sin(2.0 * kPi * 50.0 * (x + 0.2) / 0.4)};
+    };
+    for (int i = 0; i < n; ++i) c.segments.push_back(line(at(i), at(i + 1)));
+    s.contours.push_back(c);
+    Rig rig(s, def_with(kNominalRadius, kNominalLength));
+    rig.proxy->reset({-0.19, 0.05}, 0.0);
+    rig.at({-0.19, 0.0}, 0.0);
+    // Along the whole contour in one tick, pressed in: thousands of vertices to slide over.
+    const ProxyOutput jump = rig.at({0.19, 0.0}, 0.0);
+    check_usable(jump, kNominalMaxForce);
+    CHECK(jump.work.walk_steps == kProxyMaxWalkSteps);  // the cap is what stopped it
+    // The proxy catches up over the following ticks, each again within its bounds.
+    ProxyOutput out = jump;
+    int ticks = 0;
+    while (out.work.walk_steps == kProxyMaxWalkSteps && ticks < 1000) {
+        out = rig.at({0.19, 0.0}, 0.0);
+        check_usable(out, kNominalMaxForce);
+        ++ticks;
+    }
+    CHECK(ticks < 1000);
+    CHECK(out.work.walk_steps < kProxyMaxWalkSteps);
+    CHECK(out.contact);
+    // Half a turn while pressed among the 27 um features: the re-projection sub-steps (a quarter
+    // of the smallest feature each) hit their cap, and the tick still ends usable.
+    const ProxyOutput turned = rig.at({0.19, 0.0}, kPi);
+    check_usable(turned, kNominalMaxForce);
+    CHECK(turned.work.rotation_steps == kProxyMaxRotationSteps);
+}
