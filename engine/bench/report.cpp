@@ -105,8 +105,8 @@ std::string results_markdown(const BenchResults& r, const ReportPlots* plots) {
     md += r.quick ? "A `--quick` run: fewer sizes and ticks; indicative only.\n\n"
                   : "A full run.\n\n";
     if (plots && !plots->skipped.empty())
-        md += "**Plots skipped**: no Vulkan device could render them (" + plots->skipped +
-              "). The tables hold the same figures.\n\n";
+        md += "**Plots skipped**, Vulkan could not render them: " + plots->skipped +
+              "\n\nThe tables hold the same figures.\n\n";
     md += "## Cost growth: ns per proxy tick\n\n"
           "The finger slides 1 mm deep along the contour (`extent`: 5 mm segments, the contour grows; "
           "`dense`: a 0.4 m sinusoid cut finer). Baselines in the same process: brute force (every "
