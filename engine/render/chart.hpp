@@ -80,7 +80,8 @@ struct ChartTick {
 };
 
 // Tick positions within [map.lo, map.hi]: linear 1/2/5 x 10^k steps (about 5 to 10 ticks); log:
-// every decade labelled, with minor ticks at 2..9 x 10^k when the range spans at most 6 decades.
+// every decade labelled, with minor ticks at 2..9 x 10^k when the range spans at most 6 decades,
+// and labels at 2 and 5 x 10^k too when it spans at most 2.
 std::vector<ChartTick> axis_ticks(const AxisMap& map);
 // A tick label: "0", "0.5", "200", "20000", "1e4", "1e-6" (short, ASCII).
 std::string tick_label(double v);

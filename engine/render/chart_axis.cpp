@@ -43,6 +43,9 @@ std::vector<ChartTick> axis_ticks(const AxisMap& map) {
         const double l0 = std::log10(lo), l1 = std::log10(hi);
         const int d0 = static_cast<int>(std::floor(l0 + slack)), d1 = static_cast<int>(std::ceil(l1 - slack));
         const bool minor = d1 - d0 <= 6;
+        // Within one or two decades, decade labels alone leave the reader with one or two
+        // numbers: 2 and 5 x 10^k get labels too.
+        const bool label_2_5 = d1 - d0 <= 2;
         // At most ~12 labelled decades: label every k-th decade beyond that.
         const int every = std::max(1, (d1 - d0 + 11) / 12);
         for (int d = d0; d <= d1; ++d) {
@@ -51,7 +54,8 @@ std::vector<ChartTick> axis_ticks(const AxisMap& map) {
                 const double v = m * std::pow(10.0, d);
                 const double lv = std::log10(v);
                 if (lv < l0 - slack * (1 + std::abs(l0)) || lv > l1 + slack * (1 + std::abs(l1))) continue;
-                ticks.push_back({v, m == 1 && (d - d0) % every == 0 ? tick_label(v) : std::string()});
+                const bool labelled = (m == 1 && (d - d0) % every == 0) || (label_2_5 && (m == 2 || m == 5));
+                ticks.push_back({v, labelled ? tick_label(v) : std::string()});
             }
         }
         return ticks;

@@ -124,6 +124,11 @@ TEST_CASE("chart: ticks and their labels") {
     int labelled = 0;
     for (const ChartTick& t : lg) labelled += t.label.empty() ? 0 : 1;
     CHECK(labelled == 4);
+    // Within one decade, 2 and 5 x 10^k are labelled too: 10, 20, 50, 100.
+    std::vector<std::string> one_decade;
+    for (const ChartTick& t : axis_ticks(AxisMap{AxisScale::log10, 10.0, 100.0, 0.0, 1.0}))
+        if (!t.label.empty()) one_decade.push_back(t.label);
+    CHECK(one_decade == std::vector<std::string>{"10", "20", "50", "100"});
     CHECK(tick_label(0.0) == "0");
     CHECK(tick_label(0.5) == "0.5");
     CHECK(tick_label(200.0) == "200");
