@@ -1,5 +1,7 @@
 // bench_cli.cpp — `contactlab bench`: the proxy's cost, its growth with the scene, what each
-// feature adds and the speed/accuracy trade, measured here and now (engine/bench/suites.hpp).
+// feature adds and the speed/accuracy trade, the renderer's frame time, measured here and now
+// (engine/bench/suites.hpp); --report adds PNG plots drawn by ContactLab (engine/bench/plots.hpp).
+// Without a Vulkan device the tables are still written and the page says why the plots are not.
 //
 //   contactlab bench [--quick] [--json OUT.json] [--report DIR]
 //   contactlab bench --scene SCENE.json --input IN.csv [--passes N] [--json OUT.json]
@@ -59,7 +61,14 @@ int run_suites(const BenchArgs& a) {
         std::error_code ec;
         std::filesystem::create_directories(a.report, ec);
         if (ec) throw BadInput("bench: --report " + a.report + ": " + ec.message());
-        write(a.report + "/README.md", md, "report");
+        // Plots first, so the page links exactly the figures that were written (or says why not).
+        const bench::ReportPlots plots = bench::write_report_plots(r, a.report);
+        if (!plots.skipped.empty()) std::fprintf(stderr, "bench: plots skipped: %s\n", plots.skipped.c_str());
+        for (const bench::PlotFile& f : plots.files) {
+            if (f.error.empty()) std::fprintf(stderr, "bench: plot written to %s/%s\n", a.report.c_str(), f.file.c_str());
+            else std::fprintf(stderr, "bench: plot %s not drawn: %s\n", f.file.c_str(), f.error.c_str());
+        }
+        write(a.report + "/README.md", bench::results_markdown(r, &plots), "report");
         write(a.report + "/bench.json", bench::results_json(r).dump(2) + "\n", "JSON");
     }
     return 0;
@@ -72,7 +81,7 @@ void register_bench_command(CLI::App& app, int& rc) {
     CLI::App* cmd = app.add_subcommand("bench", "Measure the proxy's cost per tick: growth, features, accuracy trade");
     cmd->add_flag("--quick", a.quick, "Fewer sizes and ticks: finishes within a minute (CI smoke run)");
     cmd->add_option("--json", a.json, "Write the results as JSON (keys tick_ns.<kind>.<N>)");
-    cmd->add_option("--report", a.report, "Write a Markdown report (and the JSON) into this folder");
+    cmd->add_option("--report", a.report, "Write a Markdown report with PNG plots (and the JSON) into this folder");
     cmd->add_option("--scene", a.scene, "Time your own scene over --input instead of the suites");
     cmd->add_option("--input", a.input, "Finger samples for --scene (the trace input: t,x,y,phi)");
     cmd->add_option("--passes", a.passes, "With --scene: how many times to replay the input")->default_val(20);

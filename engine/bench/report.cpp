@@ -31,6 +31,19 @@ std::string metres(double m) {
     return fmt("%.3g mm", m * 1e3);
 }
 
+// The figure under a table: a Markdown image link, or why it is missing.
+std::string figure(const ReportPlots* plots, const std::string& file) {
+    if (!plots || !plots->skipped.empty()) return "";
+    const PlotFile* f = plots->find(file);
+    if (!f) return "";
+    if (!f->error.empty()) return "\n_Plot `" + file + "` not drawn: " + f->error + "_\n";
+    std::string md = "\n![" + f->title + "](" + file + ")\n";
+    if (f->skipped_points > 0)
+        md += "\n_" + std::to_string(f->skipped_points) +
+              " points left out of the plot (not finite, or not positive on a log axis)._\n";
+    return md;
+}
+
 }  // namespace
 
 nlohmann::json results_json(const BenchResults& r) {
@@ -69,6 +82,16 @@ nlohmann::json results_json(const BenchResults& r) {
         j["roller_tracking"].push_back({{"gain_scale", t.gain_scale}, {"finger_speed", t.finger_speed},
                                         {"rate_hz", t.rate_hz}, {"max_error", t.max_error}, {"rms_error", t.rms_error}});
     j["roller_bandwidth_hz"] = r.roller_bandwidth_hz;
+    // Frame time in ms (a frame is ~1e6 times a tick: ns would read badly).
+    j["render_size"] = {r.render.width, r.render.height};
+    j["render_device"] = r.render.device;
+    if (!r.render.skipped.empty()) j["render_skipped"] = r.render.skipped;
+    for (const RenderFrameRow& row : r.render.rows)
+        j["render_ms"][std::to_string(row.segments)] = {{"median", row.frame.median_ns / 1e6},
+                                                        {"p99", row.frame.p99_ns / 1e6},
+                                                        {"max", row.frame.max_ns / 1e6},
+                                                        {"frames", row.frame.ticks},
+                                                        {"triangles", row.triangles}};
     return j;
 }
 
@@ -77,10 +100,13 @@ nlohmann::json trace_json(const TraceTiming& t) {
             {"tick_ns", stats_json(t.stats)}};
 }
 
-std::string results_markdown(const BenchResults& r) {
+std::string results_markdown(const BenchResults& r, const ReportPlots* plots) {
     std::string md = "# ContactLab bench\n\n";
     md += r.quick ? "A `--quick` run: fewer sizes and ticks; indicative only.\n\n"
                   : "A full run.\n\n";
+    if (plots && !plots->skipped.empty())
+        md += "**Plots skipped**, Vulkan could not render them: " + plots->skipped +
+              "\n\nThe tables hold the same figures.\n\n";
     md += "## Cost growth: ns per proxy tick\n\n"
           "The finger slides 1 mm deep along the contour (`extent`: 5 mm segments, the contour grows; "
           "`dense`: a 0.4 m sinusoid cut finer). Baselines in the same process: brute force (every "
@@ -97,6 +123,7 @@ std::string results_markdown(const BenchResults& r) {
               " | " + duration(row.point_finger.median_ns) + fmt(" (%.2f)", row.proxy.median_ns / row.point_finger.median_ns) +
               " |\n";
     }
+    md += figure(plots, "cost_extent.png") + figure(plots, "cost_dense.png");
     md += "\n## What each feature costs (lines, 1000 segments)\n\n"
           "| feature | stroke | median | p99 |\n| --- | --- | ---: | ---: |\n";
     for (const FeatureRow& f : r.features)
@@ -111,19 +138,34 @@ std::string results_markdown(const BenchResults& r) {
               " | " + metres(p.depth_error_p99) + " / " + metres(p.depth_error_max) + " | " + metres(p.proxy_error_p99) +
               " / " + metres(p.proxy_error_max) + " |\n";
     }
+    md += figure(plots, "pareto.png");
     md += "\n## Rate against stiffness (closed loop, simulated arm)\n\n"
           "Largest stable Ke (N/m) by bisection next to the discrete passivity bound 2b/T.\n\n"
           "| rate | 2b/T | no fault | settles | ideal arm, settles |\n| ---: | ---: | ---: | ---: | ---: |\n";
     for (const StabilityRow& s : r.stability)
         md += fmt("| %.0f Hz", s.rate_hz) + fmt(" | %.0f", s.passivity_bound) + fmt(" | %.0f", s.k_no_fault) +
               fmt(" | %.0f", s.k_settles) + fmt(" | %.0f |\n", s.k_ideal_settles);
+    md += figure(plots, "stability.png");
     md += "\n## Roller tracking (seed 000 block task)\n\n"
           "| pole scale | finger speed | rate | max error | RMS error |\n| ---: | ---: | ---: | ---: | ---: |\n";
     for (const RollerTrackingRow& t : r.roller)
         md += fmt("| %.2g", t.gain_scale) + fmt(" | %.0f mm/s", t.finger_speed * 1e3) + fmt(" | %.0f Hz", t.rate_hz) +
               " | " + metres(t.max_error) + " | " + metres(t.rms_error) + " |\n";
+    md += figure(plots, "roller_tracking.png");
     md += fmt("\nRoller 1 cm sine bandwidth (-3 dB, 1 kHz): %.2f Hz (seed 000: about 8 Hz).\n", r.roller_bandwidth_hz);
-    md += "\nRender frame time: `build/tests/render/bench_render` (Google Benchmark; README, Rendering).\n";
+    md += fmt("\n## Render frame time (offscreen, %.0f", r.render.width) + fmt("x%.0f px)\n\n", r.render.height);
+    if (!r.render.skipped.empty()) {
+        md += "Skipped: " + r.render.skipped + "\n";
+    } else {
+        md += "The whole frame: scene -> draw list -> upload, record, submit, wait, read back; the density "
+              "case's lines with the finger on them, labels on. Device: " + r.render.device + ".\n\n"
+              "| segments | triangles | median | p99 | max | frames |\n| ---: | ---: | ---: | ---: | ---: | ---: |\n";
+        for (const RenderFrameRow& row : r.render.rows)
+            md += "| " + std::to_string(row.segments) + " | " + std::to_string(row.triangles) + " | " +
+                  duration(row.frame.median_ns) + " | " + duration(row.frame.p99_ns) + " | " +
+                  duration(row.frame.max_ns) + " | " + std::to_string(row.frame.ticks) + " |\n";
+        md += figure(plots, "render_frame.png");
+    }
     return md;
 }
 

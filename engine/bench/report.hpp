@@ -1,7 +1,8 @@
-// report.hpp — `contactlab bench` output: JSON (the keys issue 8 names: tick_ns.<kind>.<N>) and a
-// Markdown page of tables for people.
+// report.hpp — `contactlab bench` output: JSON (the keys issue 8 names: tick_ns.<kind>.<N>,
+// render_ms.<N>) and a Markdown page of tables, with the report's plots linked, for people.
 #pragma once
 
+#include "engine/bench/plots.hpp"
 #include "engine/bench/suites.hpp"
 
 #include <nlohmann/json.hpp>
@@ -13,7 +14,9 @@ namespace contactlab::bench {
 nlohmann::json results_json(const BenchResults& r);
 nlohmann::json trace_json(const TraceTiming& t);
 
-// The tables (cost growth with baselines, feature costs, Pareto) as Markdown.
-std::string results_markdown(const BenchResults& r);
+// The tables (cost growth with baselines, feature costs, Pareto, stability, roller, frame time)
+// as Markdown. With `plots` (the --report folder's PNGs), each figure is linked under its table,
+// or the page says why it is missing.
+std::string results_markdown(const BenchResults& r, const ReportPlots* plots = nullptr);
 
 }  // namespace contactlab::bench

@@ -8,6 +8,7 @@
 //   time_trace         a user's scene and trace
 #include "engine/bench/suites.hpp"
 
+#include "engine/bench/gbench_run.hpp"
 #include "haptics/environment.hpp"
 #include "haptics/proxy.hpp"
 #include "haptics/scene_io.hpp"
@@ -29,21 +30,6 @@ constexpr int kBruteForceMaxSegmentsQuick = 1000;
 constexpr double kStartAbove = 0.003;  // m: each pass starts this far above its first sample
 
 // ---- measure ----------------------------------------------------------------------------------
-void run_registered() {
-    static bool initialised = false;
-    if (!initialised) {
-        char name[] = "contactlab-bench";
-        char* argv[] = {name, nullptr};
-        int argc = 1;
-        benchmark::Initialize(&argc, argv);
-        initialised = true;
-    }
-    // A fresh reporter each run: the library's default one does not survive a second run.
-    benchmark::ConsoleReporter reporter(benchmark::ConsoleReporter::OO_Tabular);
-    benchmark::RunSpecifiedBenchmarks(&reporter);
-    benchmark::ClearRegisteredBenchmarks();
-}
-
 struct Measured {
     TickStats stats;
     double contact_fraction = 0.0;
@@ -244,6 +230,7 @@ BenchResults run_suites(const BenchOptions& options) {
     r.stability = stability_table(options.quick);
     r.roller = roller_tracking_table(options.quick);
     r.roller_bandwidth_hz = roller_bandwidth_hz(options.quick);
+    r.render = render_frame_suite(options.quick);
     return r;
 }
 

@@ -1,11 +1,13 @@
 // suites.hpp — what `contactlab bench` measures (issue 8), as data: the cost-growth suite with
-// its baselines, the feature-cost table, the speed/accuracy Pareto table, and timing one
-// user-supplied trace. Google Benchmark runs every measurement (benchmark::RegisterBenchmark with
-// a fixed iteration count, one iteration per proxy tick); each tick is also timed on its own so
-// the medians and 99th percentiles are per tick, not per batch.
+// its baselines, the feature-cost table, the speed/accuracy Pareto table, the renderer's frame
+// time (render_frames.hpp), and timing one user-supplied trace. Google Benchmark runs every
+// measurement (benchmark::RegisterBenchmark with a fixed iteration count, one iteration per proxy
+// tick); each tick is also timed on its own so the medians and 99th percentiles are per tick, not
+// per batch.
 #pragma once
 
 #include "engine/bench/cost_scenes.hpp"
+#include "engine/bench/render_frames.hpp"
 #include "engine/bench/tick_stats.hpp"
 #include "drivers/sim/bench_probes.hpp"
 #include "haptics/scene.hpp"
@@ -58,6 +60,7 @@ struct BenchResults {
     std::vector<CostRow> cost;
     std::vector<FeatureRow> features;
     std::vector<ParetoRow> pareto;
+    RenderFrameResults render;                    // offscreen frame time (engine/render)
 };
 
 BenchResults run_suites(const BenchOptions& options);

@@ -1,0 +1,214 @@
+// plots.cpp — bench results -> charts -> PNG files (plots.hpp).
+#include "engine/bench/plots.hpp"
+
+#include "engine/render/chart_image.hpp"
+#include "engine/render/context.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <exception>
+
+namespace contactlab::bench {
+namespace {
+
+using render::AxisScale;
+using render::Chart;
+using render::ChartReference;
+using render::ChartSeries;
+using render::Marker;
+
+Chart base_chart(std::string title, std::string x_title, AxisScale xs, std::string y_title, AxisScale ys) {
+    Chart c;
+    c.title = std::move(title);
+    c.x.title = std::move(x_title);
+    c.x.scale = xs;
+    c.y.title = std::move(y_title);
+    c.y.scale = ys;
+    c.width = kPlotWidth;
+    c.height = kPlotHeight;
+    return c;
+}
+
+ChartSeries series(std::string name, int colour, Marker marker, bool dashed = false, float width = 2.0f) {
+    ChartSeries s;
+    s.name = std::move(name);
+    s.color = render::chart_color(colour);
+    s.marker = marker;
+    s.dashed = dashed;
+    s.line_width = width;
+    return s;
+}
+
+const char* kind_name(SegmentKind k) {
+    switch (k) {
+    case SegmentKind::lines: return "lines";
+    case SegmentKind::arcs: return "arcs";
+    case SegmentKind::curves: return "curves";
+    }
+    return "?";
+}
+
+// One colour per segment kind; the method by line and marker: ContactLab solid with discs, brute
+// force dashed with squares, point finger thin dashed with triangles.
+Chart cost_chart(const BenchResults& r, Growth growth) {
+    Chart c = base_chart(growth == Growth::extent ? "Cost growth by extent (5 mm segments, longer contour)"
+                                                  : "Cost growth by density (one 0.4 m sinusoid, cut finer)",
+                         "segments N", AxisScale::log10, "ns per tick (median)", AxisScale::log10);
+    int colour = 0;
+    for (const SegmentKind kind : {SegmentKind::lines, SegmentKind::arcs, SegmentKind::curves}) {
+        ChartSeries proxy = series(kind_name(kind), colour, Marker::disc);
+        ChartSeries brute = series(std::string(kind_name(kind)) + ", brute force", colour, Marker::square, true);
+        ChartSeries point = series(std::string(kind_name(kind)) + ", point finger", colour, Marker::triangle, true, 1.5f);
+        for (const CostRow& row : r.cost) {
+            if (row.scene.kind != kind || row.scene.growth != growth) continue;
+            const double n = row.scene.segments;
+            proxy.x.push_back(n);
+            proxy.y.push_back(row.proxy.median_ns);
+            point.x.push_back(n);
+            point.y.push_back(row.point_finger.median_ns);
+            if (row.brute_force) {
+                brute.x.push_back(n);
+                brute.y.push_back(row.brute_force->median_ns);
+            }
+        }
+        for (ChartSeries* s : {&proxy, &brute, &point})
+            if (!s->x.empty()) c.series.push_back(std::move(*s));
+        ++colour;
+    }
+    return c;
+}
+
+// Error (um) against ns per tick; each flatten point labelled with its chord tolerance; exact
+// mode is the reference (zero error by definition), a vertical line at its cost.
+Chart pareto_chart(const BenchResults& r) {
+    Chart c = base_chart("Speed against accuracy: curve modes on seed 002's bumps", "ns per tick (median)",
+                         AxisScale::log10, "error against exact mode (um)", AxisScale::log10);
+    ChartSeries depth_max = series("depth error, max", 1, Marker::square, true);
+    ChartSeries depth_p99 = series("depth error, p99", 0, Marker::disc);
+    ChartSeries proxy_p99 = series("proxy error, p99", 2, Marker::triangle);
+    for (const ParetoRow& p : r.pareto) {
+        if (p.mode == "exact") {
+            c.references.push_back({"exact mode (reference)", true, p.stats.median_ns, render::Color{90, 90, 90, 255}});
+            continue;
+        }
+        char label[32];
+        std::snprintf(label, sizeof label, "%g um", p.tolerance * 1e6);
+        for (ChartSeries* s : {&depth_max, &depth_p99, &proxy_p99}) s->x.push_back(p.stats.median_ns);
+        depth_max.y.push_back(p.depth_error_max * 1e6);
+        depth_p99.y.push_back(p.depth_error_p99 * 1e6);
+        proxy_p99.y.push_back(p.proxy_error_p99 * 1e6);
+        depth_p99.labels.push_back(std::string("tol ") + label);
+    }
+    for (ChartSeries* s : {&depth_p99, &depth_max, &proxy_p99})
+        if (!s->x.empty()) c.series.push_back(std::move(*s));
+    return c;
+}
+
+Chart stability_chart(const BenchResults& r) {
+    Chart c = base_chart("Largest stable stiffness against servo rate (simulated arm)", "servo rate (Hz)",
+                         AxisScale::log10, "Ke (N/m)", AxisScale::log10);
+    ChartSeries bound = series("2b/T passivity bound", 6, Marker::none, true);
+    ChartSeries settles = series("settles", 0, Marker::disc);
+    ChartSeries no_fault = series("no fault", 1, Marker::square);
+    ChartSeries ideal = series("ideal arm, settles", 2, Marker::triangle, true);
+    for (const StabilityRow& s : r.stability) {
+        for (ChartSeries* x : {&bound, &settles, &no_fault, &ideal}) x->x.push_back(s.rate_hz);
+        bound.y.push_back(s.passivity_bound);
+        settles.y.push_back(s.k_settles);
+        no_fault.y.push_back(s.k_no_fault);
+        ideal.y.push_back(s.k_ideal_settles);
+    }
+    if (!r.stability.empty()) c.series = {bound, settles, no_fault, ideal};
+    return c;
+}
+
+// One colour per pole scale: max error solid, RMS dashed.
+Chart roller_chart(const BenchResults& r) {
+    Chart c = base_chart("Roller tracking error against finger speed (seed 000 block task)", "finger speed (mm/s)",
+                         AxisScale::linear, "roller error (um)", AxisScale::linear);
+    c.x.include_zero = true;
+    c.y.include_zero = true;
+    std::vector<double> scales;
+    for (const RollerTrackingRow& t : r.roller)
+        if (std::find(scales.begin(), scales.end(), t.gain_scale) == scales.end()) scales.push_back(t.gain_scale);
+    int colour = 0;
+    for (const double g : scales) {
+        char name[48];
+        std::snprintf(name, sizeof name, "pole x%.2g, max", g);
+        ChartSeries max = series(name, colour, Marker::disc);
+        std::snprintf(name, sizeof name, "pole x%.2g, RMS", g);
+        ChartSeries rms = series(name, colour, Marker::square, true);
+        for (const RollerTrackingRow& t : r.roller) {
+            if (t.gain_scale != g) continue;
+            max.x.push_back(t.finger_speed * 1e3);
+            max.y.push_back(t.max_error * 1e6);
+            rms.x.push_back(t.finger_speed * 1e3);
+            rms.y.push_back(t.rms_error * 1e6);
+        }
+        c.series.push_back(std::move(max));
+        c.series.push_back(std::move(rms));
+        ++colour;
+    }
+    return c;
+}
+
+Chart render_chart(const BenchResults& r) {
+    Chart c = base_chart("Offscreen frame time, 1280x720 (" + r.render.device + ")", "segments N", AxisScale::log10,
+                         "ms per frame", AxisScale::log10);
+    ChartSeries median = series("median", 0, Marker::disc);
+    ChartSeries p99 = series("p99", 1, Marker::square, true);
+    for (const RenderFrameRow& row : r.render.rows) {
+        median.x.push_back(row.segments);
+        median.y.push_back(row.frame.median_ns / 1e6);
+        p99.x.push_back(row.segments);
+        p99.y.push_back(row.frame.p99_ns / 1e6);
+    }
+    c.series = {median, p99};
+    // What an editor redrawing at 60 Hz can spend on a frame.
+    c.references.push_back({"60 Hz frame, 16.7 ms", false, 1000.0 / 60.0, render::Color{90, 90, 90, 255}});
+    return c;
+}
+
+}  // namespace
+
+std::vector<ReportChart> report_charts(const BenchResults& r) {
+    std::vector<ReportChart> charts;
+    if (!r.cost.empty()) {
+        charts.push_back({"cost_extent.png", cost_chart(r, Growth::extent)});
+        charts.push_back({"cost_dense.png", cost_chart(r, Growth::dense)});
+    }
+    if (!r.pareto.empty()) charts.push_back({"pareto.png", pareto_chart(r)});
+    if (!r.stability.empty()) charts.push_back({"stability.png", stability_chart(r)});
+    if (!r.roller.empty()) charts.push_back({"roller_tracking.png", roller_chart(r)});
+    if (!r.render.rows.empty()) charts.push_back({"render_frame.png", render_chart(r)});
+    return charts;
+}
+
+const PlotFile* ReportPlots::find(const std::string& file) const {
+    for (const PlotFile& f : files)
+        if (f.file == file) return &f;
+    return nullptr;
+}
+
+ReportPlots write_report_plots(const BenchResults& r, const std::string& dir) {
+    ReportPlots out;
+    const std::vector<ReportChart> charts = report_charts(r);
+    try {
+        const render::VulkanContext ctx(render::ContextOptions{});
+        for (const ReportChart& c : charts) {
+            PlotFile f{c.file, c.chart.title, "", 0};
+            try {
+                f.skipped_points = render::write_chart_png(ctx, c.chart, dir + "/" + c.file).skipped_points;
+            } catch (const std::exception& e) {
+                f.error = e.what();  // this figure only: the others and the tables still get written
+            }
+            out.files.push_back(f);
+        }
+    } catch (const std::exception& e) {
+        out.skipped = e.what();  // no Vulkan device: the Markdown says so
+        out.files.clear();
+    }
+    return out;
+}
+
+}  // namespace contactlab::bench

@@ -1,0 +1,356 @@
+// chart.cpp — chart layout (ranges from the data, room for labels and legend) and drawing into a
+// DrawList: grid, reference lines, series clipped to the plot, markers, frame, ticks, legend.
+#include "engine/render/chart.hpp"
+
+#include "engine/render/text.hpp"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace contactlab::render {
+namespace {
+
+constexpr int kTextScale = 2;        // stb_easy_font units -> px: 14 px glyphs, readable in a report
+constexpr float kGlyphHeight = 16.f;  // px the visible glyphs take at kTextScale (7-8 font units)
+constexpr float kPad = 10.f;          // px between text blocks
+constexpr float kTick = 6.f, kMinorTick = 3.f;  // px tick lengths
+constexpr float kLegendSwatch = 34.f;  // px of sample line in a legend entry
+constexpr float kLegendRow = 24.f;     // px per legend entry
+constexpr float kMarkerRadius = 4.5f;  // px
+constexpr float kDash = 9.f, kGap = 5.f;  // px dash pattern
+const Color kInk{30, 30, 30, 255};
+const Color kGrid{222, 222, 222, 255};
+const Color kMinorGrid{240, 240, 240, 255};
+
+// ---- ranges --------------------------------------------------------------------------------------
+std::string where(const Chart& c, const char* axis) { return "chart \"" + c.title + "\", " + axis + " axis"; }
+
+// The range of one axis: explicit limits, else the drawable data (points whose x and y are both
+// drawable, and reference lines across this axis) widened to whole decades or tick steps.
+std::pair<double, double> axis_range(const Chart& c, bool is_x) {
+    const ChartAxis& a = is_x ? c.x : c.y;
+    const char* name = is_x ? "x" : "y";
+    const AxisMap probe_x{c.x.scale}, probe_y{c.y.scale};
+    const AxisMap& own = is_x ? probe_x : probe_y;
+    double lo = INFINITY, hi = -INFINITY;
+    for (const ChartSeries& s : c.series)
+        for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i)
+            if (probe_x.accepts(s.x[i]) && probe_y.accepts(s.y[i])) {
+                const double v = is_x ? s.x[i] : s.y[i];
+                lo = std::min(lo, v);
+                hi = std::max(hi, v);
+            }
+    for (const ChartReference& r : c.references)
+        if (r.vertical == is_x && own.accepts(r.value)) {
+            lo = std::min(lo, r.value);
+            hi = std::max(hi, r.value);
+        }
+    if (a.include_zero && a.scale == AxisScale::linear && lo <= hi) {
+        lo = std::min(lo, 0.0);
+        hi = std::max(hi, 0.0);
+    }
+    if (a.min) lo = *a.min;
+    if (a.max) hi = *a.max;
+    if (!std::isfinite(lo) || !std::isfinite(hi))
+        throw ChartError(where(c, name) +
+                         ": no drawable point and no explicit range (a point needs finite x and y, positive on a "
+                         "log scale)");
+    if (a.scale == AxisScale::log10 && (lo <= 0.0 || hi <= 0.0))
+        throw ChartError(where(c, name) + ": a log scale needs positive limits");
+    if (a.min && a.max) {
+        if (!(lo < hi)) throw ChartError(where(c, name) + ": min must be below max");
+        return {lo, hi};  // explicit: exactly as asked
+    }
+    if (a.scale == AxisScale::log10) {
+        double l = std::pow(10.0, std::floor(std::log10(lo) + 1e-9));
+        double h = std::pow(10.0, std::ceil(std::log10(hi) - 1e-9));
+        if (a.min) l = lo;
+        if (a.max) h = hi;
+        if (!(l < h)) {  // a single decade value: one decade either side
+            if (!a.min) l = lo / 10.0;
+            if (!a.max) h = hi * 10.0;
+        }
+        if (!(l < h)) throw ChartError(where(c, name) + ": min must be below max");
+        return {l, h};
+    }
+    if (!(lo < hi)) {  // one value: a unit (or 10 %) either side
+        const double d = lo == 0.0 ? 1.0 : 0.1 * std::abs(lo);
+        if (!a.min) lo -= d;
+        if (!a.max) hi += d;
+        if (!(lo < hi)) throw ChartError(where(c, name) + ": min must be below max");
+    }
+    // Out to whole tick steps, so the frame ends on labelled ticks.
+    const std::vector<ChartTick> ticks = axis_ticks(AxisMap{AxisScale::linear, lo, hi, 0.0, 1.0});
+    const double step = ticks.size() >= 2 ? ticks[1].value - ticks[0].value : hi - lo;
+    const double l = a.min ? lo : std::floor(lo / step + 1e-9) * step;
+    const double h = a.max ? hi : std::ceil(hi / step - 1e-9) * step;
+    return {l, h};
+}
+
+// ---- drawing helpers -----------------------------------------------------------------------------
+float text_w(const std::string& s) { return text_size(s, kTextScale).x; }
+
+void text_at(DrawList& out, P2 p, const std::string& s, Color c) { draw_text(out, p, s, c, kTextScale); }
+
+// Liang-Barsky: clips segment a-b to the rectangle; false if nothing is left.
+bool clip(P2& a, P2& b, P2 lo, P2 hi) {
+    double t0 = 0.0, t1 = 1.0;
+    const double dx = b.x - a.x, dy = b.y - a.y;
+    const double p[4] = {-dx, dx, -dy, dy};
+    const double q[4] = {a.x - lo.x, hi.x - a.x, a.y - lo.y, hi.y - a.y};
+    for (int i = 0; i < 4; ++i) {
+        if (p[i] == 0.0) {
+            if (q[i] < 0.0) return false;
+            continue;
+        }
+        const double t = q[i] / p[i];
+        if (p[i] < 0.0) t0 = std::max(t0, t);
+        else t1 = std::min(t1, t);
+        if (t0 > t1) return false;
+    }
+    const P2 a0 = a;
+    a = a0 + static_cast<float>(t0) * (b - a0);
+    b = a0 + static_cast<float>(t1) * (b - a0);
+    return true;
+}
+
+// A polyline stroked solid or in dashes (kDash on, kGap off, carried across corners).
+void stroke_run(DrawList& out, const std::vector<P2>& run, bool dashed, float width, Color color) {
+    if (run.size() < 2) return;
+    if (!dashed) {
+        out.stroke(run, false, width, color);
+        return;
+    }
+    float phase = 0.f;  // distance into the current dash+gap period
+    for (std::size_t i = 0; i + 1 < run.size(); ++i) {
+        const P2 a = run[i], b = run[i + 1];
+        const float len = glm::length(b - a);
+        if (len <= 0.f) continue;
+        const P2 dir = (b - a) / len;
+        float s = 0.f;
+        while (s < len) {
+            const bool on = phase < kDash;
+            const float left = on ? kDash - phase : kDash + kGap - phase;
+            const float e = std::min(len, s + left);
+            if (on) out.line(a + dir * s, a + dir * e, width, color);
+            phase += e - s;
+            if (phase >= kDash + kGap) phase = 0.f;
+            s = e;
+        }
+    }
+}
+
+void draw_marker(DrawList& out, Marker m, P2 c, Color color) {
+    const float r = kMarkerRadius;
+    switch (m) {
+    case Marker::none: return;
+    case Marker::disc: out.fill_disc(c, r, color); return;
+    case Marker::square: {
+        const P2 pts[4] = {c + P2(-r, -r), c + P2(r, -r), c + P2(r, r), c + P2(-r, r)};
+        out.fill_convex(pts, color);
+        return;
+    }
+    case Marker::triangle: {
+        const float s = r * 1.3f;
+        const P2 pts[3] = {c + P2(0.f, -s), c + P2(s * 0.87f, s * 0.5f), c + P2(-s * 0.87f, s * 0.5f)};
+        out.fill_convex(pts, color);
+        return;
+    }
+    case Marker::diamond: {
+        const float s = r * 1.3f;
+        const P2 pts[4] = {c + P2(0.f, -s), c + P2(s, 0.f), c + P2(0.f, s), c + P2(-s, 0.f)};
+        out.fill_convex(pts, color);
+        return;
+    }
+    }
+}
+
+bool inside(P2 p, P2 lo, P2 hi) {
+    return p.x >= lo.x - 0.5f && p.x <= hi.x + 0.5f && p.y >= lo.y - 0.5f && p.y <= hi.y + 0.5f;
+}
+
+P2 px(const ChartLayout& l, double x, double y) {
+    return P2(static_cast<float>(l.x.to_px(x)), static_cast<float>(l.y.to_px(y)));
+}
+
+void draw_series(DrawList& out, const ChartLayout& l, const ChartSeries& s) {
+    // Runs of consecutive drawable points, clipped to the plot; a skipped point breaks the line.
+    std::vector<P2> run;
+    auto flush = [&] {
+        stroke_run(out, run, s.dashed, s.line_width, s.color);
+        run.clear();
+    };
+    bool have_prev = false;
+    P2 prev{};
+    for (std::size_t i = 0; i < s.x.size(); ++i) {
+        if (!l.x.accepts(s.x[i]) || !l.y.accepts(s.y[i])) {
+            flush();
+            have_prev = false;
+            continue;
+        }
+        const P2 p = px(l, s.x[i], s.y[i]);
+        if (have_prev) {
+            P2 a = prev, b = p;
+            if (clip(a, b, l.plot_lo, l.plot_hi)) {
+                if (run.empty() || a != prev) {
+                    flush();
+                    run.push_back(a);
+                }
+                run.push_back(b);
+                if (b != p) flush();  // left the plot
+            } else {
+                flush();
+            }
+        }
+        prev = p;
+        have_prev = true;
+    }
+    flush();
+    for (std::size_t i = 0; i < s.x.size(); ++i) {
+        if (!l.x.accepts(s.x[i]) || !l.y.accepts(s.y[i])) continue;
+        const P2 p = px(l, s.x[i], s.y[i]);
+        if (!inside(p, l.plot_lo, l.plot_hi)) continue;
+        draw_marker(out, s.marker, p, s.color);
+        if (i < s.labels.size() && !s.labels[i].empty())
+            draw_text(out, p + P2(kMarkerRadius + 3.f, -kMarkerRadius - 12.f), s.labels[i], s.color, kTextScale);
+    }
+}
+
+struct LegendEntry {
+    std::string name;
+    Color color;
+    Marker marker;
+    bool dashed;
+    float width;
+};
+
+std::vector<LegendEntry> legend_entries(const Chart& c) {
+    std::vector<LegendEntry> e;
+    for (const ChartSeries& s : c.series)
+        if (!s.name.empty()) e.push_back({s.name, s.color, s.marker, s.dashed, s.line_width});
+    for (const ChartReference& r : c.references)
+        if (!r.label.empty()) e.push_back({r.label, r.color, Marker::none, true, 2.f});
+    return e;
+}
+
+}  // namespace
+
+Color chart_color(int index) {
+    static const Color palette[] = {
+        {0, 114, 178, 255},   // blue
+        {213, 94, 0, 255},    // vermillion
+        {0, 158, 115, 255},   // bluish green
+        {204, 121, 167, 255}, // reddish purple
+        {230, 159, 0, 255},   // orange
+        {86, 180, 233, 255},  // sky blue
+        {0, 0, 0, 255},       // black
+        {180, 160, 0, 255},   // darkened yellow (pure yellow vanishes on white)
+    };
+    const int n = static_cast<int>(std::size(palette));
+    return palette[((index % n) + n) % n];
+}
+
+ChartLayout layout_chart(const Chart& c) {
+    for (const ChartSeries& s : c.series) {
+        if (s.x.size() != s.y.size())
+            throw ChartError("chart \"" + c.title + "\", series \"" + s.name + "\": x and y differ in length");
+        if (!s.labels.empty() && s.labels.size() != s.x.size())
+            throw ChartError("chart \"" + c.title + "\", series \"" + s.name + "\": one label per point, or none");
+    }
+    ChartLayout l;
+    const auto [x0, x1] = axis_range(c, true);
+    const auto [y0, y1] = axis_range(c, false);
+    l.x = AxisMap{c.x.scale, x0, x1, 0.0, 1.0};
+    l.y = AxisMap{c.y.scale, y0, y1, 0.0, 1.0};
+
+    // Room: title and the y axis's title above the plot, tick labels left and below, the x axis's
+    // title under those, the legend on the right.
+    float y_label_w = 0.f;
+    for (const ChartTick& t : axis_ticks(l.y)) y_label_w = std::max(y_label_w, text_w(t.label));
+    float legend_w = 0.f;
+    for (const LegendEntry& e : legend_entries(c)) legend_w = std::max(legend_w, text_w(e.name));
+    const float left = kPad + std::max(y_label_w + kTick + 6.f, 20.f);
+    const float top = kPad + (c.title.empty() ? 0.f : kGlyphHeight + kPad) + kGlyphHeight + kPad;
+    const float bottom = kTick + 6.f + kGlyphHeight + kPad + kGlyphHeight + kPad;
+    const float right = legend_w > 0.f ? 2 * kPad + kLegendSwatch + 8.f + legend_w + kPad : 2 * kPad;
+    l.plot_lo = P2(std::round(left), std::round(top));
+    l.plot_hi = P2(std::round(static_cast<float>(c.width) - right), std::round(static_cast<float>(c.height) - bottom));
+    if (l.plot_hi.x - l.plot_lo.x < 50.f || l.plot_hi.y - l.plot_lo.y < 50.f)
+        throw ChartError("chart \"" + c.title + "\": " + std::to_string(c.width) + "x" + std::to_string(c.height) +
+                         " px leaves no room for the plot (labels and legend take the rest)");
+    l.x.px_lo = l.plot_lo.x;
+    l.x.px_hi = l.plot_hi.x;
+    l.y.px_lo = l.plot_hi.y;  // pixel y grows downwards: the low value sits at the bottom
+    l.y.px_hi = l.plot_lo.y;
+    for (const ChartSeries& s : c.series)
+        for (std::size_t i = 0; i < s.x.size(); ++i)
+            if (!l.x.accepts(s.x[i]) || !l.y.accepts(s.y[i])) ++l.skipped_points;
+    return l;
+}
+
+ChartLayout draw_chart(const Chart& c, DrawList& out) {
+    const ChartLayout l = layout_chart(c);
+    const P2 lo = l.plot_lo, hi = l.plot_hi;
+    const auto xt = axis_ticks(l.x), yt = axis_ticks(l.y);
+
+    // Grid under everything: major lines at labelled ticks, minor ones fainter.
+    for (const ChartTick& t : xt) {
+        const float x = static_cast<float>(l.x.to_px(t.value));
+        out.line(P2(x, lo.y), P2(x, hi.y), 1.f, t.label.empty() ? kMinorGrid : kGrid);
+    }
+    for (const ChartTick& t : yt) {
+        const float y = static_cast<float>(l.y.to_px(t.value));
+        out.line(P2(lo.x, y), P2(hi.x, y), 1.f, t.label.empty() ? kMinorGrid : kGrid);
+    }
+    // Reference lines, labelled at their far end inside the plot.
+    for (const ChartReference& r : c.references) {
+        const AxisMap& m = r.vertical ? l.x : l.y;
+        if (!m.accepts(r.value)) continue;
+        const float v = static_cast<float>(m.to_px(r.value));
+        if (r.vertical ? (v < lo.x || v > hi.x) : (v < lo.y || v > hi.y)) continue;  // outside an explicit range
+        const std::vector<P2> run = r.vertical ? std::vector<P2>{P2(v, hi.y), P2(v, lo.y)}
+                                               : std::vector<P2>{P2(lo.x, v), P2(hi.x, v)};
+        stroke_run(out, run, true, 2.f, r.color);
+        if (!r.label.empty()) {
+            const P2 at = r.vertical ? P2(v + 4.f, lo.y + 4.f) : P2(hi.x - text_w(r.label) - 4.f, v - kGlyphHeight - 4.f);
+            text_at(out, at, r.label, r.color);
+        }
+    }
+    for (const ChartSeries& s : c.series) draw_series(out, l, s);
+
+    // Frame, ticks and their labels.
+    const P2 frame[4] = {lo, P2(hi.x, lo.y), hi, P2(lo.x, hi.y)};
+    out.stroke(frame, true, 1.5f, kInk);
+    for (const ChartTick& t : xt) {
+        const float x = static_cast<float>(l.x.to_px(t.value));
+        out.line(P2(x, hi.y), P2(x, hi.y + (t.label.empty() ? kMinorTick : kTick)), 1.5f, kInk);
+        if (!t.label.empty()) text_at(out, P2(x - text_w(t.label) / 2.f, hi.y + kTick + 6.f), t.label, kInk);
+    }
+    for (const ChartTick& t : yt) {
+        const float y = static_cast<float>(l.y.to_px(t.value));
+        out.line(P2(lo.x - (t.label.empty() ? kMinorTick : kTick), y), P2(lo.x, y), 1.5f, kInk);
+        if (!t.label.empty())
+            text_at(out, P2(lo.x - kTick - 6.f - text_w(t.label), y - kGlyphHeight / 2.f), t.label, kInk);
+    }
+    // Titles: the chart's centred on top, the y axis's above the plot (text does not rotate), the
+    // x axis's centred under the tick labels.
+    if (!c.title.empty())
+        text_at(out, P2((static_cast<float>(c.width) - text_w(c.title)) / 2.f, kPad), c.title, kInk);
+    text_at(out, P2(kPad, lo.y - kPad - kGlyphHeight), c.y.title, kInk);
+    text_at(out, P2((lo.x + hi.x - text_w(c.x.title)) / 2.f, hi.y + kTick + 6.f + kGlyphHeight + kPad), c.x.title, kInk);
+
+    // Legend right of the plot: a sample of each line (and marker), then its name.
+    float y = lo.y + kGlyphHeight / 2.f;
+    for (const LegendEntry& e : legend_entries(c)) {
+        const float x0 = hi.x + 2 * kPad;
+        stroke_run(out, {P2(x0, y), P2(x0 + kLegendSwatch, y)}, e.dashed, e.width, e.color);
+        draw_marker(out, e.marker, P2(x0 + kLegendSwatch / 2.f, y), e.color);
+        text_at(out, P2(x0 + kLegendSwatch + 8.f, y - kGlyphHeight / 2.f), e.name, kInk);
+        y += kLegendRow;
+    }
+    return l;
+}
+
+}  // namespace contactlab::render

@@ -1,0 +1,222 @@
+// test_bench_report.cpp — `contactlab bench --report`: the plots drawn from the results, the
+// Markdown linking them (or saying why they are missing), and the output of the quick run.
+//
+// Three groups, run as separate ctests (tests/bench/CMakeLists.txt):
+//   report       charts and Markdown from made-up results, PNGs rendered on lavapipe
+//   no_vulkan    the same with no Vulkan driver to be found: plots and frame times skipped, said why
+//   quick_output what `contactlab bench --quick --report DIR` left in DIR (runs after that test)
+#include "engine/bench/plots.hpp"
+#include "engine/bench/render_frames.hpp"
+#include "engine/bench/report.hpp"
+#include "engine/render/image.hpp"
+
+#include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+namespace fs = std::filesystem;
+using namespace contactlab;
+using namespace contactlab::bench;
+
+namespace {
+
+const std::vector<std::string> kPlotFiles = {"cost_extent.png", "cost_dense.png",      "pareto.png",
+                                             "stability.png",   "roller_tracking.png", "render_frame.png"};
+
+TickStats stats(double median_ns) { return {median_ns, 2.0 * median_ns, 3.0 * median_ns, 100}; }
+
+// Results shaped like a quick run's, with plausible figures.
+BenchResults made_up_results() {
+    BenchResults r;
+    r.quick = true;
+    for (const Growth g : {Growth::extent, Growth::dense})
+        for (const SegmentKind k : {SegmentKind::lines, SegmentKind::arcs, SegmentKind::curves})
+            for (const int n : {10, 1000, 100000}) {
+                CostRow row;
+                row.scene = {k, g, n};
+                row.key = case_key(k, g);
+                row.proxy = stats(1000.0 + n * 0.01);
+                row.point_finger = stats(300.0);
+                if (n <= 1000) row.brute_force = stats(50.0 * n);
+                row.contact_fraction = 1.0;
+                r.cost.push_back(row);
+            }
+    ParetoRow exact;
+    exact.mode = "exact";
+    exact.stats = stats(9500.0);
+    r.pareto.push_back(exact);
+    for (const double tol : {1e-4, 1e-5}) {
+        ParetoRow p;
+        p.mode = "flatten";
+        p.tolerance = tol;
+        p.depth_error_p99 = tol * 0.8;
+        p.depth_error_max = 2e-4;
+        p.proxy_error_p99 = tol * 5.0;
+        p.proxy_error_max = 3.7e-3;
+        p.stats = stats(tol > 5e-5 ? 980.0 : 1780.0);
+        r.pareto.push_back(p);
+    }
+    for (const double rate : {250.0, 1000.0}) {
+        StabilityRow s;
+        s.rate_hz = rate;
+        s.passivity_bound = 2.0 * 5.0 * rate;
+        s.k_no_fault = 1.5 * s.passivity_bound;
+        s.k_settles = 1.2 * s.passivity_bound;
+        s.k_ideal_settles = 1.1 * s.passivity_bound;
+        r.stability.push_back(s);
+    }
+    for (const double g : {1.0, 2.0})
+        for (const double v : {0.02, 0.05}) {
+            RollerTrackingRow t;
+            t.gain_scale = g;
+            t.finger_speed = v;
+            t.max_error = v * 1e-3 / g;
+            t.rms_error = v * 0.3e-3 / g;
+            r.roller.push_back(t);
+        }
+    r.render.device = "made-up device";
+    for (const int n : {10, 1000, 100000}) r.render.rows.push_back({n, stats(2e6 + 100.0 * n), 1000});
+    return r;
+}
+
+fs::path fresh_dir(const std::string& name) {
+    const fs::path d = fs::temp_directory_path() / name;
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+}
+
+std::string read_text(const fs::path& p) {
+    std::ifstream in(p);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+}  // namespace
+
+TEST_SUITE("report") {
+TEST_CASE("bench report: one chart per figure, cost charts with ContactLab and both baselines per kind") {
+    const auto charts = report_charts(made_up_results());
+    REQUIRE(charts.size() == kPlotFiles.size());
+    for (std::size_t i = 0; i < charts.size(); ++i) {
+        CHECK(charts[i].file == kPlotFiles[i]);
+        CHECK(charts[i].chart.width == kPlotWidth);
+        CHECK(charts[i].chart.height == kPlotHeight);
+        CHECK_NOTHROW(render::layout_chart(charts[i].chart));
+    }
+    // 3 kinds x (ContactLab, brute force, point finger), on log-log axes.
+    const render::Chart& extent = charts[0].chart;
+    CHECK(extent.series.size() == 9);
+    CHECK(extent.x.scale == render::AxisScale::log10);
+    CHECK(extent.y.scale == render::AxisScale::log10);
+    // Brute force ran up to 1000 segments here: two points.
+    CHECK(extent.series[1].name == "lines, brute force");
+    CHECK(extent.series[1].x.size() == 2);
+    // Pareto: exact mode is a vertical reference at its cost; flatten rows are points.
+    const render::Chart& pareto = charts[2].chart;
+    REQUIRE(pareto.references.size() == 1);
+    CHECK(pareto.references[0].vertical);
+    CHECK(pareto.references[0].value == doctest::Approx(9500.0));
+    CHECK(pareto.series[0].x.size() == 2);
+    // Stability: the 2b/T bound beside the measured stiffnesses.
+    CHECK(charts[3].chart.series[0].name == "2b/T passivity bound");
+    CHECK(charts[3].chart.series[0].y[1] == doctest::Approx(10000.0));
+}
+
+TEST_CASE("bench report: PNGs written at the plot size and linked from the Markdown") {
+    const BenchResults r = made_up_results();
+    const fs::path dir = fresh_dir("contactlab_test_bench_report");
+    const ReportPlots plots = write_report_plots(r, dir.string());
+    CHECK(plots.skipped.empty());
+    REQUIRE(plots.files.size() == kPlotFiles.size());
+    for (const PlotFile& f : plots.files) {
+        CHECK_MESSAGE(f.error.empty(), f.file, ": ", f.error);
+        const render::Image img = render::read_png((dir / f.file).string());
+        CHECK(img.width == kPlotWidth);
+        CHECK(img.height == kPlotHeight);
+    }
+    const std::string md = results_markdown(r, &plots);
+    for (const std::string& f : kPlotFiles) CHECK_MESSAGE(md.find("](" + f + ")") != std::string::npos, f);
+    CHECK(md.find("| 100000 | 1000 | 12 ms |") != std::string::npos);  // the frame-time table
+    fs::remove_all(dir);
+}
+
+TEST_CASE("bench report: a figure with no drawable data is not drawn and the page says why") {
+    BenchResults r = made_up_results();
+    for (RollerTrackingRow& t : r.roller) t.max_error = t.rms_error = std::numeric_limits<double>::quiet_NaN();
+    const fs::path dir = fresh_dir("contactlab_test_bench_report_nan");
+    const ReportPlots plots = write_report_plots(r, dir.string());
+    const PlotFile* roller = plots.find("roller_tracking.png");
+    REQUIRE(roller != nullptr);
+    CHECK(roller->error.find("no drawable point") != std::string::npos);
+    CHECK_FALSE(fs::exists(dir / "roller_tracking.png"));
+    CHECK(fs::exists(dir / "pareto.png"));
+    const std::string md = results_markdown(r, &plots);
+    CHECK(md.find("_Plot `roller_tracking.png` not drawn: ") != std::string::npos);
+    fs::remove_all(dir);
+}
+
+TEST_CASE("bench report: the JSON holds render_ms.<N> in ms") {
+    const nlohmann::json j = results_json(made_up_results());
+    CHECK(j["render_ms"]["100000"]["median"].get<double>() == doctest::Approx(12.0));
+    CHECK(j["render_ms"]["10"]["p99"].get<double>() == doctest::Approx(2.0 * (2e6 + 1000.0) / 1e6));
+    CHECK(j["render_device"] == "made-up device");
+}
+}
+
+TEST_SUITE("no_vulkan") {
+TEST_CASE("bench report: with no Vulkan driver the plots and frame times are skipped, and the page says why") {
+    // ctest points VK_DRIVER_FILES at a manifest that does not exist for this group.
+    const RenderFrameResults frames = render_frame_suite(true);
+    CHECK(frames.rows.empty());
+    CHECK_FALSE(frames.skipped.empty());
+
+    BenchResults r = made_up_results();
+    r.render = frames;
+    const fs::path dir = fresh_dir("contactlab_test_bench_report_novk");
+    const ReportPlots plots = write_report_plots(r, dir.string());
+    CHECK_FALSE(plots.skipped.empty());
+    CHECK(plots.files.empty());
+    CHECK(fs::is_empty(dir));
+    const std::string md = results_markdown(r, &plots);
+    CHECK(md.find("**Plots skipped**, Vulkan could not render them: " + plots.skipped) != std::string::npos);
+    CHECK(md.find("![") == std::string::npos);
+    CHECK(md.find("## Render frame time") != std::string::npos);
+    CHECK(md.find("Skipped: " + frames.skipped) != std::string::npos);
+    CHECK(results_json(r)["render_skipped"] == frames.skipped);
+    fs::remove_all(dir);
+}
+}
+
+TEST_SUITE("quick_output") {
+TEST_CASE("bench --quick --report: every PNG decodes at the plot size, render_ms finite and positive") {
+    const fs::path dir = CONTACTLAB_BENCH_QUICK_DIR;
+    const std::string md = read_text(dir / "README.md");
+    for (const std::string& f : kPlotFiles) {
+        CAPTURE(f);
+        REQUIRE(fs::exists(dir / f));
+        const render::Image img = render::read_png((dir / f).string());
+        CHECK(img.width == kPlotWidth);
+        CHECK(img.height == kPlotHeight);
+        CHECK(md.find("](" + f + ")") != std::string::npos);
+    }
+    const nlohmann::json j = nlohmann::json::parse(read_text(dir / "bench.json"));
+    for (const char* n : {"10", "1000", "100000"}) {
+        CAPTURE(n);
+        REQUIRE(j["render_ms"].contains(n));
+        for (const char* k : {"median", "p99", "max"}) {
+            const double v = j["render_ms"][n][k].get<double>();
+            CHECK(std::isfinite(v));
+            CHECK(v > 0.0);
+        }
+        CHECK(j["render_ms"][n]["frames"].get<int>() >= 1);
+    }
+    CHECK_FALSE(j["render_device"].get<std::string>().empty());
+}
+}

@@ -1,0 +1,224 @@
+// test_chart.cpp — report charts (engine/render/chart.hpp): the data -> pixel formula of linear
+// and log axes, ranges and ticks, bad data skipped or rejected with a message, and the rendered
+// PNG showing each series' colour where its data points must land.
+#include "render_fixture.hpp"
+
+#include "engine/render/chart.hpp"
+#include "engine/render/chart_image.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <limits>
+
+using namespace render_test;
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Pixel positions are floats (DrawList vertices): exact to float rounding, ~1e-4 px at 1000 px.
+constexpr double kPxTol = 1e-3;
+
+Chart explicit_chart(AxisScale xs, double x0, double x1, AxisScale ys, double y0, double y1) {
+    Chart c;
+    c.title = "test";
+    c.x = ChartAxis{"x (m)", xs, x0, x1};
+    c.y = ChartAxis{"y (N)", ys, y0, y1};
+    c.width = 640;
+    c.height = 400;
+    return c;
+}
+
+// Some pixel within `radius` px of p has exactly the colour's RGB.
+bool color_near(const Image& img, P2 p, Color c, int radius) {
+    for (int dy = -radius; dy <= radius; ++dy)
+        for (int dx = -radius; dx <= radius; ++dx) {
+            const int x = static_cast<int>(std::floor(p.x)) + dx, y = static_cast<int>(std::floor(p.y)) + dy;
+            if (x < 0 || y < 0 || x >= img.width || y >= img.height) continue;
+            const uint8_t* q = img.pixel(x, y);
+            if (q[0] == c.r && q[1] == c.g && q[2] == c.b) return true;
+        }
+    return false;
+}
+
+ChartSeries series(std::string name, std::vector<double> x, std::vector<double> y, Color color,
+                   Marker marker = Marker::disc) {
+    ChartSeries s;
+    s.name = std::move(name);
+    s.x = std::move(x);
+    s.y = std::move(y);
+    s.color = color;
+    s.marker = marker;
+    return s;
+}
+
+P2 at(const ChartLayout& l, double x, double y) {
+    return P2(static_cast<float>(l.x.to_px(x)), static_cast<float>(l.y.to_px(y)));
+}
+
+}  // namespace
+
+TEST_CASE("chart: linear axes map data to pixels by the axis formula, y growing upwards") {
+    const Chart c = explicit_chart(AxisScale::linear, 0.0, 10.0, AxisScale::linear, -50.0, 150.0);
+    const ChartLayout l = layout_chart(c);
+    const double w = l.plot_hi.x - l.plot_lo.x, h = l.plot_hi.y - l.plot_lo.y;
+    REQUIRE(w > 100.0);
+    REQUIRE(h > 100.0);
+    // x: px = left + (x - 0) / 10 * w; y: px = bottom - (y + 50) / 200 * h.
+    CHECK(std::abs(l.x.to_px(0.0) - l.plot_lo.x) < kPxTol);
+    CHECK(std::abs(l.x.to_px(2.5) - (l.plot_lo.x + 0.25 * w)) < kPxTol);
+    CHECK(std::abs(l.x.to_px(10.0) - l.plot_hi.x) < kPxTol);
+    CHECK(std::abs(l.y.to_px(-50.0) - l.plot_hi.y) < kPxTol);
+    CHECK(std::abs(l.y.to_px(0.0) - (l.plot_hi.y - 0.25 * h)) < kPxTol);
+    CHECK(std::abs(l.y.to_px(150.0) - l.plot_lo.y) < kPxTol);
+    // Beyond the range the formula extrapolates (the drawing clips).
+    CHECK(std::abs(l.x.to_px(20.0) - (l.plot_lo.x + 2.0 * w)) < kPxTol);
+}
+
+TEST_CASE("chart: log10 axes map each decade to an equal pixel span") {
+    const Chart c = explicit_chart(AxisScale::log10, 1.0, 1e5, AxisScale::log10, 1e-6, 1e-2);
+    const ChartLayout l = layout_chart(c);
+    const double w = l.plot_hi.x - l.plot_lo.x, h = l.plot_hi.y - l.plot_lo.y;
+    // x: 5 decades; 100 is 2/5 of the way. y: 4 decades; 1e-4 is half way up.
+    CHECK(std::abs(l.x.to_px(100.0) - (l.plot_lo.x + 0.4 * w)) < kPxTol);
+    CHECK(std::abs(l.x.to_px(1e5) - l.plot_hi.x) < kPxTol);
+    CHECK(std::abs(l.y.to_px(1e-4) - (l.plot_hi.y - 0.5 * h)) < kPxTol);
+    // Between decades: log10(3) of a decade's span.
+    CHECK(std::abs(l.x.to_px(3.0) - (l.plot_lo.x + std::log10(3.0) / 5.0 * w)) < kPxTol);
+    CHECK(l.x.accepts(1e-300));
+    CHECK_FALSE(l.x.accepts(0.0));
+    CHECK_FALSE(l.x.accepts(-1.0));
+    CHECK_FALSE(l.x.accepts(kNaN));
+}
+
+TEST_CASE("chart: ranges from the data widen to whole decades (log) and tick steps (linear)") {
+    Chart c;
+    c.title = "auto";
+    c.x.scale = AxisScale::log10;
+    c.y.scale = AxisScale::linear;
+    c.series.push_back(series("s", {3.0, 40.0, 4500.0}, {0.3, 8.7, 2.0}, chart_color(0)));
+    const ChartLayout l = layout_chart(c);
+    CHECK(l.x.lo == doctest::Approx(1.0));
+    CHECK(l.x.hi == doctest::Approx(1e4));
+    // Span 8.4: step 1 (at most 10 intervals of 1/2/5 x 10^k), so [0, 9].
+    CHECK(l.y.lo == doctest::Approx(0.0));
+    CHECK(l.y.hi == doctest::Approx(9.0));
+    CHECK(l.skipped_points == 0);
+
+    c.y.include_zero = true;
+    c.series[0].y = {5.0, 7.0, 6.0};
+    CHECK(layout_chart(c).y.lo == doctest::Approx(0.0));
+}
+
+TEST_CASE("chart: ticks and their labels") {
+    const auto lin = axis_ticks(AxisMap{AxisScale::linear, 0.0, 9.0, 0.0, 1.0});
+    REQUIRE(lin.size() == 10);
+    CHECK(lin.front().value == 0.0);
+    CHECK(lin.back().value == doctest::Approx(9.0));
+    CHECK(lin[3].label == "3");
+    // [1, 1000] on a log axis: 4 labelled decades and minor ticks 2..9 in the three between.
+    const auto lg = axis_ticks(AxisMap{AxisScale::log10, 1.0, 1000.0, 0.0, 1.0});
+    CHECK(lg.size() == 4 + 3 * 8);
+    int labelled = 0;
+    for (const ChartTick& t : lg) labelled += t.label.empty() ? 0 : 1;
+    CHECK(labelled == 4);
+    // Within one decade, 2 and 5 x 10^k are labelled too: 10, 20, 50, 100.
+    std::vector<std::string> one_decade;
+    for (const ChartTick& t : axis_ticks(AxisMap{AxisScale::log10, 10.0, 100.0, 0.0, 1.0}))
+        if (!t.label.empty()) one_decade.push_back(t.label);
+    CHECK(one_decade == std::vector<std::string>{"10", "20", "50", "100"});
+    CHECK(tick_label(0.0) == "0");
+    CHECK(tick_label(0.5) == "0.5");
+    CHECK(tick_label(200.0) == "200");
+    CHECK(tick_label(1e4) == "1e4");
+    CHECK(tick_label(20000.0) == "20000");
+    CHECK(tick_label(1e5) == "1e5");
+    CHECK(tick_label(1e-6) == "1e-6");
+    CHECK(tick_label(-1e5) == "-1e5");
+}
+
+TEST_CASE("chart: non-finite points and non-positive points on a log axis are skipped and counted") {
+    Chart c;
+    c.title = "bad data";
+    c.x.scale = AxisScale::log10;
+    c.y.scale = AxisScale::log10;
+    c.series.push_back(series("s", {10.0, kNaN, 100.0, -1.0, 1000.0, 0.0}, {1.0, 2.0, kInf, 5.0, 10.0, 3.0}, chart_color(0)));
+    ChartLayout l;
+    REQUIRE_NOTHROW(l = layout_chart(c));
+    CHECK(l.skipped_points == 4);
+    // The range comes from the drawable points (10, 1) and (1000, 10) only.
+    CHECK(l.x.lo == doctest::Approx(10.0));
+    CHECK(l.x.hi == doctest::Approx(1000.0));
+    DrawList list(c.width, c.height);
+    CHECK_NOTHROW(draw_chart(c, list));
+}
+
+TEST_CASE("chart: a chart with no drawable data or an impossible range is rejected with a message") {
+    Chart empty;
+    empty.title = "nothing";
+    CHECK_THROWS_WITH_AS(layout_chart(empty), doctest::Contains("chart \"nothing\", x axis: no drawable point"), ChartError);
+
+    Chart all_bad;
+    all_bad.title = "all bad";
+    all_bad.y.scale = AxisScale::log10;
+    all_bad.series.push_back(series("s", {1.0, 2.0}, {0.0, -3.0}, chart_color(0)));
+    CHECK_THROWS_WITH_AS(layout_chart(all_bad), doctest::Contains("positive on a log scale"), ChartError);
+
+    Chart ragged = explicit_chart(AxisScale::linear, 0, 1, AxisScale::linear, 0, 1);
+    ragged.series.push_back(series("r", {1.0, 2.0}, {1.0}, chart_color(0)));
+    CHECK_THROWS_WITH_AS(layout_chart(ragged), doctest::Contains("x and y differ in length"), ChartError);
+
+    CHECK_THROWS_AS(layout_chart(explicit_chart(AxisScale::linear, 1, 1, AxisScale::linear, 0, 1)), ChartError);
+    CHECK_THROWS_WITH_AS(layout_chart(explicit_chart(AxisScale::log10, 0, 10, AxisScale::linear, 0, 1)),
+                         doctest::Contains("positive limits"), ChartError);
+    Chart tiny = explicit_chart(AxisScale::linear, 0, 1, AxisScale::linear, 0, 1);
+    tiny.width = 60;
+    CHECK_THROWS_WITH_AS(layout_chart(tiny), doctest::Contains("no room for the plot"), ChartError);
+}
+
+TEST_CASE("chart: the rendered PNG has each series' colour where its data points land") {
+    Chart c = explicit_chart(AxisScale::log10, 1.0, 1e4, AxisScale::linear, 0.0, 10.0);
+    const Color blue = chart_color(0), red = chart_color(1);
+    // A NaN between (10, 2) and (1000, 4) breaks the line: nothing blue half-way between them.
+    c.series.push_back(series("blue", {10.0, kNaN, 1000.0}, {2.0, 5.0, 4.0}, blue, Marker::disc));
+    c.series.push_back(series("red", {3.0, 300.0}, {8.0, 7.0}, red, Marker::square));
+    c.references.push_back({"bound", false, 6.0, Color{90, 90, 90, 255}});
+    const Image img = render_chart(lavapipe(), c);
+    REQUIRE(img.width == c.width);
+    REQUIRE(img.height == c.height);
+    const ChartLayout l = layout_chart(c);
+    // Markers are 4.5 px in radius and opaque inside: the exact colour within 1 px of the point.
+    CHECK(color_near(img, at(l, 10.0, 2.0), blue, 1));
+    CHECK(color_near(img, at(l, 1000.0, 4.0), blue, 1));
+    CHECK(color_near(img, at(l, 3.0, 8.0), red, 1));
+    CHECK(color_near(img, at(l, 300.0, 7.0), red, 1));
+    // On the red line half-way (in log x) between its points: 2 px wide, so within 1 px.
+    CHECK(color_near(img, at(l, 30.0, 7.5), red, 1));
+    CHECK_FALSE(color_near(img, at(l, 100.0, 3.0), blue, 3));
+    // The dashed reference at y = 6 (2 px wide, 9 px dashes, 5 px gaps): its colour within 7 px along it.
+    bool ref_seen = false;
+    for (int dx = -7; dx <= 7 && !ref_seen; ++dx)
+        ref_seen = color_near(img, at(l, 100.0, 6.0) + P2(static_cast<float>(dx), 0.f), Color{90, 90, 90, 255}, 0);
+    CHECK(ref_seen);
+    // Paper elsewhere: a point in the plot far from every line, marker and grid line (1000, 2000; 0, 1).
+    const uint8_t* paper = img.pixel(static_cast<int>(l.x.to_px(1500.0)), static_cast<int>(l.y.to_px(0.7)));
+    CHECK(paper[0] == 255);
+    CHECK(paper[1] == 255);
+    CHECK(paper[2] == 255);
+    CHECK(lavapipe().validation_messages() == 0);
+}
+
+TEST_CASE("chart: write_chart_png writes the rendered pixels, which read back at the chart's size") {
+    Chart c = explicit_chart(AxisScale::linear, 0.0, 1.0, AxisScale::linear, 0.0, 1.0);
+    c.series.push_back(series("s", {0.2, 0.8}, {0.2, 0.8}, chart_color(2)));
+    const fs::path path = fs::temp_directory_path() / "contactlab_test_chart.png";
+    write_chart_png(lavapipe(), c, path.string());
+    const Image back = read_png(path.string());
+    fs::remove(path);
+    CHECK(back.width == c.width);
+    CHECK(back.height == c.height);
+    CHECK(back.rgba == render_chart(lavapipe(), c).rgba);
+    CHECK(lavapipe().validation_messages() == 0);
+}
