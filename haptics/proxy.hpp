@@ -98,6 +98,7 @@ private:
     };
     void gather_segments(Vec2 center, double half_size);  // segment_ids_: those in the box
     void gather_for_motion(Vec2 finger, double phi, double reach);
+    void gather_within_reach(Vec2 finger, double phi, double reach);  // pieces at phi within reach
     void build_pieces(double phi);                         // pieces_ of segment_ids_ at phi
     void depenetrate(double max_push);
     bool handed_over(int i, Vec2 at, Vec2 t) const;

@@ -55,6 +55,7 @@ nlohmann::json results_json(const BenchResults& r) {
         j["tick_ns"][row.key][n] = stats_json(row.proxy);
         j["contact_fraction"][row.key][n] = row.contact_fraction;
         j["env_segments"][row.key][n] = row.env_segments;
+        j["hover_ns"][row.key][n] = stats_json(row.hover);
         j["baseline_ns"]["point_finger"][row.key][n] = stats_json(row.point_finger);
         j["ratio_to_baseline"]["point_finger"][row.key][n] = row.proxy.median_ns / row.point_finger.median_ns;
         if (row.brute_force) {
@@ -111,9 +112,10 @@ std::string results_markdown(const BenchResults& r, const ReportPlots* plots) {
           "The finger slides 1 mm deep along the contour (`extent`: 5 mm segments, the contour grows; "
           "`dense`: a 0.4 m sinusoid cut finer). Baselines in the same process: brute force (every "
           "segment every tick, no index) and a point-finger god-object on the same contour; the ratio "
-          "is ContactLab's median over the baseline's.\n\n"
-          "| scene | N | env segments | median | p99 | in contact | brute force (ratio) | point finger (ratio) |\n"
-          "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+          "is ContactLab's median over the baseline's. `hover`: the same stroke 1 cm above the surface "
+          "(free space: the tick anticipates the nearest contact).\n\n"
+          "| scene | N | env segments | median | p99 | in contact | brute force (ratio) | point finger (ratio) | hover median / p99 |\n"
+          "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
     for (const CostRow& row : r.cost) {
         md += "| " + row.key + " | " + std::to_string(row.scene.segments) + " | " + std::to_string(row.env_segments) +
               " | " + duration(row.proxy.median_ns) + " | " + duration(row.proxy.p99_ns) + " | " +
@@ -121,7 +123,7 @@ std::string results_markdown(const BenchResults& r, const ReportPlots* plots) {
               (row.brute_force ? duration(row.brute_force->median_ns) + fmt(" (%.2f)", row.proxy.median_ns / row.brute_force->median_ns)
                                : std::string("not run")) +
               " | " + duration(row.point_finger.median_ns) + fmt(" (%.2f)", row.proxy.median_ns / row.point_finger.median_ns) +
-              " |\n";
+              " | " + duration(row.hover.median_ns) + " / " + duration(row.hover.p99_ns) + " |\n";
     }
     md += figure(plots, "cost_extent.png") + figure(plots, "cost_dense.png");
     md += "\n## What each feature costs (lines, 1000 segments)\n\n"

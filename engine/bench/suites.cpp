@@ -102,6 +102,9 @@ void cost_growth(const BenchOptions& o, BenchResults& r) {
                 std::vector<FingerSample> point_path = path;
                 for (FingerSample& s : point_path) s.x.y -= def.finger.radius;
                 row.point_finger = measure(name + "/point_finger", env, point, point_path, passes).stats;
+                std::vector<FingerSample> hover_path = path;
+                for (FingerSample& s : hover_path) s.x.y += 0.011;  // m: 1 cm above the surface
+                row.hover = measure(name + "/hover", env, def, hover_path, passes).stats;
                 r.cost.push_back(row);
             }
         }

@@ -31,6 +31,9 @@ struct CostRow {
     TickStats proxy;
     std::optional<TickStats> brute_force;
     TickStats point_finger;
+    // The same stroke 1 cm above the surface: free space, where the tick's cost is the
+    // anticipation of the nearest contact (hover_ns.<key>.<segments>).
+    TickStats hover;
     double contact_fraction = 0.0;  // ticks in contact / ticks
     int env_segments = 0;           // after compiling curves to arcs
 };

@@ -218,5 +218,19 @@ TEST_CASE("bench --quick --report: every PNG decodes at the plot size, render_ms
         CHECK(j["render_ms"][n]["frames"].get<int>() >= 1);
     }
     CHECK_FALSE(j["render_device"].get<std::string>().empty());
+    // Every cost-growth case has its contact and free-space (hover) tick times.
+    for (const char* key : {"lines", "arcs", "curves", "lines_dense", "arcs_dense", "curves_dense"}) {
+        for (const char* n : {"10", "1000", "100000"}) {
+            CAPTURE(key);
+            CAPTURE(n);
+            for (const char* table : {"tick_ns", "hover_ns"}) {
+                CAPTURE(table);
+                REQUIRE(j[table][key].contains(n));
+                const double median = j[table][key][n]["median"].get<double>();
+                CHECK(std::isfinite(median));
+                CHECK(median > 0.0);
+            }
+        }
+    }
 }
 }

@@ -6,6 +6,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <random>
 #include <vector>
 
 using namespace contactlab;
@@ -207,6 +208,45 @@ TEST_CASE("anticipation: in free space over a convex scene l_d varies continuous
     CHECK(worst <= 1e-4);
     CHECK(anticipating > 9000);
     (void)step;
+}
+
+TEST_CASE("anticipation through the index finds exactly the piece a search of every segment finds") {
+    // The indexed anticipation gathers only segments whose pieces can come within a short reach
+    // (proxy.cpp, Proxy::anticipate); a proxy with use_index = false builds every segment's pieces.
+    // Over a dense sinusoid, the block and the mixed scene, hovering and tilting at random, both
+    // must name the same nearest point and contact location, bit for bit (same pieces, same order).
+    Contour wave;
+    constexpr int n = 4000;
+    auto at = [](int i) {
+        const double x = -0.2 + 0.4 * i / n;  // m
+        return Vec2{x, 0.005 * std::sin(2.0 * kPi * 10.0 * (x + 0.2) / 0.4)};
+    };
+    for (int i = 0; i < n; ++i) wave.segments.push_back(line(at(i), at(i + 1)));
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (const Scene& scene : {scene_of({wave}), block_scene(), mixed_scene()}) {
+        ProxyDef def = proxy_def_of(scene);
+        const Environment env = build_environment(scene);
+        Proxy indexed(env, def);
+        def.use_index = false;
+        Proxy brute(env, def);
+        int compared = 0;
+        for (int k = 0; k < 3000; ++k) {
+            const Vec2 x{-0.25 + 0.5 * u(rng), 0.0 + 0.15 * u(rng)};
+            const double phi = 1.2 * (u(rng) - 0.5);
+            indexed.reset(x, phi);
+            brute.reset(x, phi);
+            const ProxyOutput a = indexed.update(x, phi);
+            const ProxyOutput& b = brute.update(x, phi);
+            REQUIRE(a.contact == b.contact);
+            REQUIRE(a.anticipating == b.anticipating);
+            if (!a.anticipating) continue;
+            ++compared;
+            CHECK(a.l_d == b.l_d);
+            CHECK(a.anticipated_point == b.anticipated_point);
+        }
+        CHECK(compared > 1000);
+    }
 }
 
 TEST_CASE("point finger: the proxy is the god-object on the contour itself with l = 0") {
