@@ -31,7 +31,7 @@ Vec2 snap_to_ends(const EditorState& s, Vec2 p) {
 }
 
 void publish_pose(EditorState& s) {
-    if (s.device) s.device->set_pose(s.pose);
+    if (s.pose_input) s.pose_input->set_pose(s.pose);
 }
 
 // Drawing tools: one more point; once the tool has all it needs the segment is added (an
@@ -314,6 +314,14 @@ void draw_canvas_marks(const EditorState& s, const render::Theme& theme, render:
             const render::P2 p = view.to_px(handle_position(scene, *s.selected));
             out.fill_rect(p - render::P2(5.0f), p + render::P2(5.0f), accent);
         }
+    }
+    if (s.pose_input && s.device && std::string(s.device->name()) == "sim-cld") {
+        // sim-cld: the cursor is where the hand wants the finger; the finger drawn by the frame is
+        // where the simulation put it. A cross marks the former so the lag and the stop at the
+        // surface can be seen.
+        const render::P2 c = view.to_px(s.pose.finger);
+        out.line(c - render::P2(9.0f, 0.0f), c + render::P2(9.0f, 0.0f), 1.5f, accent);
+        out.line(c - render::P2(0.0f, 9.0f), c + render::P2(0.0f, 9.0f), 1.5f, accent);
     }
     if (!s.pending.empty()) {
         // The segment being drawn, as it would be with the cursor as its next point.

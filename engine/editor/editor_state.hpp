@@ -1,11 +1,12 @@
 // editor_state.hpp — everything the editor's UI, canvas tools and script runner share (UI thread
-// only; the servo side is reached through LiveServo and MouseDevice).
+// only; the servo side is reached through HapticsHost: LiveServo, the device, its pose input).
 #pragma once
 
 #include "engine/editor/camera.hpp"
 #include "engine/editor/document.hpp"
+#include "engine/editor/haptics_host.hpp"
 #include "engine/editor/live_servo.hpp"
-#include "engine/editor/mouse_device.hpp"
+#include "engine/editor/pose_input.hpp"
 #include "engine/editor/plot_history.hpp"
 #include "engine/editor/scene_edit.hpp"
 #include "engine/render/frame.hpp"
@@ -24,7 +25,7 @@ struct EditorState {
     Camera camera;
     Tool tool = Tool::finger;
 
-    // The finger as the mouse device reports it (m, rad).
+    // The cursor's finger pose (m, rad): the mouse device's finger, sim-cld's hand target.
     MousePose pose;
     double phi_step = 2.0 * 3.14159265358979323846 / 180.0;  // rad per wheel notch / key press
 
@@ -41,9 +42,14 @@ struct EditorState {
     bool snap_grid = false;
     double grid_mm = 1.0;              // mm, snapping grid
 
-    // Live haptics.
+    // Live haptics. `servo`, `device` and `pose_input` are the host's current ones (they change
+    // when the device or the rate does: sync_haptics()).
+    HapticsHost* haptics = nullptr;
     LiveServo* servo = nullptr;
-    MouseDevice* device = nullptr;
+    drivers::Device* device = nullptr;
+    PoseInput* pose_input = nullptr;  // null: the device ignores the cursor (replay, USB)
+    char record_path[512] = "recording.csv";  // the panel's recording file
+    char replay_path[512] = "recording.csv";  // the panel's replay file
     RollerGains roller;                // published with the scene's Ke and max force
     PlotHistory history;
     // The most recent fault the servo reported (kept after it recovers), from the tick records.
