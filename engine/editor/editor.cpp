@@ -99,7 +99,8 @@ void handle_real_input(EditorState& s, GLFWwindow* window) {
             {GLFW_KEY_Y, nullptr, "ctrl+y"}, {GLFW_KEY_S, nullptr, "ctrl+s"},
             {GLFW_KEY_ESCAPE, "escape", nullptr}, {GLFW_KEY_F, "f", nullptr},
             {GLFW_KEY_1, "1", nullptr}, {GLFW_KEY_2, "2", nullptr}, {GLFW_KEY_3, "3", nullptr},
-            {GLFW_KEY_4, "4", nullptr}, {GLFW_KEY_5, "5", nullptr},
+            {GLFW_KEY_4, "4", nullptr}, {GLFW_KEY_5, "5", nullptr}, {GLFW_KEY_6, "6", nullptr},
+            {GLFW_KEY_7, "7", nullptr},
             {GLFW_KEY_Q, "q", "ctrl+q"}, {GLFW_KEY_E, "e", nullptr},
         };
         for (const K& k : keys) {

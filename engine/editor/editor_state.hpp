@@ -17,7 +17,7 @@
 
 namespace contactlab::editor {
 
-enum class Tool { finger, select, line, quad, arc };
+enum class Tool { finger, select, line, quad, arc, arc_center, cubic };
 const char* to_string(Tool t);
 
 struct EditorState {
@@ -34,13 +34,21 @@ struct EditorState {
     std::optional<Handle> hovered, selected;
     bool dragging = false;             // a handle is being moved (select tool)
     Vec2 grab_offset{0.0};             // m, handle position minus cursor when grabbed
+    // The scene when the drag began: every move applies to it, so an arc dragged by its end keeps
+    // passing through its halfway point as it was then (not as each step moved it).
+    Scene drag_base;
     // Drawing tools: the points placed so far for the next segment (m). Line: start; quad: start,
-    // control; arc: start, through. The segment's end starts the next one (a chain).
+    // control; arc: start, through; centre-radius arc: start, centre; cubic: start, control 1,
+    // control 2. The segment's end starts the next one (a chain).
     std::vector<Vec2> pending;
     bool panning = false;
     double pan_last_x = 0.0, pan_last_y = 0.0;  // px
     bool snap_grid = false;
     double grid_mm = 1.0;              // mm, snapping grid
+    // Tangent continuation: a segment started on an open chain's end leaves along the chain's
+    // tangent there (G1 joint): its first control point / a line's end is put on that ray, an
+    // arc is made tangent, a centre-radius arc's centre is put on the normal.
+    bool snap_tangent = false;
 
     // Live haptics. `servo`, `device` and `pose_input` are the host's current ones (they change
     // when the device or the rate does: sync_haptics()).

@@ -67,6 +67,7 @@ void menu_bar(EditorState& s) {
                 s.selected.reset();
             }
             ImGui::MenuItem("Snap to grid", nullptr, &s.snap_grid);
+            ImGui::MenuItem("Snap tangent (G1 at chain ends)", nullptr, &s.snap_tangent);
             ImGui::EndMenu();
         }
         if (ImGui::BeginMenu("View")) {
@@ -82,6 +83,9 @@ void menu_bar(EditorState& s) {
             if (ImGui::MenuItem("Line", "3", s.tool == Tool::line)) cmd_set_tool(s, Tool::line);
             if (ImGui::MenuItem("Quadratic curve (start, control, end)", "4", s.tool == Tool::quad)) cmd_set_tool(s, Tool::quad);
             if (ImGui::MenuItem("Arc (start, through, end)", "5", s.tool == Tool::arc)) cmd_set_tool(s, Tool::arc);
+            if (ImGui::MenuItem("Arc (start, centre, end)", "6", s.tool == Tool::arc_center)) cmd_set_tool(s, Tool::arc_center);
+            if (ImGui::MenuItem("Cubic curve (start, control, control, end)", "7", s.tool == Tool::cubic))
+                cmd_set_tool(s, Tool::cubic);
             ImGui::EndMenu();
         }
         if (ImGui::BeginMenu("Generate")) {

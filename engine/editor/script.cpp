@@ -127,7 +127,9 @@ bool Script::run(EditorState& s, const Line& line, double now) {
         else if (w[1] == "line") cmd_set_tool(s, Tool::line);
         else if (w[1] == "quad") cmd_set_tool(s, Tool::quad);
         else if (w[1] == "arc") cmd_set_tool(s, Tool::arc);
-        else throw ScriptError("unknown tool \"" + w[1] + "\" (finger, select, line, quad, arc)");
+        else if (w[1] == "arc_center") cmd_set_tool(s, Tool::arc_center);
+        else if (w[1] == "cubic") cmd_set_tool(s, Tool::cubic);
+        else throw ScriptError("unknown tool \"" + w[1] + "\" (finger, select, line, quad, arc, arc_center, cubic)");
     } else if (c == "click" || c == "rclick") {
         px_of(s, number(w[1]), number(w[2]), px, py);
         const Button b = c == "click" ? Button::left : Button::right;
@@ -158,6 +160,10 @@ bool Script::run(EditorState& s, const Line& line, double now) {
         } else if (n == "rule") {
             if (w[2] != "centroid" && w[2] != "least_displacement") throw ScriptError("rule: centroid or least_displacement");
             sc.contact_location.rule = w[2] == "centroid" ? ContactRule::centroid : ContactRule::least_displacement;
+        } else if (n == "snap_tangent") {
+            if (w[2] != "0" && w[2] != "1") throw ScriptError("snap_tangent: 0 or 1");
+            s.snap_tangent = w[2] == "1";
+            return true;
         } else if (n == "snap_mm") {
             s.grid_mm = number(w[2]);
             s.snap_grid = s.grid_mm > 0.0;

@@ -1,11 +1,12 @@
 // script.hpp — `contactlab edit --script FILE`: UI actions and checks, one command per line, run
 // through the same canvas functions the mouse and keys use. Coordinates are world mm; angles deg.
 //
-//   tool finger|select|line|quad|arc   click X Y        rclick X Y       drag X0 Y0 X1 Y1
+//   tool finger|select|line|quad|arc|arc_center|cubic   click X Y        rclick X Y       drag X0 Y0 X1 Y1
 //   finger X Y [PHI]               key NAME (space, delete, ctrl+z, ctrl+y, f, 1, 2, 3, q, e)
 //   set NAME VALUE   (ke, max_force, damping, mu_s, mu_d, k_t, k_n  SI units;
 //                     model spring|ellipsoid; rule centroid|least_displacement; kp ki kd;
-//                     snap_mm MM: grid snapping for the authoring tools, 0 = off)
+//                     snap_mm MM: grid snapping for the authoring tools, 0 = off;
+//                     snap_tangent 0|1: G1 tangent continuation at open chain ends)
 //   undo  redo  fit  save PATH  open PATH  screenshot PATH  estop on|off  resize W H (px)
 //   generate block|bumps|arc
 //   wait SECONDS     frames N     wait_contact TIMEOUT_S     wait_state STATE TIMEOUT_S
