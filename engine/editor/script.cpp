@@ -21,7 +21,7 @@ const std::map<std::string, std::pair<int, int>>& arity() {
         {"redo", {0, 0}},   {"fit", {0, 0}},         {"save", {1, 1}},       {"open", {1, 1}},
         {"screenshot", {1, 1}}, {"estop", {1, 1}},   {"wait", {1, 1}},       {"frames", {1, 1}},
         {"wait_contact", {1, 1}}, {"resize", {2, 2}}, {"generate", {1, 1}}, {"wait_state", {2, 2}}, {"expect", {2, 3}}, {"quit", {0, 0}},
-        {"device", {1, 2}}, {"rate", {1, 1}}, {"record", {1, 1}}, {"report", {1, 1}},
+        {"device", {1, 2}}, {"rate", {1, 1}}, {"record", {1, 1}}, {"report", {1, 1}}, {"devices", {0, 0}},
     };
     return a;
 }
@@ -281,6 +281,12 @@ bool Script::run(EditorState& s, const Line& line, double now) {
     } else if (c == "record") {
         const bool ok = w[1] == "stop" ? cmd_record_stop(s) : cmd_record_start(s, w[1]);
         if (!ok) throw ScriptError(s.message);
+    } else if (c == "devices") {
+        // The device menu as the Haptics panel shows it (USB scanned again), one line each.
+        if (s.haptics)
+            for (const DeviceOption& o : s.haptics->options(true))
+                std::fprintf(stderr, "script device option %s: %s%s\n", o.spec.c_str(),
+                             o.available ? "available" : "unavailable: ", o.why.c_str());
     } else if (c == "report") {
         // One machine-readable line for tests to parse (SI but lengths in mm, as the UI shows).
         const ServoSnapshot snap = s.servo ? s.servo->snapshot() : ServoSnapshot{};

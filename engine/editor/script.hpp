@@ -13,6 +13,8 @@
 //   device mouse|sim-cld|usb:hapio|usb:falcon   device replay FILE   (switch, through the safety path)
 //   rate HZ          (servo rate, 100..20000; restarts the servo safely)
 //   record PATH      record stop      (every servo tick to a "contactlab recording v1" file)
+//   devices          (the device menu on stderr: "script device option SPEC: available" or
+//                     "...: unavailable: WHY"; the USB bus is scanned again)
 //   report LABEL     (one line "script report LABEL: key=value ..." on stderr: device, rate, cursor,
 //                     finger, depth, force, servo state, period statistics; for tests to parse)
 //   expect NAME VALUE [TOL]  (contact 0|1, segments N, contours N, ke N/m, ke_effective N/m (within

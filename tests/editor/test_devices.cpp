@@ -182,3 +182,30 @@ TEST_CASE("servo rate: changing it restarts the servo safely and the period stat
     CHECK(std::abs(num(slow, "p50_us") - 5000.0) < 50.0);
     CHECK(slow.at("servo_state") == "engaged");
 }
+
+TEST_CASE("the device menu lists the USB models, and one that cannot open leaves the mouse running") {
+    TempDir dir;
+    const std::string script = dir.file("usb.txt");
+    write_text(script, "devices\ndevice sim-cld\nwait_state engaged 5\ndevice usb:hapio\nexpect device mouse\n"
+                       "wait_state engaged 5\nexpect device_state engaged\nquit\n");
+    setenv("TMPDIR", dir.path().c_str(), 1);
+    const auto p = run_under_xvfb({"edit", "--script", script, "--software", "--validation", "--timeout", "100"});
+    INFO("stderr: " << p.err);
+    for (const char* spec : {"mouse", "sim-cld", "replay:"}) CHECK(contains(p.err, std::string("script device option ") + spec + ": available"));
+    for (const char* spec : {"usb:hapio", "usb:falcon"}) {
+        const auto at = p.err.find(std::string("script device option ") + spec + ": ");
+        REQUIRE(at != std::string::npos);
+        const std::string line = p.err.substr(at, p.err.find('\n', at) - at);
+        // Either usable, or disabled with a reason (this machine's USB bus decides which).
+        CHECK((contains(line, ": available") || line.size() > line.find("unavailable: ") + 20));
+    }
+    const bool hapio_present = contains(p.err, "script device option usb:hapio: available");
+    if (!hapio_present) {
+        // No board: the switch fails with the reason, the mouse runs, armed again.
+        CHECK(p.exit_code == 1);
+        CHECK(contains(p.err, "FAILED: device usb:hapio did not open (not found"));
+        CHECK(contains(p.err, "the mouse drives the finger"));
+        CHECK(contains(p.err, "ok: device = mouse"));
+        CHECK(contains(p.err, "ok: device_state = engaged"));
+    }
+}
