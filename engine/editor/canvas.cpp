@@ -256,8 +256,11 @@ void cmd_fit(EditorState& s) {
         }
     }
     const double reach = 3.5 * scene.finger.radius;  // m: the finger's body behind its centre
-    box.grow(s.pose.finger - Vec2(reach));
-    box.grow(s.pose.finger + Vec2(reach));
+    // The finger where it is drawn: the cursor's pose, or (replay, USB: the cursor does not move
+    // it) the device's.
+    const Vec2 finger = s.pose_input || !s.servo || s.servo->snapshot().ticks == 0 ? s.pose.finger : s.servo->snapshot().finger;
+    box.grow(finger - Vec2(reach));
+    box.grow(finger + Vec2(reach));
     s.camera.fit(box);
 }
 
