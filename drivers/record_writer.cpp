@@ -17,8 +17,10 @@ RecordWriter::RecordWriter(SpscRing<TickRecord>& ring, const std::string& output
     try {
         open(rec_, record_path, kRecordingHeader);
     } catch (...) {
-        std::fclose(out_.f);
-        ::unlink(out_.tmp.c_str());
+        if (out_.f) {  // the output may not be asked for (recording only): fclose(nullptr) crashes
+            std::fclose(out_.f);
+            ::unlink(out_.tmp.c_str());
+        }
         throw;
     }
     thread_ = std::thread([this] { run(); });

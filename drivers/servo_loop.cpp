@@ -1,14 +1,10 @@
-// servo_loop.cpp — device adapter, virtual-time runner, real-time thread (see servo_loop.hpp).
+// servo_loop.cpp — device adapter, virtual-time runner, fixed-length real-time run (see
+// servo_loop.hpp; the deadline loop itself is servo_runner.cpp).
 #include "drivers/servo_loop.hpp"
+#include "drivers/servo_runner.hpp"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
-#include <ctime>
-#include <pthread.h>
-#include <sched.h>
-#include <sys/mman.h>
 
 namespace contactlab::drivers {
 
@@ -110,66 +106,22 @@ double PeriodStats::percentile(double p) const {
     return max_;
 }
 
-namespace {
-
-double to_seconds(const timespec& t) { return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec); }
-
-void add_ns(timespec& t, long ns) {
-    t.tv_nsec += ns;
-    while (t.tv_nsec >= 1000000000L) {
-        t.tv_nsec -= 1000000000L;
-        ++t.tv_sec;
-    }
-}
-
-bool later(const timespec& a, const timespec& b) {
-    return a.tv_sec > b.tv_sec || (a.tv_sec == b.tv_sec && a.tv_nsec > b.tv_nsec);
-}
-
-}  // namespace
-
 RealtimeReport run_realtime(ServoLoop& loop, std::uint64_t ticks, int fifo_priority) {
+    // The one deadline loop (servo_runner.hpp), here for a fixed number of ticks.
     RealtimeReport rep;
     rep.rate = 1.0 / loop.period();
-    PeriodStats stats;  // allocated here, before the thread starts
-    std::thread th([&] {
-        sched_param sp{};
-        sp.sched_priority = fifo_priority;
-        const int err = pthread_setschedparam(pthread_self(), SCHED_FIFO, &sp);
-        if (err == 0) {
-            rep.scheduling = "SCHED_FIFO priority " + std::to_string(fifo_priority);
-        } else {
-            rep.scheduling = std::string("SCHED_OTHER (SCHED_FIFO refused: ") + std::strerror(err) + ")";
-        }
-        rep.memory_lock = ::mlockall(MCL_CURRENT | MCL_FUTURE) == 0
-                              ? "mlockall ok"
-                              : std::string("mlockall refused: ") + std::strerror(errno);
-        const long period_ns = std::lround(loop.period() * 1e9);
-        timespec next{};
-        clock_gettime(CLOCK_MONOTONIC, &next);
-        timespec prev = next;
-        for (std::uint64_t k = 0; k < ticks; ++k) {
-            timespec now{};
-            clock_gettime(CLOCK_MONOTONIC, &now);
-            const double period = k == 0 ? loop.period() : to_seconds(now) - to_seconds(prev);
-            prev = now;
-            if (k > 0) stats.add(period);
-            loop.step(period, false);
-            add_ns(next, period_ns);
-            timespec after{};
-            clock_gettime(CLOCK_MONOTONIC, &after);
-            if (later(after, next)) {
-                // Missed the next deadline: count it and re-align instead of bursting to catch up.
-                ++rep.overruns;
-                next = after;
-            }
-            while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &next, nullptr) == EINTR) {
-            }
-        }
-    });
-    th.join();
-    ::munlockall();
-    rep.ticks = stats.count() + 1;
+    RunnerOptions opt;
+    opt.fifo_priority = fifo_priority;
+    opt.lock_memory = true;
+    opt.max_ticks = ticks;
+    ServoRunner runner(loop, opt);
+    runner.start();
+    runner.join();
+    rep.scheduling = runner.scheduling();
+    rep.memory_lock = runner.memory_lock();
+    rep.overruns = runner.overruns();
+    const PeriodStats& stats = runner.stats();
+    rep.ticks = runner.ticks();
     rep.p50 = stats.percentile(50.0);
     rep.p99 = stats.percentile(99.0);
     rep.max = stats.max();

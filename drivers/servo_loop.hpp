@@ -80,7 +80,7 @@ struct RealtimeReport {
 };
 
 // Runs loop.step() on its own thread at the loop's period for `ticks` ticks with absolute
-// deadlines (clock_nanosleep TIMER_ABSTIME on CLOCK_MONOTONIC). Blocks until done.
+// deadlines (ServoRunner, servo_runner.hpp: the one deadline loop). Blocks until done.
 RealtimeReport run_realtime(ServoLoop& loop, std::uint64_t ticks, int fifo_priority = 80);
 
 }  // namespace contactlab::drivers

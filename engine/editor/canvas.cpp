@@ -31,25 +31,77 @@ Vec2 snap_to_ends(const EditorState& s, Vec2 p) {
 }
 
 void publish_pose(EditorState& s) {
-    if (s.device) s.device->set_pose(s.pose);
+    if (s.pose_input) s.pose_input->set_pose(s.pose);
+}
+
+std::size_t points_needed(Tool t) {
+    switch (t) {
+        case Tool::line: return 2;
+        case Tool::cubic: return 4;
+        default: return 3;  // quad, arc, arc_center
+    }
+}
+
+// The direction the segment being drawn must leave its start in for a G1 joint, when tangent
+// snapping is on and it starts on an open chain's end (snap_to_ends put it there exactly).
+std::optional<Vec2> draw_tangent(const EditorState& s) {
+    if (!s.snap_tangent || s.pending.empty()) return std::nullopt;
+    return continuation_tangent(s.doc.scene(), s.pending.front(), 1e-9);
+}
+
+// Where the k-th click (k >= 1) lands with tangent snapping: the second point of a line, a curve
+// (its first control point) on the tangent ray; a centre-radius arc's centre on the normal.
+Vec2 snap_click(const EditorState& s, std::size_t k, Vec2 p) {
+    const auto t = draw_tangent(s);
+    if (!t || k != 1) return p;
+    const Vec2 a = s.pending.front();
+    switch (s.tool) {
+        case Tool::line:
+        case Tool::quad:
+        case Tool::cubic: return project_on_ray(a, *t, p);
+        case Tool::arc_center: return project_on_normal(a, *t, p);
+        default: return p;
+    }
+}
+
+// The segment the current tool makes of its points q (all of them); nullopt when none exists.
+std::optional<Segment> build_segment(const EditorState& s, const std::vector<Vec2>& q) {
+    const auto t = draw_tangent(s);
+    switch (s.tool) {
+        case Tool::line: return LineSegment{q[0], q[1]};
+        case Tool::quad: return QuadSegment{q[0], q[1], q[2]};
+        case Tool::cubic: return CubicSegment{q[0], q[1], q[2], q[3]};
+        case Tool::arc: {
+            const auto arc = t ? tangent_arc_through(q[0], *t, q[1], q[2]) : arc_through(q[0], q[1], q[2]);
+            if (arc) return *arc;
+            return std::nullopt;
+        }
+        case Tool::arc_center: {
+            // Tangent: turn toward the side the centre is on; otherwise the short way round.
+            const int dir = t ? (glm::dot(q[1] - q[0], Vec2(-t->y, t->x)) > 0.0 ? 1 : -1) : 0;
+            if (const auto arc = arc_center_radius(q[0], q[1], q[2], dir)) return *arc;
+            return std::nullopt;
+        }
+        default: return std::nullopt;
+    }
 }
 
 // Drawing tools: one more point; once the tool has all it needs the segment is added (an
 // undoable edit) and its end starts the next segment of the chain.
 void place_point(EditorState& s, Vec2 p) {
+    if (!s.pending.empty()) p = snap_click(s, s.pending.size(), p);
     if (!s.pending.empty() && glm::length(p - s.pending.back()) < 1e-9) return;  // double click
-    const std::size_t needed = s.tool == Tool::line ? 2 : 3;
-    if (s.pending.size() + 1 < needed) {
+    if (s.pending.size() + 1 < points_needed(s.tool)) {
         s.pending.push_back(p);
         return;
     }
-    const Vec2 a = s.pending.front();
-    std::optional<Segment> seg;
-    if (s.tool == Tool::line) seg = LineSegment{a, p};
-    else if (s.tool == Tool::quad) seg = QuadSegment{a, s.pending[1], p};
-    else if (const auto arc = arc_through(a, s.pending[1], p)) seg = *arc;
+    std::vector<Vec2> q = s.pending;
+    q.push_back(p);
+    const std::optional<Segment> seg = build_segment(s, q);
     if (!seg) {
-        s.say("arc: the three points are in a line; click a through point off the chord", true);
+        if (s.tool == Tool::arc_center) s.say("centre-radius arc: the centre is on the start, or the end is on the centre", true);
+        else if (draw_tangent(s)) s.say("tangent arc: the through point is on the tangent line (that continuation is a line)", true);
+        else s.say("arc: the three points are in a line; click a through point off the chord", true);
         s.pending.resize(1);
         return;
     }
@@ -67,6 +119,8 @@ const char* to_string(Tool t) {
         case Tool::line: return "line";
         case Tool::quad: return "quad";
         case Tool::arc: return "arc";
+        case Tool::arc_center: return "arc_center";
+        case Tool::cubic: return "cubic";
     }
     return "?";
 }
@@ -88,7 +142,7 @@ void canvas_move(EditorState& s, double x, double y) {
                 // Only real moves count: a click (press and release in place) records no edit.
                 const Vec2 to = s.cursor + s.grab_offset;
                 if (handle_position(s.doc.scene(), *s.selected) != to)
-                    s.doc.update_continuous(move_handle(s.doc.scene(), *s.selected, to));
+                    s.doc.update_continuous(move_handle(s.drag_base, *s.selected, to));
             } else {
                 s.hovered = pick_handle(s.doc.scene(), s.cursor, pick_radius(s));
             }
@@ -96,6 +150,8 @@ void canvas_move(EditorState& s, double x, double y) {
         case Tool::line:
         case Tool::quad:
         case Tool::arc:
+        case Tool::arc_center:
+        case Tool::cubic:
             s.hovered = pick_handle(s.doc.scene(), s.cursor, pick_radius(s));
             break;
     }
@@ -123,11 +179,14 @@ void canvas_press(EditorState& s, Button b, double x, double y) {
                 s.grab_offset = handle_position(s.doc.scene(), *s.selected) - s.cursor;
                 if (s.snap_grid) s.grab_offset = Vec2(0.0);  // on the grid, the point goes to the grid
                 s.doc.begin_continuous("move point");
+                s.drag_base = s.doc.scene();
             }
             break;
         case Tool::line:
         case Tool::quad:
-        case Tool::arc: place_point(s, snap_to_ends(s, s.cursor)); break;
+        case Tool::arc:
+        case Tool::arc_center:
+        case Tool::cubic: place_point(s, snap_to_ends(s, s.cursor)); break;
     }
 }
 
@@ -197,8 +256,11 @@ void cmd_fit(EditorState& s) {
         }
     }
     const double reach = 3.5 * scene.finger.radius;  // m: the finger's body behind its centre
-    box.grow(s.pose.finger - Vec2(reach));
-    box.grow(s.pose.finger + Vec2(reach));
+    // The finger where it is drawn: the cursor's pose, or (replay, USB: the cursor does not move
+    // it) the device's.
+    const Vec2 finger = s.pose_input || !s.servo || s.servo->snapshot().ticks == 0 ? s.pose.finger : s.servo->snapshot().finger;
+    box.grow(finger - Vec2(reach));
+    box.grow(finger + Vec2(reach));
     s.camera.fit(box);
 }
 
@@ -258,6 +320,8 @@ bool canvas_key(EditorState& s, const std::string& name) {
     else if (name == "3") cmd_set_tool(s, Tool::line);
     else if (name == "4") cmd_set_tool(s, Tool::quad);
     else if (name == "5") cmd_set_tool(s, Tool::arc);
+    else if (name == "6") cmd_set_tool(s, Tool::arc_center);
+    else if (name == "7") cmd_set_tool(s, Tool::cubic);
     else if (name == "q") cmd_rotate_finger(s, s.phi_step);
     else if (name == "e") cmd_rotate_finger(s, -s.phi_step);
     else return false;
@@ -315,16 +379,25 @@ void draw_canvas_marks(const EditorState& s, const render::Theme& theme, render:
             out.fill_rect(p - render::P2(5.0f), p + render::P2(5.0f), accent);
         }
     }
+    if (s.pose_input && s.device && std::string(s.device->name()) == "sim-cld") {
+        // sim-cld: the cursor is where the hand wants the finger; the finger drawn by the frame is
+        // where the simulation put it. A cross marks the former so the lag and the stop at the
+        // surface can be seen.
+        const render::P2 c = view.to_px(s.pose.finger);
+        out.line(c - render::P2(9.0f, 0.0f), c + render::P2(9.0f, 0.0f), 1.5f, accent);
+        out.line(c - render::P2(0.0f, 9.0f), c + render::P2(0.0f, 9.0f), 1.5f, accent);
+    }
     if (!s.pending.empty()) {
-        // The segment being drawn, as it would be with the cursor as its next point.
+        // The segment being drawn, as it would be with the cursor as its next point; until the
+        // tool has all its points, their polygon.
         std::vector<render::P2> pts;
-        const Vec2 a = s.pending.front();
-        std::optional<Segment> seg;
-        if (s.tool == Tool::line) seg = LineSegment{a, s.cursor};
-        else if (s.pending.size() == 1) seg = LineSegment{a, s.cursor};
-        else if (s.tool == Tool::quad) seg = QuadSegment{a, s.pending[1], s.cursor};
-        else if (const auto arc = arc_through(a, s.pending[1], s.cursor)) seg = *arc;
-        if (seg) render::parts::flatten_segment(*seg, view, false, pts);
+        std::vector<Vec2> q = s.pending;
+        q.push_back(snap_click(s, s.pending.size(), s.cursor));
+        if (q.size() == points_needed(s.tool)) {
+            if (const auto seg = build_segment(s, q)) render::parts::flatten_segment(*seg, view, false, pts);
+        } else {
+            for (const Vec2& p : q) pts.push_back(view.to_px(p));
+        }
         if (pts.size() >= 2) out.stroke(pts, false, 2.0f, accent.with_alpha(200));
         for (const Vec2& p : s.pending) out.fill_disc(view.to_px(p), 4.0f, accent);
     }

@@ -33,7 +33,7 @@ void cmd_save(EditorState& s, const std::string& path);  // empty: the document'
 // keeping the finger, force and contact rule: one undoable edit. False for an unknown name.
 bool cmd_generate(EditorState& s, const std::string& name);
 
-// A key by name ("space", "delete", "ctrl+z", "ctrl+y", "ctrl+s", "escape", "f", "1".."5" for
+// A key by name ("space", "delete", "ctrl+z", "ctrl+y", "ctrl+s", "escape", "f", "1".."7" for
 // the tools, "q", "e"); false for a name that means nothing to the canvas.
 bool canvas_key(EditorState& s, const std::string& name);
 

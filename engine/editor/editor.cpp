@@ -5,6 +5,7 @@
 #include "engine/editor/canvas.hpp"
 #include "engine/editor/display.hpp"
 #include "engine/editor/editor_state.hpp"
+#include "engine/editor/haptics_commands.hpp"
 #include "engine/editor/imgui_layer.hpp"
 #include "engine/editor/panels.hpp"
 #include "engine/editor/rulers.hpp"
@@ -98,7 +99,8 @@ void handle_real_input(EditorState& s, GLFWwindow* window) {
             {GLFW_KEY_Y, nullptr, "ctrl+y"}, {GLFW_KEY_S, nullptr, "ctrl+s"},
             {GLFW_KEY_ESCAPE, "escape", nullptr}, {GLFW_KEY_F, "f", nullptr},
             {GLFW_KEY_1, "1", nullptr}, {GLFW_KEY_2, "2", nullptr}, {GLFW_KEY_3, "3", nullptr},
-            {GLFW_KEY_4, "4", nullptr}, {GLFW_KEY_5, "5", nullptr},
+            {GLFW_KEY_4, "4", nullptr}, {GLFW_KEY_5, "5", nullptr}, {GLFW_KEY_6, "6", nullptr},
+            {GLFW_KEY_7, "7", nullptr},
             {GLFW_KEY_Q, "q", "ctrl+q"}, {GLFW_KEY_E, "e", nullptr},
         };
         for (const K& k : keys) {
@@ -193,17 +195,21 @@ int run_editor(const EditorOptions& o) {
     ImGuiLayer imgui(ctx, window.handle(), target.render_pass(), target.min_image_count(), target.image_count());
     uint32_t imgui_min_images = target.min_image_count();
 
-    // Live haptics: the mouse device and the servo thread, running from the first frame.
-    MouseDevice device;
+    // Live haptics: the mouse device and the servo thread, running from the first frame; the
+    // Haptics panel (or `device`, `rate` in a script) switches device and rate later.
+    HapticsHost host(servo_core);
+    s.haptics = &host;
     s.pose = initial_pose(s.doc.last_valid());
-    device.set_pose(s.pose);
-    ServoParams published = servo_params_for(s.doc.last_valid(), s.roller, kMouseWatchdog);
-    LiveServo servo(device, o.rate, published);
-    servo.publish_scene(s.doc.last_valid());
+    s.history = PlotHistory(plot_capacity(o.rate));
+    {
+        const std::string err = host.start("mouse", o.rate, s.doc.last_valid(),
+                                           servo_params_for(s.doc.last_valid(), s.roller, host.watchdog_timeout()), s.pose);
+        if (!err.empty()) std::fprintf(stderr, "contactlab edit: %s\n", err.c_str());
+    }
+    sync_haptics(s);
+    ServoParams published = servo_params_for(s.doc.last_valid(), s.roller, host.watchdog_timeout());
     std::uint64_t published_revision = s.doc.revision();
-    if (!servo.start(servo_core)) std::fprintf(stderr, "contactlab edit: device %s failed to open\n", device.name());
-    s.servo = &servo;
-    s.device = &device;
+    std::uint64_t published_to = host.generation();  // a new servo (device or rate switch) got both at start
     s.camera.resize(target.extent().width, target.extent().height);
     cmd_fit(s);
 
@@ -267,11 +273,17 @@ int run_editor(const EditorOptions& o) {
 
             // Servo: a changed valid scene is published (built here, off the servo thread); Ke, max
             // force and roller gains go as parameters (slew-limited by the servo).
+            LiveServo& servo = *s.servo;
+            if (published_to != host.generation()) {
+                published_to = host.generation();
+                published_revision = s.doc.revision();
+                published = servo_params_for(s.doc.last_valid(), s.roller, host.watchdog_timeout());
+            }
             if (s.doc.valid() && s.doc.revision() != published_revision) {
                 servo.publish_scene(s.doc.scene());
                 published_revision = s.doc.revision();
             }
-            const ServoParams params = servo_params_for(s.doc.last_valid(), s.roller, kMouseWatchdog);
+            const ServoParams params = servo_params_for(s.doc.last_valid(), s.roller, host.watchdog_timeout());
             if (!same_params(params, published)) {
                 servo.publish_params(params);
                 published = params;
@@ -279,6 +291,7 @@ int run_editor(const EditorOptions& o) {
             servo.reclaim();
             for (drivers::TickRecord r; servo.pop_record(r);) {
                 s.history.push(r);
+                host.forward(r);
                 if (r.fault != ServoFault::none) {
                     s.last_fault = r.fault;
                     s.last_fault_t = r.t;
@@ -291,7 +304,7 @@ int run_editor(const EditorOptions& o) {
                 env_revision = s.doc.revision();
             }
             const Scene& shown = s.doc.last_valid();
-            const ServoSnapshot snap = servo.snapshot();
+            const ServoSnapshot snap = s.servo->snapshot();
             render::FrameContent content;
             content.scene = &shown;
             content.env = env.get();
@@ -361,14 +374,17 @@ int run_editor(const EditorOptions& o) {
         const std::string r = s.doc.autosave();
         if (!r.empty()) std::fprintf(stderr, "contactlab edit: unsaved changes kept in %s\n", r.c_str());
     }
+    if (host.recording()) cmd_record_stop(s);
+    LiveServo& servo = *s.servo;
     servo.stop();
     const double run_s = since(t_loop);
     const auto ps = s.history.period_stats(servo.period());
     std::fprintf(stderr,
-                 "contactlab edit: %ld frames in %.2f s at %ux%u: %.2f ms/frame CPU+GPU work, %.1f fps; servo %.0f Hz "
+                 "contactlab edit: %ld frames in %.2f s at %ux%u: %.2f ms/frame CPU+GPU work, %.1f fps; servo (%s) %.0f Hz "
                  "period p50 %.0f us p99 %.0f us max %.0f us over the last %zu ticks, %llu overruns; %s\n",
                  timer.frames, run_s, target.extent().width, target.extent().height,
-                 timer.frames ? 1e3 * timer.busy / timer.frames : 0.0, run_s > 0 ? timer.frames / run_s : 0.0, o.rate,
+                 timer.frames ? 1e3 * timer.busy / timer.frames : 0.0, run_s > 0 ? timer.frames / run_s : 0.0,
+                 host.spec().c_str(), host.rate(),
                  ps.p50 * 1e6, ps.p99 * 1e6, ps.max * 1e6, ps.count,
                  static_cast<unsigned long long>(servo.overruns()), servo.scheduling().c_str());
     std::fprintf(stderr, "contactlab edit: swapchain recreated %d time(s) (resize, out-of-date, suboptimal)\n",

@@ -1,11 +1,12 @@
 // editor_state.hpp — everything the editor's UI, canvas tools and script runner share (UI thread
-// only; the servo side is reached through LiveServo and MouseDevice).
+// only; the servo side is reached through HapticsHost: LiveServo, the device, its pose input).
 #pragma once
 
 #include "engine/editor/camera.hpp"
 #include "engine/editor/document.hpp"
+#include "engine/editor/haptics_host.hpp"
 #include "engine/editor/live_servo.hpp"
-#include "engine/editor/mouse_device.hpp"
+#include "engine/editor/pose_input.hpp"
 #include "engine/editor/plot_history.hpp"
 #include "engine/editor/scene_edit.hpp"
 #include "engine/render/frame.hpp"
@@ -16,7 +17,7 @@
 
 namespace contactlab::editor {
 
-enum class Tool { finger, select, line, quad, arc };
+enum class Tool { finger, select, line, quad, arc, arc_center, cubic };
 const char* to_string(Tool t);
 
 struct EditorState {
@@ -24,7 +25,7 @@ struct EditorState {
     Camera camera;
     Tool tool = Tool::finger;
 
-    // The finger as the mouse device reports it (m, rad).
+    // The cursor's finger pose (m, rad): the mouse device's finger, sim-cld's hand target.
     MousePose pose;
     double phi_step = 2.0 * 3.14159265358979323846 / 180.0;  // rad per wheel notch / key press
 
@@ -33,17 +34,30 @@ struct EditorState {
     std::optional<Handle> hovered, selected;
     bool dragging = false;             // a handle is being moved (select tool)
     Vec2 grab_offset{0.0};             // m, handle position minus cursor when grabbed
+    // The scene when the drag began: every move applies to it, so an arc dragged by its end keeps
+    // passing through its halfway point as it was then (not as each step moved it).
+    Scene drag_base;
     // Drawing tools: the points placed so far for the next segment (m). Line: start; quad: start,
-    // control; arc: start, through. The segment's end starts the next one (a chain).
+    // control; arc: start, through; centre-radius arc: start, centre; cubic: start, control 1,
+    // control 2. The segment's end starts the next one (a chain).
     std::vector<Vec2> pending;
     bool panning = false;
     double pan_last_x = 0.0, pan_last_y = 0.0;  // px
     bool snap_grid = false;
     double grid_mm = 1.0;              // mm, snapping grid
+    // Tangent continuation: a segment started on an open chain's end leaves along the chain's
+    // tangent there (G1 joint): its first control point / a line's end is put on that ray, an
+    // arc is made tangent, a centre-radius arc's centre is put on the normal.
+    bool snap_tangent = false;
 
-    // Live haptics.
+    // Live haptics. `servo`, `device` and `pose_input` are the host's current ones (they change
+    // when the device or the rate does: sync_haptics()).
+    HapticsHost* haptics = nullptr;
     LiveServo* servo = nullptr;
-    MouseDevice* device = nullptr;
+    drivers::Device* device = nullptr;
+    PoseInput* pose_input = nullptr;  // null: the device ignores the cursor (replay, USB)
+    char record_path[512] = "recording.csv";  // the panel's recording file
+    char replay_path[512] = "recording.csv";  // the panel's replay file
     RollerGains roller;                // published with the scene's Ke and max force
     PlotHistory history;
     // The most recent fault the servo reported (kept after it recovers), from the tick records.

@@ -1,14 +1,18 @@
-// live_servo.hpp — the haptic servo running while the editor is open: drivers' ServoLoop on its
-// own thread at a fixed rate (absolute deadlines, SCHED_FIFO when granted), against a device
-// (the mouse by default). The UI publishes parameters and scenes and reads the lock-free
-// snapshot; every tick is also pushed through an SPSC ring that the UI drains for its plots.
+// live_servo.hpp — the haptic servo running while the editor is open: drivers' ServoLoop paced by
+// drivers' ServoRunner (the one deadline loop: absolute deadlines, SCHED_FIFO when granted, pinned
+// to the servo's CPU) against a device (the mouse by default). The UI publishes parameters and
+// scenes and reads the lock-free snapshot; every tick is also pushed through an SPSC ring that the
+// UI drains for its plots (and, when recording, forwards to the record writer's ring).
 //
 // Emergency stop: engage_stop() makes the servo thread disconnect the tick at its next boundary
 // (output zero from that tick on, the device's drive zeroed) and stay there; release_stop()
 // re-arms it (the safety gate then waits for a small force and ramps in).
+// stop() ends with one disconnected tick, so the device's last command is zero force: switching
+// device or rate (a new LiveServo) always goes zero force -> close -> open -> arm -> ramp in.
 #pragma once
 
 #include "drivers/servo_loop.hpp"
+#include "drivers/servo_runner.hpp"
 #include "drivers/tick_record.hpp"
 #include "haptics/servo_tick.hpp"
 #include "haptics/spsc_ring.hpp"
@@ -16,7 +20,6 @@
 #include <atomic>
 #include <memory>
 #include <string>
-#include <thread>
 
 namespace contactlab::editor {
 
@@ -25,19 +28,20 @@ namespace contactlab::editor {
 // last, which is returned for the servo thread. -1 (nothing changed) with fewer than two CPUs.
 int reserve_servo_core();
 
-class LiveServo {
+class LiveServo final : private drivers::TickBoundaryHook {
 public:
     // rate: Hz. The device must outlive the servo.
     LiveServo(drivers::Device& device, double rate, const ServoParams& params);
-    ~LiveServo();
+    ~LiveServo() override;
     LiveServo(const LiveServo&) = delete;
     LiveServo& operator=(const LiveServo&) = delete;
 
     // Opens the device and starts the thread (pinned to `core` when >= 0); false (with
     // device().fault()) if the device fails to open.
     bool start(int core = -1);
+    // Zero force on the device (one disconnected tick), thread joined, device closed.
     void stop();
-    bool running() const { return thread_.joinable(); }
+    bool running() const { return runner_ && runner_->running(); }
 
     void publish_params(const ServoParams& p) { tick_.publish_params(p); }
     // Builds the servo's scene (environment, proxy) here, off the servo thread, and hands it over.
@@ -53,27 +57,26 @@ public:
     // Records of the ticks since the last call (UI thread only).
     bool pop_record(drivers::TickRecord& out) { return ring_.try_pop(out); }
     std::uint64_t dropped_records() const { return loop_.dropped_records(); }
-    double period() const { return 1.0 / rate_; }
+    double rate() const { return rate_; }        // Hz
+    double period() const { return 1.0 / rate_; }  // s
     // What the OS granted the servo thread, e.g. "SCHED_FIFO priority 80" (set once started).
-    std::string scheduling() const;
+    std::string scheduling() const { return runner_ ? runner_->scheduling() : std::string("not started"); }
     drivers::Device& device() { return device_; }
-    std::uint64_t overruns() const { return overruns_.load(std::memory_order_relaxed); }
+    const drivers::Device& device() const { return device_; }
+    std::uint64_t overruns() const { return runner_ ? runner_->overruns() : 0; }
 
 private:
-    void run() noexcept;
+    void before_tick(drivers::ServoLoop& loop) noexcept override;
 
     drivers::Device& device_;
     double rate_;
     ServoTick tick_;
     SpscRing<drivers::TickRecord> ring_;
     drivers::ServoLoop loop_;
-    std::thread thread_;
-    std::atomic<bool> quit_{false};
+    std::unique_ptr<drivers::ServoRunner> runner_;
     std::atomic<bool> stop_requested_{false};
-    std::atomic<bool> sched_ready_{false};
-    std::atomic<std::uint64_t> overruns_{0};
-    std::string scheduling_;  // written by the thread before sched_ready_
-    int core_ = -1;
+    bool stopped_ = false;  // servo thread only: the stop is in effect
+    bool closed_ = false;   // stop() has run (the device is closed once)
 };
 
 }  // namespace contactlab::editor

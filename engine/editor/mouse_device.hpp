@@ -7,6 +7,7 @@
 
 #include "drivers/device.hpp"
 #include "drivers/sim/cld_roller.hpp"
+#include "engine/editor/pose_input.hpp"
 #include "haptics/servo_seqlock.hpp"
 
 #include <atomic>
@@ -14,17 +15,12 @@
 
 namespace contactlab::editor {
 
-struct MousePose {
-    Vec2 finger{0.0};  // x_f, m
-    double phi = 0.0;  // rad
-};
-
-class MouseDevice final : public drivers::Device {
+class MouseDevice final : public drivers::Device, public PoseInput {
 public:
     MouseDevice();
 
     // --- UI thread ---------------------------------------------------------------------------
-    void set_pose(const MousePose& p) noexcept { pose_.store(p); }
+    void set_pose(const MousePose& p) noexcept override { pose_.store(p); }
     MousePose pose() const noexcept { return pose_.load(); }
 
     // --- drivers::Device (servo thread, except open/close) ------------------------------------

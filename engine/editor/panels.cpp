@@ -2,6 +2,7 @@
 #include "engine/editor/panels.hpp"
 
 #include "engine/editor/canvas.hpp"
+#include "engine/editor/haptics_commands.hpp"
 #include "haptics/scene_io.hpp"
 
 #include <imgui.h>
@@ -10,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <iterator>
 
 namespace contactlab::editor {
 namespace {
@@ -65,6 +67,7 @@ void menu_bar(EditorState& s) {
                 s.selected.reset();
             }
             ImGui::MenuItem("Snap to grid", nullptr, &s.snap_grid);
+            ImGui::MenuItem("Snap tangent (G1 at chain ends)", nullptr, &s.snap_tangent);
             ImGui::EndMenu();
         }
         if (ImGui::BeginMenu("View")) {
@@ -80,6 +83,9 @@ void menu_bar(EditorState& s) {
             if (ImGui::MenuItem("Line", "3", s.tool == Tool::line)) cmd_set_tool(s, Tool::line);
             if (ImGui::MenuItem("Quadratic curve (start, control, end)", "4", s.tool == Tool::quad)) cmd_set_tool(s, Tool::quad);
             if (ImGui::MenuItem("Arc (start, through, end)", "5", s.tool == Tool::arc)) cmd_set_tool(s, Tool::arc);
+            if (ImGui::MenuItem("Arc (start, centre, end)", "6", s.tool == Tool::arc_center)) cmd_set_tool(s, Tool::arc_center);
+            if (ImGui::MenuItem("Cubic curve (start, control, control, end)", "7", s.tool == Tool::cubic))
+                cmd_set_tool(s, Tool::cubic);
             ImGui::EndMenu();
         }
         if (ImGui::BeginMenu("Generate")) {
@@ -141,6 +147,62 @@ void selection_editor(EditorState& s) {
     }
 }
 
+// Device menu (USB models listed, disabled with the reason when they cannot be used), the
+// device's state and fault reason (always shown), and recording start/stop.
+void device_controls(EditorState& s) {
+    if (!s.haptics) return;
+    HapticsHost& h = *s.haptics;
+    const std::string current = h.spec();
+    std::string next;  // switched after the combo closes (the switch replaces s.servo)
+    if (ImGui::BeginCombo("device", current.c_str())) {
+        for (const DeviceOption& o : h.options()) {
+            const bool replay = o.spec == "replay:";
+            const bool selected = replay ? current.rfind("replay:", 0) == 0 : current == o.spec;
+            const std::string label = o.available ? o.label : o.label + " - " + o.why;
+            if (ImGui::Selectable(label.c_str(), selected, o.available ? 0 : ImGuiSelectableFlags_Disabled))
+                next = replay ? std::string("replay:") + s.replay_path : o.spec;
+        }
+        if (ImGui::Selectable("(scan the USB bus again)", false, ImGuiSelectableFlags_DontClosePopups)) h.options(true);
+        ImGui::EndCombo();
+    }
+    ImGui::InputText("replay file", s.replay_path, sizeof s.replay_path);
+    if (!next.empty()) cmd_set_device(s, next);
+    if (!s.device) return;
+    const drivers::DeviceFault f = s.device->fault();
+    ImGui::Text("device: %s, %s", s.device->name(), drivers::to_string(s.device->state()));
+    if (f.code != drivers::DeviceFaultCode::none)
+        ImGui::TextColored(ImVec4(1, 0.35f, 0.3f, 1), "device fault: %s - %s", drivers::to_string(f.code), f.detail);
+    else
+        ImGui::TextDisabled("device fault: none");
+    if (!h.recording()) {
+        ImGui::InputText("record to", s.record_path, sizeof s.record_path);
+        if (ImGui::Button("Start recording")) cmd_record_start(s, s.record_path);
+    } else {
+        ImGui::TextColored(ImVec4(1, 0.5f, 0.4f, 1), "REC %s: %llu ticks, %llu dropped", h.recording_path().c_str(),
+                           static_cast<unsigned long long>(h.recorded()),
+                           static_cast<unsigned long long>(h.recording_dropped()));
+        if (ImGui::Button("Stop recording")) cmd_record_stop(s);
+    }
+}
+
+// Servo rate: typed (Enter applies) or a preset; each change restarts the servo safely.
+void rate_controls(EditorState& s) {
+    if (!s.haptics) return;
+    ImGui::TextDisabled("servo rate (restarts the servo: zero force, then ramp-in)");
+    double hz = s.haptics->rate();
+    if (ImGui::InputDouble("rate (Hz)", &hz, 0.0, 0.0, "%.0f", ImGuiInputTextFlags_EnterReturnsTrue) &&
+        hz != s.haptics->rate())
+        cmd_set_rate(s, hz);
+    static const double presets[] = {100, 500, 1000, 2000, 5000, 10000, 20000};
+    for (std::size_t i = 0; i < std::size(presets); ++i) {
+        char label[16];
+        std::snprintf(label, sizeof label, presets[i] >= 1000 ? "%.0fk" : "%.0f",
+                      presets[i] >= 1000 ? presets[i] / 1000 : presets[i]);
+        if (i > 0) ImGui::SameLine();
+        if (ImGui::SmallButton(label) && presets[i] != s.haptics->rate()) cmd_set_rate(s, presets[i]);
+    }
+}
+
 void tuning_window(EditorState& s) {
     ImGui::SetNextWindowPos(ImVec2(52, 80), ImGuiCond_FirstUseEver);  // below the frame's status line
     ImGui::SetNextWindowSize(ImVec2(330, 470), ImGuiCond_FirstUseEver);
@@ -182,6 +244,8 @@ void tuning_window(EditorState& s) {
     edit_field(s, "finger R (mm)", [](Scene& x) { return &x.finger.radius; }, 0.005, 0.05, "%.1f", 1e3);
     edit_field(s, "pad L (mm)", [](Scene& x) { return &x.finger.length; }, 0.002, 0.06, "%.1f", 1e3);
 
+    ImGui::Separator();
+    rate_controls(s);
     selection_editor(s);
     ImGui::Separator();
     ImGui::TextDisabled("roller PID (live, not in the scene)");
@@ -197,7 +261,6 @@ void tuning_window(EditorState& s) {
     ImGui::End();
 }
 
-const char* to_text(drivers::DeviceState d) { return drivers::to_string(d); }
 
 void status_window(EditorState& s, const FrameInfo& info) {
     ImGui::SetNextWindowPos(ImVec2(static_cast<float>(info.width) - 350.0f, 50), ImGuiCond_FirstUseEver);
@@ -206,13 +269,13 @@ void status_window(EditorState& s, const FrameInfo& info) {
         ImGui::End();
         return;
     }
+    device_controls(s);
     if (s.servo) {
         const ServoSnapshot snap = s.servo->snapshot();
         const bool stopped = s.servo->stopped();
         ImGui::PushStyleColor(ImGuiCol_Button, stopped ? ImVec4(0.3f, 0.5f, 0.3f, 1) : ImVec4(0.8f, 0.1f, 0.1f, 1));
         if (ImGui::Button(stopped ? "RELEASE STOP (space)" : "EMERGENCY STOP (space)", ImVec2(-1, 34))) cmd_toggle_stop(s);
         ImGui::PopStyleColor();
-        ImGui::Text("device: %s, %s", s.device->name(), to_text(s.device->state()));
         const bool fault = snap.state == ServoState::fault;
         ImGui::TextColored(fault ? ImVec4(1, 0.35f, 0.3f, 1) : ImVec4(0.7f, 0.9f, 0.7f, 1), "servo: %s%s%s",
                            stopped ? "STOPPED (idle)" : to_string(snap.state), fault ? " - " : "",
@@ -228,6 +291,7 @@ void status_window(EditorState& s, const FrameInfo& info) {
         ImGui::Text("l_d %.2f mm  roller %.2f mm", snap.l_d * 1e3, snap.roller_l * 1e3);
         ImGui::Text("Ke in effect %.0f N/m, max %.2f N", snap.stiffness, snap.max_force);
         const auto ps = s.history.period_stats(s.servo->period());
+        ImGui::Text("servo %.0f Hz (T = %.0f us)", s.servo->rate(), s.servo->period() * 1e6);
         ImGui::Text("period p50 %.0f us  p99 %.0f us  max %.0f us", ps.p50 * 1e6, ps.p99 * 1e6, ps.max * 1e6);
         ImGui::Text("late ticks (>1.5 T) %zu / %zu (5 s), overruns %llu", ps.late, ps.count,
                     static_cast<unsigned long long>(s.servo->overruns()));

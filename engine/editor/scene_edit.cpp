@@ -25,6 +25,26 @@ Segment reversed(const Segment& s) {
     return ArcSegment{a.center, a.radius, a.end_angle, a.start_angle};
 }
 
+// An arc's three handles: start, the point halfway along, end (m).
+Vec2 arc_mid(const ArcSegment& a) {
+    const double m = 0.5 * (a.start_angle + a.end_angle);
+    return a.center + a.radius * Vec2(std::cos(m), std::sin(m));
+}
+
+// The segment with point i moved to p. An arc is refitted through its three handles with one of
+// them moved (unchanged when they fall in a line: no circle passes through them).
+Segment with_point(const Segment& s, int i, Vec2 p) {
+    if (const auto* a = std::get_if<ArcSegment>(&s)) {
+        Vec2 q[3] = {segment_start(s), arc_mid(*a), segment_end(s)};
+        q[i] = p;
+        if (const auto fit = arc_through(q[0], q[1], q[2])) return *fit;
+        return s;
+    }
+    Segment out = s;
+    if (Vec2* r = point_ref(out, i)) *r = p;
+    return out;
+}
+
 // Moves a segment's first / last point (arcs: their end is already where it must be, to rounding).
 void set_start(Segment& s, Vec2 p) {
     if (Vec2* q = point_ref(s, 0)) *q = p;
@@ -42,8 +62,8 @@ bool valid_handle(const Scene& scene, const Handle& h) {
 }
 
 int handle_count(const Segment& s) {
-    if (std::holds_alternative<LineSegment>(s) || std::holds_alternative<ArcSegment>(s)) return 2;
-    if (std::holds_alternative<QuadSegment>(s)) return 3;
+    if (std::holds_alternative<LineSegment>(s)) return 2;
+    if (std::holds_alternative<QuadSegment>(s) || std::holds_alternative<ArcSegment>(s)) return 3;
     if (std::holds_alternative<CubicSegment>(s)) return 4;
     return 0;
 }
@@ -51,7 +71,7 @@ int handle_count(const Segment& s) {
 Vec2 handle_position(const Scene& scene, const Handle& h) {
     if (!valid_handle(scene, h)) return Vec2{0.0};
     Segment s = scene.contours[h.contour].segments[h.segment];
-    if (std::holds_alternative<ArcSegment>(s)) return h.point == 0 ? segment_start(s) : segment_end(s);
+    if (const auto* a = std::get_if<ArcSegment>(&s)) return h.point == 0 ? segment_start(s) : h.point == 1 ? arc_mid(*a) : segment_end(s);
     return *point_ref(s, h.point);
 }
 
@@ -109,17 +129,27 @@ Scene move_handle(const Scene& scene, const Handle& h, Vec2 to) {
     if (!valid_handle(scene, h)) return out;
     Contour& k = out.contours[h.contour];
     const int n = static_cast<int>(k.segments.size());
-    Vec2* p = point_ref(k.segments[h.segment], h.point);
-    if (!p) return out;
-    *p = to;
-    const int last = handle_count(k.segments[h.segment]) - 1;
-    // Joined neighbour: the previous segment's end (for point 0) or the next one's start.
+    Segment& seg = k.segments[h.segment];
+    if (const auto* a = std::get_if<ArcSegment>(&seg)) {
+        // Refitted through its three handles with this one moved; no circle through three points
+        // in a line: the edit is refused (the scene comes back unchanged).
+        Vec2 q[3] = {segment_start(seg), arc_mid(*a), segment_end(seg)};
+        q[h.point] = to;
+        const auto fit = arc_through(q[0], q[1], q[2]);
+        if (!fit) return scene;
+        seg = *fit;
+    } else {
+        seg = with_point(seg, h.point, to);
+    }
+    const int last = handle_count(seg) - 1;
+    // Joined neighbour: the previous segment's end (for point 0) or the next one's start; the
+    // moved segment's own end point (an arc's is recomputed) is what they join.
     if (h.point == 0 && (h.segment > 0 || k.closed)) {
         Segment& prev = k.segments[(h.segment + n - 1) % n];
-        if (Vec2* q = point_ref(prev, handle_count(prev) - 1)) *q = to;
+        prev = with_point(prev, handle_count(prev) - 1, segment_start(seg));
     } else if (h.point == last && (h.segment < n - 1 || k.closed)) {
         Segment& next = k.segments[(h.segment + 1) % n];
-        if (Vec2* q = point_ref(next, 0)) *q = to;
+        next = with_point(next, 0, segment_end(seg));
     }
     return out;
 }
@@ -180,6 +210,68 @@ std::optional<ArcSegment> arc_through(Vec2 a, Vec2 m, Vec2 b) {
     // Counter-clockwise if m lies on the way from a to b going that way, else clockwise.
     arc.end_angle = to_m < to_b ? a0 + to_b : a0 - (2.0 * kPi - to_b);
     return arc;
+}
+
+std::optional<Vec2> continuation_tangent(const Scene& scene, Vec2 p, double radius) {
+    const auto end = pick_open_end(scene, p, radius);
+    if (!end) return std::nullopt;
+    const auto& segs = scene.contours[end->contour].segments;
+    // At the chain's last point: on along its end tangent. At its first point the new segment is
+    // prepended reversed, so it must leave against the chain's start tangent.
+    if (end->segment == static_cast<int>(segs.size()) - 1 && end->point > 0) return segment_end_tangent(segs.back());
+    return -segment_start_tangent(segs.front());
+}
+
+Vec2 project_on_ray(Vec2 origin, Vec2 dir, Vec2 p) {
+    return origin + dir * std::max(0.0, glm::dot(p - origin, dir));
+}
+
+Vec2 project_on_normal(Vec2 origin, Vec2 dir, Vec2 p) {
+    const Vec2 n(-dir.y, dir.x);
+    return origin + n * glm::dot(p - origin, n);
+}
+
+namespace {
+
+// The arc about c from `start` to the angle of `end`, turning counter-clockwise (dir > 0) or
+// clockwise (dir < 0); the end lies on the circle through start.
+ArcSegment arc_about(Vec2 c, Vec2 start, Vec2 end, int dir) {
+    ArcSegment a;
+    a.center = c;
+    a.radius = glm::length(start - c);
+    a.start_angle = std::atan2(start.y - c.y, start.x - c.x);
+    double sweep = std::atan2(end.y - c.y, end.x - c.x) - a.start_angle;  // rad
+    while (sweep <= 0.0) sweep += 2.0 * kPi;
+    while (sweep > 2.0 * kPi) sweep -= 2.0 * kPi;
+    a.end_angle = dir > 0 ? a.start_angle + sweep : a.start_angle - (2.0 * kPi - sweep);
+    return a;
+}
+
+}  // namespace
+
+std::optional<ArcSegment> arc_center_radius(Vec2 start, Vec2 center, Vec2 end, int dir) {
+    const double r = glm::length(start - center);
+    if (!(r > 1e-9) || !(glm::length(end - center) > 1e-9)) return std::nullopt;
+    if (dir == 0) {
+        // The short way round (|sweep| <= pi).
+        const Vec2 a = start - center, b = end - center;
+        dir = a.x * b.y - a.y * b.x >= 0.0 ? 1 : -1;
+    }
+    ArcSegment arc = arc_about(center, start, end, dir);
+    if (std::abs(arc.end_angle - arc.start_angle) < 1e-9) return std::nullopt;  // start == end
+    return arc;
+}
+
+std::optional<ArcSegment> tangent_arc_through(Vec2 start, Vec2 tangent, Vec2 through, Vec2 end) {
+    const Vec2 n(-tangent.y, tangent.x);  // left normal
+    const Vec2 m = through - start;
+    const double mn = glm::dot(m, n);
+    if (std::abs(mn) < 1e-9 * std::max(1e-12, glm::dot(m, m))) return std::nullopt;  // on the tangent line
+    // The circle tangent to `tangent` at start through m: centre start + r n, |m - r n| = |r|.
+    const double r = glm::dot(m, m) / (2.0 * mn);  // m, signed: > 0 centre on the left
+    const Vec2 c = start + r * n;
+    if (!(glm::length(end - c) > 1e-9)) return std::nullopt;
+    return arc_about(c, start, end, r > 0.0 ? 1 : -1);
 }
 
 Scene delete_segment(const Scene& scene, int contour, int segment) {

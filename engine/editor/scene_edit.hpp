@@ -12,8 +12,8 @@
 namespace contactlab::editor {
 
 // A point of the geometry the user can grab. `point` indexes the segment's points in travel
-// order: line 0 = from, 1 = to; quad p0, p1, p2; cubic p0..p3; arc 0 = start, 1 = end (shown and
-// snapped to, but fixed: they follow from centre, radius and angles, so moves leave them alone).
+// order: line 0 = from, 1 = to; quad p0, p1, p2; cubic p0..p3; arc 0 = start, 1 = the point
+// halfway along, 2 = end (moving one refits the arc through the three, the others kept).
 struct Handle {
     int contour = -1;
     int segment = -1;
@@ -46,6 +46,24 @@ Scene add_segment(const Scene& scene, const Segment& segment, double join_radius
 // The circular arc from a through m to b (m); nullopt when the points are (nearly) collinear or
 // coincide. Its end points are a and b to rounding (cos/sin of the angles).
 std::optional<ArcSegment> arc_through(Vec2 a, Vec2 m, Vec2 b);
+
+// Tangent continuation (G1 joints). The direction (unit) a new segment starting at the open chain
+// end within `radius` (m) of p must leave in to join it with a continuous tangent: the chain's end
+// tangent at its last point, the reverse of its start tangent at its first point; nullopt when p
+// is no open chain end.
+std::optional<Vec2> continuation_tangent(const Scene& scene, Vec2 p, double radius);
+// p projected onto the ray from origin along unit dir (never behind the origin) / onto the line
+// through origin normal to dir (where the centre of a tangent arc lies).
+Vec2 project_on_ray(Vec2 origin, Vec2 dir, Vec2 p);
+Vec2 project_on_normal(Vec2 origin, Vec2 dir, Vec2 p);
+// The arc about `center` from `start` (radius |start - center|) to where the ray toward `end`
+// meets the circle, counter-clockwise (dir > 0), clockwise (dir < 0) or the short way (dir 0);
+// nullopt for a zero radius or a zero sweep.
+std::optional<ArcSegment> arc_center_radius(Vec2 start, Vec2 center, Vec2 end, int dir);
+// The arc leaving `start` along unit `tangent` (G1), on the circle that also passes through
+// `through`, to where the ray from its centre toward `end` meets it; nullopt when `through` is on
+// the tangent line (that continuation is a straight line).
+std::optional<ArcSegment> tangent_arc_through(Vec2 start, Vec2 tangent, Vec2 through, Vec2 end);
 
 // Removes one segment. A chain broken in the middle becomes two open chains; a closed contour
 // becomes one open chain starting after the gap; an empty contour disappears.

@@ -2,6 +2,7 @@
 #include "engine/editor/script.hpp"
 
 #include "engine/editor/canvas.hpp"
+#include "engine/editor/haptics_commands.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -19,7 +20,8 @@ const std::map<std::string, std::pair<int, int>>& arity() {
         {"finger", {2, 3}}, {"key", {1, 1}},         {"set", {2, 2}},        {"undo", {0, 0}},
         {"redo", {0, 0}},   {"fit", {0, 0}},         {"save", {1, 1}},       {"open", {1, 1}},
         {"screenshot", {1, 1}}, {"estop", {1, 1}},   {"wait", {1, 1}},       {"frames", {1, 1}},
-        {"wait_contact", {1, 1}}, {"resize", {2, 2}}, {"generate", {1, 1}}, {"wait_state", {2, 2}}, {"expect", {2, 2}}, {"quit", {0, 0}},
+        {"wait_contact", {1, 1}}, {"resize", {2, 2}}, {"generate", {1, 1}}, {"wait_state", {2, 2}}, {"expect", {2, 3}}, {"quit", {0, 0}},
+        {"device", {1, 2}}, {"rate", {1, 1}}, {"record", {1, 1}}, {"report", {1, 1}}, {"devices", {0, 0}},
     };
     return a;
 }
@@ -125,7 +127,9 @@ bool Script::run(EditorState& s, const Line& line, double now) {
         else if (w[1] == "line") cmd_set_tool(s, Tool::line);
         else if (w[1] == "quad") cmd_set_tool(s, Tool::quad);
         else if (w[1] == "arc") cmd_set_tool(s, Tool::arc);
-        else throw ScriptError("unknown tool \"" + w[1] + "\" (finger, select, line, quad, arc)");
+        else if (w[1] == "arc_center") cmd_set_tool(s, Tool::arc_center);
+        else if (w[1] == "cubic") cmd_set_tool(s, Tool::cubic);
+        else throw ScriptError("unknown tool \"" + w[1] + "\" (finger, select, line, quad, arc, arc_center, cubic)");
     } else if (c == "click" || c == "rclick") {
         px_of(s, number(w[1]), number(w[2]), px, py);
         const Button b = c == "click" ? Button::left : Button::right;
@@ -156,6 +160,10 @@ bool Script::run(EditorState& s, const Line& line, double now) {
         } else if (n == "rule") {
             if (w[2] != "centroid" && w[2] != "least_displacement") throw ScriptError("rule: centroid or least_displacement");
             sc.contact_location.rule = w[2] == "centroid" ? ContactRule::centroid : ContactRule::least_displacement;
+        } else if (n == "snap_tangent") {
+            if (w[2] != "0" && w[2] != "1") throw ScriptError("snap_tangent: 0 or 1");
+            s.snap_tangent = w[2] == "1";
+            return true;
         } else if (n == "snap_mm") {
             s.grid_mm = number(w[2]);
             s.snap_grid = s.grid_mm > 0.0;
@@ -220,8 +228,11 @@ bool Script::run(EditorState& s, const Line& line, double now) {
         const double f = std::hypot(snap.force.x, snap.force.y);
         std::string got;
         bool ok = false;
-        if (n == "state") {
-            got = to_string(snap.state);
+        if (n == "state" || n == "device" || n == "device_state") {
+            if (w.size() > 3) throw ScriptError("expect " + n + " takes no tolerance");
+            got = n == "state"    ? std::string(to_string(snap.state))
+                  : n == "device" ? (s.haptics ? s.haptics->spec() : std::string("none"))
+                                  : std::string(s.device ? drivers::to_string(s.device->state()) : "none");
             ok = got == w[2];
         } else {
             const double want = number(w[2]);
@@ -236,18 +247,60 @@ bool Script::run(EditorState& s, const Line& line, double now) {
             else if (n == "undo_depth") v = static_cast<double>(s.doc.undo_depth());
             else if (n == "dirty") v = s.doc.dirty() ? 1 : 0;
             else if (n == "error") v = s.message_is_error ? 1 : 0;
-            else if (n == "force_above" || n == "force_below") v = f;
+            else if (n == "force_above" || n == "force_below" || n == "force") v = f;
+            else if (n == "rate") v = s.servo ? s.servo->rate() : 0.0;
+            else if (n == "recording") v = s.haptics && s.haptics->recording() ? 1 : 0;
+            else if (n == "finger_x") v = snap.finger.x * 1e3;  // mm
+            else if (n == "finger_y") v = snap.finger.y * 1e3;  // mm
+            else if (n == "depth") v = snap.depth * 1e3;        // mm
             else throw ScriptError("unknown expectation \"" + n + "\"");
+            const double tol = w.size() > 3 ? number(w[3]) : 0.0;
+            if (tol < 0.0) throw ScriptError("expect: the tolerance must not be negative");
             if (n == "force_above") ok = v > want;
             else if (n == "force_below") ok = v < want;
-            else if (n == "ke_effective") ok = std::abs(v - want) <= 1.0;
-            else ok = v == want;
+            else if (n == "ke_effective") ok = std::abs(v - want) <= std::max(1.0, tol);
+            else ok = std::abs(v - want) <= tol;
             char buf[64];
             std::snprintf(buf, sizeof buf, "%.6g", v);
             got = buf;
         }
         if (!ok) fail(line, "expected " + n + " " + w[2] + ", got " + got);
         else std::fprintf(stderr, "script %s:%d: ok: %s = %s\n", origin_.c_str(), line.number, n.c_str(), got.c_str());
+    } else if (c == "device") {
+        // `device replay FILE` is `device replay:FILE`, so a path with a colon needs no quoting.
+        std::string spec = w[1];
+        if (spec == "replay") {
+            if (w.size() < 3) throw ScriptError("device replay FILE: name the recording");
+            spec = "replay:" + w[2];
+        } else if (w.size() > 2) {
+            throw ScriptError("device " + w[1] + " takes no file (only replay FILE does)");
+        }
+        if (!cmd_set_device(s, spec)) throw ScriptError(s.message);
+    } else if (c == "rate") {
+        if (!cmd_set_rate(s, number(w[1]))) throw ScriptError(s.message);
+    } else if (c == "record") {
+        const bool ok = w[1] == "stop" ? cmd_record_stop(s) : cmd_record_start(s, w[1]);
+        if (!ok) throw ScriptError(s.message);
+    } else if (c == "devices") {
+        // The device menu as the Haptics panel shows it (USB scanned again), one line each.
+        if (s.haptics)
+            for (const DeviceOption& o : s.haptics->options(true))
+                std::fprintf(stderr, "script device option %s: %s%s\n", o.spec.c_str(),
+                             o.available ? "available" : "unavailable: ", o.why.c_str());
+    } else if (c == "report") {
+        // One machine-readable line for tests to parse (SI but lengths in mm, as the UI shows).
+        const ServoSnapshot snap = s.servo ? s.servo->snapshot() : ServoSnapshot{};
+        const auto ps = s.history.period_stats(s.servo ? s.servo->period() : 1e-3);
+        std::fprintf(stderr,
+                     "script report %s: device=%s device_state=%s rate_hz=%.17g cursor_x_mm=%.17g cursor_y_mm=%.17g "
+                     "finger_x_mm=%.17g finger_y_mm=%.17g phi_deg=%.17g contact=%d depth_mm=%.17g force_n=%.17g "
+                     "ke=%.17g servo_state=%s ticks=%llu p50_us=%.6g p99_us=%.6g max_us=%.6g late=%zu count=%zu\n",
+                     w[1].c_str(), s.haptics ? s.haptics->spec().c_str() : "none",
+                     s.device ? drivers::to_string(s.device->state()) : "none", s.servo ? s.servo->rate() : 0.0,
+                     s.pose.finger.x * 1e3, s.pose.finger.y * 1e3, snap.finger.x * 1e3, snap.finger.y * 1e3,
+                     snap.phi * 180.0 / kPi, snap.contact ? 1 : 0, snap.depth * 1e3, std::hypot(snap.force.x, snap.force.y),
+                     snap.stiffness, to_string(snap.state), static_cast<unsigned long long>(snap.ticks), ps.p50 * 1e6,
+                     ps.p99 * 1e6, ps.max * 1e6, ps.late, ps.count);
     } else if (c == "quit") {
         s.quit = true;
     }

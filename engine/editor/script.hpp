@@ -1,17 +1,27 @@
 // script.hpp — `contactlab edit --script FILE`: UI actions and checks, one command per line, run
 // through the same canvas functions the mouse and keys use. Coordinates are world mm; angles deg.
 //
-//   tool finger|select|line|quad|arc   click X Y        rclick X Y       drag X0 Y0 X1 Y1
+//   tool finger|select|line|quad|arc|arc_center|cubic   click X Y        rclick X Y       drag X0 Y0 X1 Y1
 //   finger X Y [PHI]               key NAME (space, delete, ctrl+z, ctrl+y, f, 1, 2, 3, q, e)
 //   set NAME VALUE   (ke, max_force, damping, mu_s, mu_d, k_t, k_n  SI units;
 //                     model spring|ellipsoid; rule centroid|least_displacement; kp ki kd;
-//                     snap_mm MM: grid snapping for the authoring tools, 0 = off)
+//                     snap_mm MM: grid snapping for the authoring tools, 0 = off;
+//                     snap_tangent 0|1: G1 tangent continuation at open chain ends)
 //   undo  redo  fit  save PATH  open PATH  screenshot PATH  estop on|off  resize W H (px)
 //   generate block|bumps|arc
 //   wait SECONDS     frames N     wait_contact TIMEOUT_S     wait_state STATE TIMEOUT_S
-//   expect NAME VALUE  (contact 0|1, segments N, contours N, ke N/m, ke_effective N/m (within 1),
-//                       state NAME, stopped 0|1, valid 0|1, force_above N, force_below N,
-//                       undo_depth N, dirty 0|1, error 0|1: the last action's message was an error)
+//   device mouse|sim-cld|usb:hapio|usb:falcon   device replay FILE   (switch, through the safety path)
+//   rate HZ          (servo rate, 100..20000; restarts the servo safely)
+//   record PATH      record stop      (every servo tick to a "contactlab recording v1" file)
+//   devices          (the device menu on stderr: "script device option SPEC: available" or
+//                     "...: unavailable: WHY"; the USB bus is scanned again)
+//   report LABEL     (one line "script report LABEL: key=value ..." on stderr: device, rate, cursor,
+//                     finger, depth, force, servo state, period statistics; for tests to parse)
+//   expect NAME VALUE [TOL]  (contact 0|1, segments N, contours N, ke N/m, ke_effective N/m (within
+//                       1), state NAME, stopped 0|1, valid 0|1, force_above N, force_below N,
+//                       undo_depth N, dirty 0|1, error 0|1: the last action's message was an error,
+//                       device SPEC, device_state NAME, rate HZ, recording 0|1, force N,
+//                       finger_x MM, finger_y MM, depth MM; numbers equal within TOL, default 0)
 //   quit
 // Blank lines and lines starting with # are ignored. A failed expectation is reported with its
 // line number and the run goes on; the editor exits 1 if any failed.

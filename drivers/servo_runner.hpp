@@ -1,0 +1,80 @@
+// servo_runner.hpp — the one real-time deadline loop: runs ServoLoop::step() on its own thread
+// at the loop's period with absolute deadlines (clock_nanosleep TIMER_ABSTIME on
+// CLOCK_MONOTONIC), SCHED_FIFO when the system grants it, optionally pinned to one CPU, with
+// period statistics and overrun counting. `contactlab simulate --realtime` (run_realtime) and the
+// editor's live servo both use it, so there is one definition of "a tick on time".
+//
+// The thread never allocates, locks or logs per tick: the statistics histogram is allocated by
+// the constructor and the scheduling report is written once, before the first tick.
+#pragma once
+
+#include "drivers/servo_loop.hpp"
+
+#include <atomic>
+#include <cstdint>
+#include <string>
+#include <thread>
+
+namespace contactlab::drivers {
+
+// Called on the servo thread at every tick boundary, before the step (e.g. the editor's emergency
+// stop disconnects or re-arms the tick here). Must not allocate, lock or log.
+class TickBoundaryHook {
+public:
+    virtual ~TickBoundaryHook() = default;
+    virtual void before_tick(ServoLoop& loop) noexcept = 0;
+};
+
+struct RunnerOptions {
+    int fifo_priority = 80;       // SCHED_FIFO priority asked for (refusal is reported, not fatal)
+    int core = -1;                // CPU to pin the thread to; -1: leave the affinity alone
+    bool lock_memory = false;     // mlockall(MCL_CURRENT | MCL_FUTURE) before the first tick
+    std::uint64_t max_ticks = 0;  // stop by itself after this many ticks; 0: until stop()
+    // Before the thread exits (stop() or max_ticks), one last tick with the servo disconnected, so
+    // the device's last command is zero force and zero roller drive (a stopped runner never leaves
+    // a force held on the device).
+    bool zero_on_exit = false;
+    TickBoundaryHook* hook = nullptr;
+};
+
+class ServoRunner {
+public:
+    ServoRunner(ServoLoop& loop, const RunnerOptions& options);
+    ~ServoRunner();  // stop()
+    ServoRunner(const ServoRunner&) = delete;
+    ServoRunner& operator=(const ServoRunner&) = delete;
+
+    // Starts the thread (the loop's device must already be open: ServoLoop::start()).
+    void start();
+    // Asks the thread to finish after the current tick and joins it.
+    void stop();
+    // Waits for a max_ticks run to end.
+    void join();
+    bool running() const { return thread_.joinable() && !done_.load(std::memory_order_acquire); }
+
+    // What the OS granted, e.g. "SCHED_FIFO priority 80, pinned to CPU 1"; "starting" until the
+    // thread has set itself up.
+    std::string scheduling() const;
+    std::string memory_lock() const;
+    // Ticks whose next deadline had already passed when they finished (any thread, any time).
+    std::uint64_t overruns() const { return overruns_.load(std::memory_order_relaxed); }
+    std::uint64_t ticks() const { return ticks_.load(std::memory_order_relaxed); }
+    // Tick-start to tick-start periods. Read only once the thread has been joined.
+    const PeriodStats& stats() const { return stats_; }
+
+private:
+    void run() noexcept;
+
+    ServoLoop& loop_;
+    RunnerOptions opt_;
+    PeriodStats stats_;
+    std::thread thread_;
+    std::atomic<bool> quit_{false};
+    std::atomic<bool> done_{false};
+    std::atomic<bool> sched_ready_{false};
+    std::atomic<std::uint64_t> overruns_{0};
+    std::atomic<std::uint64_t> ticks_{0};
+    std::string scheduling_, memory_lock_;  // written by the thread before sched_ready_
+};
+
+}  // namespace contactlab::drivers

@@ -1,0 +1,23 @@
+// pose_input.hpp — the cursor as an input to a device: the UI thread publishes the finger pose the
+// user points at (x_f and phi) and a device takes it (the mouse device reads it as the finger; the
+// simulated CLD's hand takes it as where it intends the finger to be). Replay and USB devices
+// take no pose: the recording or the user's real hand moves the finger.
+#pragma once
+
+#include "haptics/vec2.hpp"
+
+namespace contactlab::editor {
+
+struct MousePose {
+    Vec2 finger{0.0};  // x_f, m
+    double phi = 0.0;  // rad
+};
+
+class PoseInput {
+public:
+    virtual ~PoseInput() = default;
+    // UI thread; never blocks the servo (devices keep the pose in a seqlock).
+    virtual void set_pose(const MousePose& p) noexcept = 0;
+};
+
+}  // namespace contactlab::editor
