@@ -209,17 +209,6 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
     return out_;
 }
 
-void Proxy::gather_segments(Vec2 center, double half_size) {
-    segment_ids_.clear();
-    Aabb box;
-    box.grow(center - Vec2(half_size));
-    box.grow(center + Vec2(half_size));
-    env_->tree.query(box, segment_ids_);
-    // The BVH returns leaves in tree order; sort so the pieces' order (and thus tie-breaks) does
-    // not depend on the query box.
-    std::sort(segment_ids_.begin(), segment_ids_.end());
-}
-
 // The segments whose c-space pieces can come within `reach` (m) of the finger while the pad turns
 // from phi_ to phi: every piece the walk and the re-projection can meet. Pad-interior and vertex
 // pieces are the segment offset by R along its free-side normals (AabbTree::query_offset_reach);
@@ -228,28 +217,17 @@ void Proxy::gather_segments(Vec2 center, double half_size) {
 // Under a pad pressed into a densely sampled contour this keeps the few segments near the
 // contact instead of the thousands in the box around the pad.
 void Proxy::gather_for_motion(Vec2 finger, double phi, double reach) {
-    segment_ids_.clear();
-    if (!def_.use_index) {
-        for (int i = 0; i < static_cast<int>(env_->segments.size()); ++i) segment_ids_.push_back(i);
-        return;
-    }
-    const FingerShape& shape = def_.finger;
-    env_->tree.query_offset_reach(finger, shape.radius, reach, segment_ids_);
-    if (pad_has_endpoints(shape)) {
-        const double h = pad_half_angle(shape);
-        for (const double side : {-1.0, 1.0}) {
-            Aabb box;
-            box.grow(finger + shape.radius * unit_at(pad_mid_angle(phi_) + side * h));
-            box.grow(finger + shape.radius * unit_at(pad_mid_angle(phi) + side * h));
-            env_->tree.query(box.grown(2.0 * reach), segment_ids_);
-        }
-    }
-    // Sorted and unique, so the pieces' order (and thus tie-breaks) does not depend on the queries.
-    std::sort(segment_ids_.begin(), segment_ids_.end());
-    segment_ids_.erase(std::unique(segment_ids_.begin(), segment_ids_.end()), segment_ids_.end());
+    // The pad's ends sweep from phi_ to phi: the boxes cover both positions, grown generously.
+    gather_near(finger, phi_, phi, reach, 2.0 * reach);
 }
 
 void Proxy::gather_within_reach(Vec2 finger, double phi, double reach) {
+    // A pad-end piece is its segment moved by -R u_end: its points within `reach` of the finger
+    // come from segment points within `reach` of the pad's end.
+    gather_near(finger, phi, phi, reach, reach);
+}
+
+void Proxy::gather_near(Vec2 finger, double phi_from, double phi_to, double reach, double end_reach) {
     segment_ids_.clear();
     if (!def_.use_index) {
         for (int i = 0; i < static_cast<int>(env_->segments.size()); ++i) segment_ids_.push_back(i);
@@ -258,15 +236,15 @@ void Proxy::gather_within_reach(Vec2 finger, double phi, double reach) {
     const FingerShape& shape = def_.finger;
     env_->tree.query_offset_reach(finger, shape.radius, reach, segment_ids_);
     if (pad_has_endpoints(shape)) {
-        // A pad-end piece is its segment moved by -R u_end: its points within `reach` of the
-        // finger come from segment points within `reach` of the pad's end.
         const double h = pad_half_angle(shape);
         for (const double side : {-1.0, 1.0}) {
             Aabb box;
-            box.grow(finger + shape.radius * unit_at(pad_mid_angle(phi) + side * h));
-            env_->tree.query(box.grown(reach), segment_ids_);
+            box.grow(finger + shape.radius * unit_at(pad_mid_angle(phi_from) + side * h));
+            box.grow(finger + shape.radius * unit_at(pad_mid_angle(phi_to) + side * h));
+            env_->tree.query(box.grown(end_reach), segment_ids_);
         }
     }
+    // Sorted and unique, so the pieces' order (and thus tie-breaks) does not depend on the queries.
     std::sort(segment_ids_.begin(), segment_ids_.end());
     segment_ids_.erase(std::unique(segment_ids_.begin(), segment_ids_.end()), segment_ids_.end());
 }

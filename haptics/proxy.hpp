@@ -96,9 +96,11 @@ private:
         Vec2 point{0.0};
         int piece = -1;
     };
-    void gather_segments(Vec2 center, double half_size);  // segment_ids_: those in the box
     void gather_for_motion(Vec2 finger, double phi, double reach);
     void gather_within_reach(Vec2 finger, double phi, double reach);  // pieces at phi within reach
+    // segment_ids_: segments whose R-offset can come within `reach` of the finger, or that lie
+    // within `end_reach` of the pad's ends between the two angles.
+    void gather_near(Vec2 finger, double phi_from, double phi_to, double reach, double end_reach);
     void build_pieces(double phi);                         // pieces_ of segment_ids_ at phi
     void depenetrate(double max_push);
     bool handed_over(int i, Vec2 at, Vec2 t) const;
