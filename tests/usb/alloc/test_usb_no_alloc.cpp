@@ -11,55 +11,9 @@
 
 #include <doctest/doctest.h>
 
-#include <atomic>
-#include <cstdarg>
-#include <cstdlib>
-#include <dlfcn.h>
-#include <new>
-#include <pthread.h>
+#include "side_effects.hpp"
+
 #include <thread>
-
-namespace {
-thread_local bool t_counting = false;
-std::atomic<long> g_allocs{0}, g_locks{0}, g_io{0};
-template <class F>
-F next_symbol(const char* name) { return reinterpret_cast<F>(dlsym(RTLD_NEXT, name)); }
-}  // namespace
-
-extern "C" int pthread_mutex_lock(pthread_mutex_t* m) {
-    if (t_counting) g_locks.fetch_add(1);
-    static auto real = next_symbol<int (*)(pthread_mutex_t*)>("pthread_mutex_lock");
-    return real(m);
-}
-extern "C" ssize_t write(int fd, const void* buf, size_t n) {
-    if (t_counting) g_io.fetch_add(1);
-    static auto real = next_symbol<ssize_t (*)(int, const void*, size_t)>("write");
-    return real(fd, buf, n);
-}
-extern "C" int ioctl(int fd, unsigned long request, ...) {
-    if (t_counting) g_io.fetch_add(1);
-    va_list ap;
-    va_start(ap, request);
-    void* arg = va_arg(ap, void*);
-    va_end(ap);
-    static auto real = next_symbol<int (*)(int, unsigned long, void*)>("ioctl");
-    return real(fd, request, arg);
-}
-void* operator new(std::size_t n) {
-    if (t_counting) g_allocs.fetch_add(1);
-    if (void* p = std::malloc(n ? n : 1)) return p;
-    throw std::bad_alloc();
-}
-void* operator new[](std::size_t n) { return operator new(n); }
-// GCC 12 sees free() in operator delete and warns of a new/free mismatch; here every operator new
-// is malloc, so free is the match.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void operator delete(void* p) noexcept { std::free(p); }
-#pragma GCC diagnostic pop
-void operator delete[](void* p) noexcept { operator delete(p); }
-void operator delete(void* p, std::size_t) noexcept { operator delete(p); }
-void operator delete[](void* p, std::size_t) noexcept { operator delete(p); }
 
 using namespace contactlab;
 using namespace contactlab::drivers;
@@ -90,15 +44,17 @@ TEST_CASE("servo ticks against a USB device allocate nothing, lock nothing and d
     REQUIRE(step_until([&] { return servo.snapshot().force.y > 0.9; }));
 
     const std::uint64_t frames0 = dev.stats().frames;
+    reset_side_effects();
     for (int i = 0; i < 2000; ++i) {
-        t_counting = true;
+        count_this_thread(true);
         loop.step(1e-3, false);
-        t_counting = false;
+        count_this_thread(false);
         std::this_thread::sleep_for(std::chrono::microseconds(500));
     }
-    CHECK(g_allocs.load() == 0);
-    CHECK(g_locks.load() == 0);
-    CHECK(g_io.load() == 0);
+    const SideEffects e = side_effects();
+    CHECK(e.allocs == 0);
+    CHECK(e.locks == 0);
+    CHECK(e.io == 0);
     CHECK(dev.stats().frames > frames0 + 500);  // the transport kept streaming meanwhile
     CHECK(servo.snapshot().force.y > 0.9);       // and the ticks were real ones, in contact
 }
