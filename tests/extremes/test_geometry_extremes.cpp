@@ -4,6 +4,7 @@
 // finger angles of +-1e3 rad. Each against its analytic answer, or against the same motion at the
 // origin / at the wrapped angle, with tolerances from the double spacing of the coordinates.
 #include "extremes_fixture.hpp"
+#include "scene_builders.hpp"
 
 #include <doctest/doctest.h>
 
@@ -270,14 +271,7 @@ TEST_CASE("the finger spun by 1e3 rad in one tick while pressed into a floor: fi
 TEST_CASE("a jump across 20,000 segments and a half-turn of the finger in one tick: the work stops at its bounds") {
     // A 0.4 m sinusoid (1 cm amplitude, 50 periods) in 20,000 chords of ~27 um each.
     Scene s;
-    Contour c;
-    constexpr int n = 20000;
-    auto at = [](int i) {
-        const double x = -0.2 + 0.4 * i / n;  // m
-        return Vec2{x, 0.01 * std::sin(2.0 * kPi * 50.0 * (x + 0.2) / 0.4)};
-    };
-    for (int i = 0; i < n; ++i) c.segments.push_back(line(at(i), at(i + 1)));
-    s.contours.push_back(c);
+    s.contours.push_back(test::sinusoid_contour(20000, 0.01, 50.0));
     Rig rig(s, def_with(kNominalRadius, kNominalLength));
     rig.proxy->reset({-0.19, 0.05}, 0.0);
     rig.at({-0.19, 0.0}, 0.0);

@@ -7,6 +7,7 @@
 
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <initializer_list>
 #include <memory>
@@ -26,6 +27,18 @@ inline Contour polyline(std::initializer_list<Vec2> pts, bool closed = false) {
         prev = &p;
     }
     if (closed) c.segments.push_back(line(*prev, *pts.begin()));
+    return c;
+}
+
+// A sinusoid over x in [-0.2, 0.2] m (the bench's 0.4 m dense contour) cut into n chords:
+// y = amplitude sin(2 pi periods (x + 0.2) / 0.4), solid below.
+inline Contour sinusoid_contour(int n, double amplitude, double periods) {
+    Contour c;
+    auto at = [&](int i) {
+        const double x = -0.2 + 0.4 * i / n;  // m
+        return Vec2{x, amplitude * std::sin(2.0 * kPi * periods * (x + 0.2) / 0.4)};
+    };
+    for (int i = 0; i < n; ++i) c.segments.push_back(line(at(i), at(i + 1)));
     return c;
 }
 

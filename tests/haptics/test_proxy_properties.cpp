@@ -215,13 +215,7 @@ TEST_CASE("anticipation through the index finds exactly the piece a search of ev
     // (proxy.cpp, Proxy::anticipate); a proxy with use_index = false builds every segment's pieces.
     // Over a dense sinusoid, the block and the mixed scene, hovering and tilting at random, both
     // must name the same nearest point and contact location, bit for bit (same pieces, same order).
-    Contour wave;
-    constexpr int n = 4000;
-    auto at = [](int i) {
-        const double x = -0.2 + 0.4 * i / n;  // m
-        return Vec2{x, 0.005 * std::sin(2.0 * kPi * 10.0 * (x + 0.2) / 0.4)};
-    };
-    for (int i = 0; i < n; ++i) wave.segments.push_back(line(at(i), at(i + 1)));
+    const Contour wave = sinusoid_contour(4000, 0.005, 10.0);  // 5 mm amplitude, 10 periods
     std::mt19937_64 rng(5);
     std::uniform_real_distribution<double> u(0.0, 1.0);
     for (const Scene& scene : {scene_of({wave}), block_scene(), mixed_scene()}) {
