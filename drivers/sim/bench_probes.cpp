@@ -136,8 +136,9 @@ AboveBoundProbe above_bound_probe(double rate, double ratio, double seconds) {
     return p;
 }
 
-BlockTracking block_task_tracking(double speed, double rate, const RollerGains& gains) {
-    const Scene scene = block_scene();
+BlockTracking block_task_tracking(double speed, double rate, const RollerGains& gains, double stiffness) {
+    Scene scene = block_scene();
+    if (stiffness > 0.0) scene.force.stiffness = stiffness;
     BlockTaskParams bp;
     bp.finger_radius = scene.finger.radius;
     bp.speed = speed;
@@ -152,7 +153,7 @@ BlockTracking block_task_tracking(double speed, double rate, const RollerGains& 
     const double T = 1.0 / rate;     // s
     // 10 ms windows for the target's rate: l_d = -R phi moves in angle-encoder steps of 0.04 mm,
     // which a per-tick difference would report as bursts of metres per second.
-    const auto window = static_cast<std::size_t>(std::lround(0.010 * rate));
+    const auto window = std::max<std::size_t>(2, static_cast<std::size_t>(std::lround(0.010 * rate)));
     std::deque<double> recent;       // m, the last `window` targets while engaged in contact
     const auto ticks = static_cast<std::uint64_t>(std::lround(rig.device.hand().path().end() * rate));
     for (std::uint64_t k = 0; k < ticks; ++k) {
@@ -197,6 +198,9 @@ RollerGains roller_gains_scaled(double scale, const RollerParams& plant) {
     out.ki *= scale * scale * scale;
     // Kd(s p0) = (3 tau s p0 - 1) / g = s (3 tau p0 - 1) / g + (s - 1) / g.
     out.kd = out.kd * scale + (scale - 1.0) / g;
+    // Used as placed: the table explores the gains themselves (p T = 0.8 at scale 2 and 1 kHz),
+    // which the controller's re-placement near the sampling (RollerGains::pole) would undo.
+    out.pole = 0.0;
     return out;
 }
 

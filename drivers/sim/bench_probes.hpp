@@ -152,7 +152,10 @@ struct BlockTracking {
 
 // Seed 000's block task (drivers/tasks.hpp, on block_scene()) at hand speed `speed` (m/s) and
 // servo rate `rate` (Hz) with roller gains `gains`, sampled while engaged and in contact.
-BlockTracking block_task_tracking(double speed, double rate = 1000.0, const RollerGains& gains = RollerGains{});
+// `stiffness` (N/m) replaces the scene's 1000 N/m when > 0: below ~1.5 kHz 1000 N/m is past the
+// arm's 2 b / T and the loop (rightly) faults, so the low rates run a softer block.
+BlockTracking block_task_tracking(double speed, double rate = 1000.0, const RollerGains& gains = RollerGains{},
+                                  double stiffness = 0.0);
 
 // The least error (m) any controller can have on a target that starts moving at v (m/s) from
 // rest, with the roller at rest: it learns of the motion up to one period T (s) late, and then
@@ -164,7 +167,8 @@ double onset_floor(double v, double T, const RollerParams& p = RollerParams{});
 // haptics/roller_controller.hpp) to scale x p0: the pole-placement formulas Kp = 3 tau p^2 / g,
 // Ki = tau p^3 / g, Kd = (3 tau p - 1) / g scale as Kp s^2, Ki s^3, Kd s + (s - 1) / g, applied
 // to the defaults so that scale 1 gives RollerGains{} exactly (their rounding kept). g (m/(V s))
-// comes from `plant`. The derivative filter and the drive limit stay as they are.
+// comes from `plant`. The derivative filter and the drive limit stay as they are; the re-placement
+// of poles near the sampling is off (pole = 0): the gains are used as placed.
 RollerGains roller_gains_scaled(double scale, const RollerParams& plant = RollerParams{});
 
 }  // namespace contactlab::drivers::sim
