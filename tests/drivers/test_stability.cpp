@@ -102,7 +102,7 @@ TEST_CASE("above the passivity bound the loop reports instability at every rate,
     // Time to report, from first contact: past 4 x the bound the oscillation reaches the clamp in a
     // few of its cycles and the report follows within 8 cycles (limit-cycle detector, >= 20 Hz)
     // or the energy sum's threshold (2 x the spring's linear-range energy): 0.5 s covers both
-    // with room (measured at most 0.23 s). At 1.5 x the net negative damping is only
+    // with room (measured at most 0.18 s). At 1.5 x the net negative damping is only
     // (K T / 2 - b) = 0.5 b: the amplitude e-folds every 4 m / b ~ 0.35 s (m ~ 0.15 kg), and from
     // a press's settling the growth to the clamp takes a few e-folds: 2 s (measured at most 1.3 s,
     // at 100 Hz).
