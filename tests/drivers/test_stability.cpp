@@ -98,7 +98,8 @@ TEST_CASE("below the declared passivity bound no contact faults at any rate, han
 }
 
 TEST_CASE("above the passivity bound the loop reports instability at every rate, and the force goes to zero") {
-    // 1.5, 4, 20 and 1000 x 2 b_normal / T; the hand still (press), sliding, or over the corner.
+    // 1.5, 4, 20 and 1000 x 2 b_normal / T; the hand still (press, also with periods jittered by
+    // +-20 %), sliding, or over the corner.
     // Time to report, from first contact: past 4 x the bound the oscillation reaches the clamp in a
     // few of its cycles and the report follows within 8 cycles (limit-cycle detector, >= 20 Hz)
     // or the energy sum's threshold (2 x the spring's linear-range energy): 0.5 s covers both
@@ -110,13 +111,17 @@ TEST_CASE("above the passivity bound the loop reports instability at every rate,
         for (ContactScenario sc : {ContactScenario::press, ContactScenario::slide, ContactScenario::corner}) {
             const PassivityBounds bounds = drivers::sim::passivity_bounds(rate, sc);
             for (double ratio : kAboveBoundRatios) {
+              for (double jitter : {0.0, 0.2}) {
+                if (jitter > 0.0 && sc != ContactScenario::press) continue;  // the press with +-20 % periods too
                 const double k = ratio * bounds.normal;  // N/m
                 ScenarioOptions opt;
                 opt.seconds = 3.0;
+                opt.jitter = jitter;
                 const ScenarioRun r = run_contact_scenario(sc, rate, k, opt);
                 CAPTURE(rate);
                 CAPTURE(std::string(drivers::sim::to_string(sc)));
                 CAPTURE(ratio);
+                CAPTURE(jitter);
                 REQUIRE(r.opened);
                 REQUIRE(r.faulted);
                 CHECK(r.fault == ServoFault::instability);
@@ -124,6 +129,7 @@ TEST_CASE("above the passivity bound the loop reports instability at every rate,
                 CHECK(r.fault_time <= (ratio < 2.0 ? 2.0 : 0.5));
                 CHECK(r.max_force_after_fault == 0.0);  // latched: zero until cleared
                 check_bounded(r);
+              }
             }
         }
     }
