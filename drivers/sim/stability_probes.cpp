@@ -29,11 +29,13 @@ HandPath slide_path(double seconds) {
     return HandPath(std::move(s));
 }
 
-HandPath taps_path(double seconds) {
-    // 4 Hz between 6 mm above and 3 mm in: 9 mm each way in 0.125 s, a cosine at peak 0.11 m/s.
+// Taps at f (Hz) between 6 mm above the floor and `depth` (m) into it, a cosine: peak hand speed
+// pi f (0.006 + depth) m/s.
+HandPath taps_path(double seconds, double f, double depth) {
+    const double mid = 0.5 * (0.006 - depth), half = 0.5 * (0.006 + depth);  // m
     std::vector<PathSample> s;
     for (double t = 0.0; t < seconds; t += 1e-3) {
-        const double y = kR + 0.0015 + 0.0045 * std::cos(2.0 * 3.141592653589793 * 4.0 * t);
+        const double y = kR + mid + half * std::cos(2.0 * 3.141592653589793 * f * t);
         s.push_back({t, {0.0, y}, 0.0});
     }
     return HandPath(std::move(s));
@@ -57,6 +59,7 @@ const char* to_string(ContactScenario s) noexcept {
         case ContactScenario::slide: return "slide";
         case ContactScenario::corner: return "corner (block task)";
         case ContactScenario::taps: return "taps";
+        case ContactScenario::hard_taps: return "hard taps";
     }
     return "?";
 }
@@ -75,7 +78,8 @@ Setup setup_for(ContactScenario scenario, double stiffness, double seconds) {
         case ContactScenario::press: u.path = press_path(0.002, seconds); break;
         case ContactScenario::press_hard: u.path = press_path(0.006, seconds); break;
         case ContactScenario::slide: u.path = slide_path(seconds); break;
-        case ContactScenario::taps: u.path = taps_path(seconds); break;
+        case ContactScenario::taps: u.path = taps_path(seconds, 4.0, 0.003); break;
+        case ContactScenario::hard_taps: u.path = taps_path(seconds, 5.0, 0.014); break;
         case ContactScenario::corner: {
             u.scene = block_scene();
             u.scene.force.stiffness = stiffness;

@@ -17,6 +17,7 @@ enum class ContactScenario : std::uint8_t {
     slide,       // pressed 2 mm in, then a 6 cm stroke out and back each second (up to 0.19 m/s)
     corner,      // seed 000's block task at 5 cm/s: along the top, over the edge, down the face
     taps,        // 4 taps a second from 6 mm above to 3 mm in (hand speed up to 0.11 m/s)
+    hard_taps,   // 5 taps a second from 6 mm above to 14 mm in (up to 0.31 m/s, 4 N of push)
 };
 const char* to_string(ContactScenario s) noexcept;
 
