@@ -6,6 +6,17 @@
 
 namespace contactlab {
 
+RollerGains sampled_roller_gains(const RollerGains& g, double dt) noexcept {
+    if (!(g.pole > 0.0) || !(g.max_pole_period > 0.0) || !(dt > 0.0) || g.pole * dt <= g.max_pole_period) return g;
+    const double s = g.max_pole_period / (g.pole * dt);  // < 1: the pole moved toward the origin
+    RollerGains out = g;
+    out.kp = g.kp * s * s;
+    out.ki = g.ki * s * s * s;
+    // Never negative: below p = 1 / (3 tau) the motor's back-EMF alone damps more than needed.
+    out.kd = std::max(0.0, g.kd * s - (1.0 - s) * g.back_emf);
+    return out;
+}
+
 void RollerController::reset(double l) noexcept {
     integral_ = 0.0;
     rate_f_ = 0.0;
@@ -41,12 +52,13 @@ double RollerController::step(double l_d, double l, double dt) noexcept {
     rate_f_ += alpha * (raw_rate - rate_f_);
     target_rate_f_ += alpha * (target_rate - target_rate_f_);
 
-    const double umax = std::max(0.0, gains_.max_drive);
-    const double p = gains_.kp * e;
-    const double d = -gains_.kd * rate_f_ + gains_.kff * target_rate_f_;
+    const RollerGains g = sampled_roller_gains(gains_, dt);
+    const double umax = std::max(0.0, g.max_drive);
+    const double p = g.kp * e;
+    const double d = -g.kd * rate_f_ + g.kff * target_rate_f_;
     // Conditional integration: integrate unless the output is saturated and the error would push
     // it further into saturation (the integral cannot wind up while the motor is at its limit).
-    const double i_next = integral_ + gains_.ki * e * dt;
+    const double i_next = integral_ + g.ki * e * dt;
     const double u_try = p + i_next + d;
     const bool winding = (u_try > umax && e > 0.0) || (u_try < -umax && e < 0.0);
     if (!winding) integral_ = std::clamp(i_next, -umax, umax);

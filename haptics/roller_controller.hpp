@@ -4,7 +4,8 @@
 //
 // Gains are continuous-time, in physical units (drive per m, per m s, per m/s), and are discretised
 // with the period of each tick, so the same gains give the same closed loop at 1 kHz and 10 kHz
-// (tests/drivers/test_roller_tracking.cpp compares 1 and 4 kHz):
+// (tests/drivers/test_roller_tracking.cpp compares 1 and 4 kHz); below ~1 kHz, where the design's
+// poles would sit near the sampling, they are re-placed at a fraction of it (RollerGains::pole):
 //   P: Kp e[k]
 //   I: I[k] = I[k-1] + Ki e[k] T             (rectangular rule; the integral is kept in drive units)
 //   D: -Kd v_f[k], v_f the measured rate (l[k] - l[k-1]) / T through the first-order low-pass
@@ -32,7 +33,24 @@ struct RollerGains {
     // derivative. Set to the motor's back-EMF per nut speed it cancels the lag on a moving
     // target; 0 (the default) is seed 000's pure PID.
     double kff = 0.0;
+    // Sampling limit of the design (below 1 kHz). The gains above place the three closed-loop
+    // poles at s = -pole (rad/s); a discrete PID holds that design only while pole T is well
+    // inside the sampling (at p T = 0.8-4, i.e. 500-100 Hz, the same gains limit-cycle by up to
+    // 2 mm and track the block task 1.3-2.4x worse). When pole T exceeds max_pole_period the
+    // controller re-places the poles at p = max_pole_period / T with the pole-placement scaling
+    // (s = p / pole). 0.4 is the defaults' own p T at 1 kHz, so below 1 kHz the loop is the 1 kHz
+    // loop slowed by T / 1 ms (at 0.5, 500-800 Hz kept a 17-34 um limit cycle):
+    //   Kp s^2, Ki s^3, Kd s - (1 - s) back_emf
+    // (Kd + back_emf = 3 tau p / g grows with p; back_emf = 1 / g is the damping the motor's own
+    // back-EMF gives, V s/m). pole = 0 turns this off (gains used as given at every rate).
+    double pole = 400.0;            // rad/s, where kp, ki, kd were placed
+    double max_pole_period = 0.4;   // largest p T kept (dimensionless)
+    double back_emf = 44.88;        // V s/m, 1 / g of the simulated CLD roller (k_e 2 pi / lead)
 };
+
+// The gains the controller uses at period dt (s): `g` itself while g.pole dt <= g.max_pole_period,
+// otherwise re-placed at p = max_pole_period / dt (see RollerGains::pole).
+RollerGains sampled_roller_gains(const RollerGains& g, double dt) noexcept;
 
 struct RollerTravel {
     double min = -0.010;  // m: travel limits along the pad (seed 000: about 2.0 cm of travel)

@@ -74,7 +74,8 @@ private:
 // Passivity observer (after Hannaford & Ryu) for a sampled virtual environment rendered through a
 // device with physical damping b (N s/m). Per tick it adds the energy the zero-order-held force
 // delivered to the finger, F_{k-1} . (x_k - x_{k-1}), plus the drop in the spring's stored energy,
-// and subtracts what the device's damping dissipated over the interval, b |dx|^2 / T. A passive
+// and subtracts what the device's damping dissipated over the interval along the spring's line of
+// action n, b (n . dx)^2 / T (motion across it is the hand's, see safety.cpp). A passive
 // loop keeps the sum at or below zero; a loop above the discrete bound K < 2b/T makes it grow
 // every oscillation. The sum leaks with time constant `leak` so slow numerical drift is forgotten.
 //
@@ -92,7 +93,11 @@ struct PassivityParams {
 class PassivityObserver {
 public:
     void set_params(const PassivityParams& p) noexcept { p_ = p; }
-    void reset() noexcept { energy_ = linear_energy_ = 0.0; primed_ = prev_linear_ = false; }
+    void reset() noexcept {
+        energy_ = linear_energy_ = 0.0;
+        primed_ = prev_linear_ = false;
+        normal_ = Vec2{0.0};
+    }
     // x: finger position (m) now; f_prev: force (N) applied since the last tick; stored: the
     // spring's stored energy (J) now; dt: period (s); linear: in contact with the force below the
     // clamp now. Returns true once either sum passes the threshold.
@@ -106,6 +111,7 @@ private:
     double linear_energy_ = 0.0;  // J
     bool prev_linear_ = false;
     Vec2 prev_x_{0.0};
+    Vec2 normal_{0.0};         // unit: the spring's line of action (last non-zero force's direction)
     double prev_stored_ = 0.0;
     bool primed_ = false;
 };

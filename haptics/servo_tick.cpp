@@ -35,6 +35,7 @@ ServoTick::ServoTick(const ServoConfig& config, const ServoParams& params)
     current_.max_force = std::min(current_.max_force, config_.device_max_force);
     roller_ = RollerController(params.roller, config.roller_travel);
     safety_.set_params(params.safety);
+    limit_cycle_.set_params(params.limit_cycle);
 }
 
 ServoTick::~ServoTick() { delete scene_; }
@@ -42,12 +43,14 @@ ServoTick::~ServoTick() { delete scene_; }
 void ServoTick::connect(double t) noexcept {
     safety_.connect(t);
     observer_.reset();
+    limit_cycle_.reset();
     applied_ = Vec2{0.0};
 }
 
 void ServoTick::disconnect() noexcept {
     safety_.disconnect();
     observer_.reset();
+    limit_cycle_.reset();
     applied_ = Vec2{0.0};
     cmd_ = ServoCommand{};
 }
@@ -64,6 +67,8 @@ void ServoTick::apply_params(double dt) noexcept {
         current_.roller = target_.roller;
         current_.safety = target_.safety;
         current_.passivity_threshold = target_.passivity_threshold;
+        current_.limit_cycle = target_.limit_cycle;
+        limit_cycle_.set_params(target_.limit_cycle);
         current_.stiffness_slew = target_.stiffness_slew;
         current_.max_force_slew = target_.max_force_slew;
     }
@@ -101,6 +106,7 @@ void ServoTick::swap_scene(const ServoInput& in) noexcept {
 void ServoTick::fault_tick(const ServoInput& in, double dt, ServoFault f) noexcept {
     safety_.raise(f, std::isfinite(in.t) ? in.t : (std::isfinite(last_t_) ? last_t_ + dt : 0.0));
     observer_.reset();
+    limit_cycle_.reset();
     roller_.reset(std::numeric_limits<double>::quiet_NaN());
     applied_ = Vec2{0.0};
     cmd_ = ServoCommand{};
@@ -163,12 +169,19 @@ const ServoCommand& ServoTick::tick(const ServoInput& in) noexcept {
             const double stored = scale * kept * spring_energy(proxy_out_.depth, current_.stiffness, current_.max_force);
             const bool linear = proxy_out_.contact && proxy_out_.depth > 0.0 && kept > 1.0 - 1e-9 &&
                                 current_.stiffness * proxy_out_.depth < current_.max_force;
-            if (observer_.step(in.finger, applied_, stored, dt, linear)) {
+            const bool energy_grew = observer_.step(in.finger, applied_, stored, dt, linear);
+            // Armed where the sampled spring's hold outdoes the device's damping along its
+            // weakest direction: K T / 2 > b (N s/m both), T the nominal period (s).
+            const bool past_bound = 0.5 * current_.stiffness * config_.period > config_.device_damping;
+            const bool cycling = limit_cycle_.step(in.t, glm::length(f), current_.max_force, past_bound);
+            if (energy_grew || cycling) {
+                instability_cause_ = energy_grew ? InstabilityCause::energy : InstabilityCause::limit_cycle;
                 fault_tick(in, dt, ServoFault::instability);
                 f = Vec2{0.0};
             }
         } else {
             observer_.reset();
+            limit_cycle_.reset();
         }
 
         cmd_.force = f;
@@ -207,6 +220,8 @@ const ServoCommand& ServoTick::tick(const ServoInput& in) noexcept {
     snap.stiffness = current_.stiffness;
     snap.max_force = current_.max_force;
     snap.observer_energy = observer_.energy();
+    snap.oscillation_half_cycles = limit_cycle_.half_cycles();
+    snap.instability_cause = instability_cause_;
     snap.state = safety_.state();
     snap.fault = safety_.fault();
     snap.fault_count = safety_.fault_count();

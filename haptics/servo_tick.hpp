@@ -11,6 +11,7 @@
 // or do I/O (tests/servo/test_no_alloc.cpp counts allocations over 100,000 ticks).
 #pragma once
 
+#include "haptics/limit_cycle_detector.hpp"
 #include "haptics/roller_controller.hpp"
 #include "haptics/safety.hpp"
 #include "haptics/servo_scene.hpp"
@@ -33,6 +34,16 @@ struct ServoParams {
     // Net energy the loop may generate before it is called unstable, as a multiple of the most
     // the spring holds in its linear range, max_force^2 / (2 Ke) (1.1 mJ at 1.5 N, 1000 N/m).
     double passivity_threshold = 2.0;
+    // Sustained force oscillation past the discrete bound (haptics/limit_cycle_detector.hpp): what
+    // the energy sums cannot resolve when the spring's linear range is about one encoder count.
+    LimitCycleParams limit_cycle;
+};
+
+// Which detector raised ServoFault::instability (for reports and tables; the fault is the same).
+enum class InstabilityCause : std::uint8_t {
+    none,
+    energy,       // the passivity observer's energy sum (whole loop or linear range)
+    limit_cycle,  // a sustained force oscillation with K T / 2 > b (haptics/limit_cycle_detector.hpp)
 };
 
 // What the device declares; fixed while a device is connected.
@@ -80,6 +91,8 @@ struct ServoSnapshot {
     double stiffness = 0.0;         // N/m, Ke in effect (after slew)
     double max_force = 0.0;         // N in effect
     double observer_energy = 0.0;   // J
+    int oscillation_half_cycles = 0;  // consecutive fast force half-cycles (limit-cycle detector)
+    InstabilityCause instability_cause = InstabilityCause::none;  // of the last instability fault
     ServoState state = ServoState::idle;
     ServoFault fault = ServoFault::none;
     std::uint32_t fault_count = 0;
@@ -127,6 +140,8 @@ private:
     RollerController roller_;
     SafetySupervisor safety_;
     PassivityObserver observer_;
+    LimitCycleDetector limit_cycle_;
+    InstabilityCause instability_cause_ = InstabilityCause::none;
     Seqlock<ServoSnapshot> snapshot_;
     std::atomic<bool> clear_request_{false};
     ProxyOutput proxy_out_;

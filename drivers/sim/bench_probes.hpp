@@ -24,22 +24,46 @@ namespace contactlab {
 // The hand presses the finger 2 mm into a floor (no hand damping, so the arm's own damping b is
 // all the loop has) and the spring's K is bisected for the largest value that still holds. The
 // sampled spring on a damped mass is passive for K < 2 b / T (Colgate and Schenkel), b the arm's
-// damping along the contact normal and T the servo period: `passivity_bound`.
+// damping along the contact normal and T the servo period: `passivity_bound`. The servo itself
+// only knows the device's declared damping, the lowest over its workspace (`bound_declared`, about
+// 2/3 of the normal's here): its limit-cycle detector arms above that.
+//
+// What a loop past the bound does, at each of `kAboveBoundRatios` x passivity_bound, pressed and
+// held (drivers/sim/stability_probes.hpp, 3 s):
+enum class AboveBoundOutcome : std::uint8_t {
+    detected,        // ServoFault::instability reported, output zeroed
+    bounded_bounce,  // not reported; oscillating (force ripple >= 0.1 N) but bounded at the clamp
+    at_rest,         // not reported; no oscillation (ripple < 0.1 N)
+    runaway,         // not reported and not bounded (NaN, force over the clamp, or >= 1 m/s)
+};
+const char* to_string(AboveBoundOutcome o) noexcept;
+inline constexpr double kAboveBoundRatios[4] = {1.5, 4.0, 20.0, 1000.0};
+struct AboveBoundProbe {
+    double ratio = 0;            // K / passivity_bound
+    AboveBoundOutcome outcome = AboveBoundOutcome::runaway;
+    double detect_time = -1;     // s from first contact to the report (detected only)
+    InstabilityCause cause = InstabilityCause::none;  // which detector (detected only)
+    double max_force = 0;        // N, largest commanded
+};
+
 struct StabilityRow {
     double rate_hz = 0;          // servo rate
-    double passivity_bound = 0;  // 2 b / T, N/m
+    double passivity_bound = 0;  // 2 b / T, N/m, b along the press's normal
     double k_no_fault = 0;       // largest K (N/m) with no fault reported, real (simulated) arm
     double k_settles = 0;        // largest K (N/m) that settles, real arm
     double k_ideal_settles = 0;  // the same with ideal encoders and no joint friction
-    // Beyond the bench's interface:
+    // Beyond the bench's first interface:
     double k_ideal_no_fault = 0; // N/m, largest K with no fault reported, ideal arm
     double b_normal = 0;         // N s/m, the arm's damping along the floor normal at the press point
+    double b_declared = 0;       // N s/m, what the device declares (its lowest)
+    double bound_declared = 0;   // N/m, 2 b_declared / T: the bound the servo knows
     double search_lo = 0;        // N/m, bisection bracket: K values are clipped to [search_lo,
     double search_hi = 0;        //   search_hi]; a K equal to search_hi means "held even there"
     double resolution = 0;       // ratio the bisection stops at (hi / lo), e.g. 1.02: 2 %
+    AboveBoundProbe above[4];    // at kAboveBoundRatios x passivity_bound
 };
-// quick: 250 and 1000 Hz (the same rows as full's); full: 250, 1000, 4000, 10000 Hz. Bisection
-// on log K to 2 %, bracket [0.2, 4] x passivity_bound at every rate.
+// quick: 250 and 1000 Hz (the same rows as full's); full: 100, 250, 1000, 4000, 10000, 20000 Hz.
+// Bisection on log K to 2 %, bracket [0.05, 4] x passivity_bound at every rate.
 std::vector<StabilityRow> stability_table(bool quick);
 
 // ---- Roller tracking error vs PID gains and finger speed -------------------------------------
@@ -95,20 +119,26 @@ struct PressResult {
 // 2 mm into it (free space first: the engage gate), for `seconds` s at `rate` (Hz) with the hand's
 // damping `hand_damping` (N s/m). `arm_counts` (per joint revolution) and `joint_friction` (N m)
 // override the simulated arm's (ideal: 1 << 24 and 0).
+// `limit_cycle`: the servo's limit-cycle detector reports (false: the passivity observer alone).
 PressResult press_floor(double stiffness, double rate, double hand_damping, double seconds = 1.5,
                         int arm_counts = PlanarArmParams{}.encoder_counts,
-                        double joint_friction = PlanarArmParams{}.friction);
+                        double joint_friction = PlanarArmParams{}.friction, bool limit_cycle = true);
 
 // Largest stiffness (N/m) at `rate` (Hz) on the rig, or `ideal` (24-bit encoders, no joint
-// friction: the sampling alone), by bisection on log K between `lo` (must hold) and `hi`, to a
+// friction and the passivity observer without the limit-cycle detector: the sampling alone, so
+// its limit is the bound's, not the detector's arming at the declared damping), by bisection on log K between `lo` (must hold) and `hi`, to a
 // ratio of `resolution`. "Holds": no NaN, no runaway (finger under 1 m/s) and the passivity
 // observer quiet for a 1 s press; with `settled` also the force ripple in the last quarter second
 // below 0.1 N or below 0.9 x that of the quarter before (no limit cycle). Returns hi when even hi
 // holds, 0 when lo does not (the bracket was wrong: no answer rather than a wrong one).
 double largest_stable_k(double rate, double lo, double hi, bool settled, bool ideal, double resolution = 1.02);
 
-// One row of the stability table at `rate` (Hz), bracket [0.2, 4] x 2 b / T.
+// One row of the stability table at `rate` (Hz), bracket [0.05, 4] x 2 b / T.
 StabilityRow stability_row(double rate, double resolution = 1.02);
+
+// A press held for `seconds` (s) at `ratio` x the passivity bound (along the normal) at `rate`
+// (Hz), classified (see AboveBoundOutcome).
+AboveBoundProbe above_bound_probe(double rate, double ratio, double seconds = 3.0);
 
 struct BlockTracking {
     double max_measured = 0.0;  // m, |l_target - l_encoder|
@@ -122,7 +152,10 @@ struct BlockTracking {
 
 // Seed 000's block task (drivers/tasks.hpp, on block_scene()) at hand speed `speed` (m/s) and
 // servo rate `rate` (Hz) with roller gains `gains`, sampled while engaged and in contact.
-BlockTracking block_task_tracking(double speed, double rate = 1000.0, const RollerGains& gains = RollerGains{});
+// `stiffness` (N/m) replaces the scene's 1000 N/m when > 0: below ~1.5 kHz 1000 N/m is past the
+// arm's 2 b / T and the loop (rightly) faults, so the low rates run a softer block.
+BlockTracking block_task_tracking(double speed, double rate = 1000.0, const RollerGains& gains = RollerGains{},
+                                  double stiffness = 0.0);
 
 // The least error (m) any controller can have on a target that starts moving at v (m/s) from
 // rest, with the roller at rest: it learns of the motion up to one period T (s) late, and then
@@ -134,7 +167,8 @@ double onset_floor(double v, double T, const RollerParams& p = RollerParams{});
 // haptics/roller_controller.hpp) to scale x p0: the pole-placement formulas Kp = 3 tau p^2 / g,
 // Ki = tau p^3 / g, Kd = (3 tau p - 1) / g scale as Kp s^2, Ki s^3, Kd s + (s - 1) / g, applied
 // to the defaults so that scale 1 gives RollerGains{} exactly (their rounding kept). g (m/(V s))
-// comes from `plant`. The derivative filter and the drive limit stay as they are.
+// comes from `plant`. The derivative filter and the drive limit stay as they are; the re-placement
+// of poles near the sampling is off (pole = 0): the gains are used as placed.
 RollerGains roller_gains_scaled(double scale, const RollerParams& plant = RollerParams{});
 
 }  // namespace contactlab::drivers::sim

@@ -92,4 +92,49 @@ BandwidthResult roller_bandwidth(const RollerParams& plant, const RollerGains& g
     return out;
 }
 
+RollerStepRun roller_step_run(const RollerParams& plant, const RollerGains& gains, double rate, double hold,
+                              double substep, int min_substeps) {
+    CldRoller roller(plant);
+    roller.place_at(0.0);
+    RollerController ctl(gains, RollerTravel{-roller.half_travel(), roller.half_travel()});
+    ctl.reset(roller.measured());
+    const double T = 1.0 / rate;  // s
+    const int n_sub = std::max(std::max(1, min_substeps), static_cast<int>(std::ceil(T / substep - 1e-9)));
+    const double h = T / n_sub;   // s
+    const double steps[] = {0.008, -0.008, 0.002, 0.0};  // m
+    const double t_steps = 4 * hold;                      // s
+    const double t_end = t_steps + 1.0;                   // s
+    RollerStepRun r;
+    double prev_target = 0.0;  // m
+    double step_dir = 0.0;     // sign of the current step
+    for (long k = 0; k * T < t_end; ++k) {
+        const double t = k * T;  // s
+        double target = 0.0;     // m
+        if (t < t_steps) {
+            const int i = std::min(3, static_cast<int>(t / hold));
+            target = steps[i];
+            if (target != prev_target) step_dir = target > prev_target ? 1.0 : -1.0;
+        } else {
+            target = 0.005 * std::sin(kTwoPi * 5.0 * (t - t_steps));
+            step_dir = 0.0;
+        }
+        prev_target = target;
+        const double l = roller.measured();  // m
+        const double u = ctl.step(target, l, T);
+        roller.set_voltage(u);
+        r.finite = r.finite && std::isfinite(u) && std::isfinite(l) && std::isfinite(roller.element());
+        r.max_drive = std::max(r.max_drive, std::abs(u));
+        const double e = target - l;  // m
+        if (t < t_steps) {
+            if (std::fmod(t, hold) > 0.8 * hold) r.max_settle_error = std::max(r.max_settle_error, std::abs(e));
+            r.max_overshoot = std::max(r.max_overshoot, -step_dir * e);
+        } else if (t > t_end - 0.5) {
+            r.max_sine_error = std::max(r.max_sine_error, std::abs(e));
+        }
+        for (int i = 0; i < n_sub; ++i) roller.step(h);
+        r.max_nut = std::max(r.max_nut, std::abs(roller.nut()));
+    }
+    return r;
+}
+
 }  // namespace contactlab::drivers::sim

@@ -49,4 +49,19 @@ BandwidthResult roller_bandwidth(const RollerParams& plant, const RollerGains& g
                                  double min_freq = 0.5, double max_freq = 100.0, int per_decade = 12,
                                  double tolerance = 0.01);
 
+// Steps and a sine for the roller alone at `rate` (Hz): holds of `hold` s at +8, -8, +2, 0 mm
+// (steps of up to 16 mm saturate the 12 V drive for tens of ms: the anti-windup's test), then
+// 1 s of a 5 Hz, 5 mm sine. What a loop must keep at any rate and gains: finite, drive on the
+// rail, nut inside the travel; and, stable, settled at the end of each hold.
+struct RollerStepRun {
+    bool finite = true;
+    double max_drive = 0.0;        // V, largest |drive| commanded
+    double max_nut = 0.0;          // m, largest |nut position|
+    double max_settle_error = 0.0; // m, largest |target - encoder| over the last 20 % of the holds
+    double max_sine_error = 0.0;   // m, largest |target - encoder| over the sine's last 0.5 s
+    double max_overshoot = 0.0;    // m, furthest past a step's target, in the step's direction
+};
+RollerStepRun roller_step_run(const RollerParams& plant, const RollerGains& gains, double rate, double hold = 0.4,
+                              double substep = 1e-4, int min_substeps = 10);
+
 }  // namespace contactlab::drivers::sim

@@ -9,6 +9,7 @@
 #include "haptics/scene.hpp"
 #include "haptics/servo_tick.hpp"
 
+#include <algorithm>
 #include <memory>
 #include <utility>
 
@@ -29,8 +30,8 @@ inline Scene floor_scene(double stiffness = 1000.0) {
 struct SimRig {
     SimRig(const Scene& scene, HandPath path, double rate = 1000.0, const SimCldParams& sp = {},
            ServoParams params = default_params())
-        : device(sp, std::move(path)),
-          servo(servo_config_for(device, rate), with_scene(params, scene)),
+        : device(with_watchdog(sp, rate), std::move(path)),
+          servo(servo_config_for(device, rate), with_watchdog(with_scene(params, scene), rate)),
           loop(device, servo, 1.0 / rate) {
         servo.scenes().publish(std::make_unique<ServoScene>(scene));
         opened = loop.start();
@@ -38,6 +39,17 @@ struct SimRig {
     SimRig(const SimRig&) = delete;  // the loop holds references to device and servo
     SimRig& operator=(const SimRig&) = delete;
     static ServoParams default_params() { return ServoParams{}; }
+    // A stall watchdog (servo's and the simulated amplifiers') shorter than a few periods trips on
+    // every tick at low rates: at least 3 periods (s), as `contactlab simulate` sets it.
+    static double watchdog_for(double rate) { return 3.0 / rate; }
+    static SimCldParams with_watchdog(SimCldParams sp, double rate) {
+        sp.watchdog_timeout = std::max(sp.watchdog_timeout, watchdog_for(rate));
+        return sp;
+    }
+    static ServoParams with_watchdog(ServoParams p, double rate) {
+        p.safety.watchdog_timeout = std::max(p.safety.watchdog_timeout, watchdog_for(rate));
+        return p;
+    }
     // The scene's own stiffness (N/m) and force limit (N) win over `p`'s.
     static ServoParams with_scene(ServoParams p, const Scene& s) {
         p.stiffness = s.force.stiffness;
