@@ -31,7 +31,8 @@ void RollerController::reset(double l) noexcept {
 bool roller_gains_usable(const RollerGains& g) noexcept {
     auto gain = [](double v) { return std::isfinite(v) && v >= 0.0; };
     auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
-    return gain(g.kp) && gain(g.ki) && gain(g.kd) && gain(g.kff) && positive(g.d_cutoff_hz) && positive(g.max_drive);
+    return gain(g.kp) && gain(g.ki) && gain(g.kd) && gain(g.kff) && positive(g.d_cutoff_hz) && positive(g.max_drive) &&
+           gain(g.pole) && positive(g.max_pole_period) && gain(g.back_emf);
 }
 
 double RollerController::step(double l_d, double l, double dt) noexcept {
