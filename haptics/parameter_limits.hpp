@@ -12,6 +12,10 @@ inline constexpr double kMaxFingerRadius = 1.0;
 inline constexpr double kMinSegmentLength = 1e-9;   // m: shorter lines/arcs are "zero-length"
 inline constexpr double kMaxCoordinate = 1e6;       // m: beyond this, double spacing > 1e-10 m
 inline constexpr double kMaxStiffness = 1e7;        // N/m: far above any device's stable stiffness
+// The live servo takes up to 1e6 x the nominal 1000 N/m: stability probes deliberately go 1000x
+// past the passivity bound (7e4 N/m at 20 kHz) to prove the instability is reported; a scene file
+// asking for more than kMaxStiffness is a typo.
+inline constexpr double kMaxServoStiffness = 1e9;   // N/m
 inline constexpr double kMaxForceLimit = 1e4;       // N
 inline constexpr double kMinCurveTolerance = 1e-9;  // m, flatten mode's chord tolerance
 inline constexpr double kMaxCurveTolerance = 1e-2;  // m

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 namespace contactlab {
 namespace {
@@ -61,11 +62,13 @@ std::string servo_config_problem(const ServoConfig& c) {
 std::string servo_params_problem(const ServoParams& p, const ServoConfig& c) {
     using namespace limits;
     for (const std::string& s :
-         {range("stiffness", p.stiffness, 0.0, kMaxStiffness, "N/m", true),
+         {range("stiffness", p.stiffness, 0.0, kMaxServoStiffness, "N/m", true),
           range("max_force", p.max_force, 0.0, kMaxForceLimit, "N", true),
           range("stiffness_slew", p.stiffness_slew, 0.0, 1e12, "N/m per s", true),
           range("max_force_slew", p.max_force_slew, 0.0, 1e9, "N per s", true),
-          range("passivity_threshold", p.passivity_threshold, 0.0, 1e6, "x the spring's linear energy", true),
+          // Up to DBL_MAX: a huge threshold is how a probe turns the energy observer off.
+          range("passivity_threshold", p.passivity_threshold, 0.0, std::numeric_limits<double>::max(),
+                "x the spring's linear energy", true),
           range("safety.engage_force", p.safety.engage_force, 0.0, kMaxForceLimit, "N"),
           range("safety.ramp_time", p.safety.ramp_time, 0.0, 60.0, "s"),
           range("safety.fault_hold", p.safety.fault_hold, 0.0, 60.0, "s"),

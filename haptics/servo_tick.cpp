@@ -1,8 +1,11 @@
 // servo_tick.cpp — the servo tick (see servo_tick.hpp for the contract).
 #include "haptics/servo_tick.hpp"
 
+#include "haptics/servo_params_check.hpp"
+
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace contactlab {
 namespace {
@@ -29,8 +32,17 @@ double spring_energy(double depth, double k, double max_force) noexcept {
     return 0.5 * k * d_clamp * d_clamp + max_force * (depth - d_clamp);
 }
 
+namespace {
+const ServoConfig& checked(const ServoConfig& c, const ServoParams& p) {
+    std::string problem = servo_config_problem(c);
+    if (problem.empty()) problem = servo_params_problem(p, c);
+    if (!problem.empty()) throw std::invalid_argument("servo: " + problem);
+    return c;
+}
+}  // namespace
+
 ServoTick::ServoTick(const ServoConfig& config, const ServoParams& params)
-    : config_(config), target_(params), current_(params), params_in_(params) {
+    : config_(checked(config, params)), target_(params), current_(params), params_in_(params) {
     params_seen_ = params_in_.version();
     current_.max_force = std::min(current_.max_force, config_.device_max_force);
     roller_ = RollerController(params.roller, config.roller_travel);
@@ -39,6 +51,12 @@ ServoTick::ServoTick(const ServoConfig& config, const ServoParams& params)
 }
 
 ServoTick::~ServoTick() { delete scene_; }
+
+std::string ServoTick::publish_params(const ServoParams& p) {
+    std::string problem = servo_params_problem(p, config_);
+    if (problem.empty()) params_in_.store(p);
+    return problem;
+}
 
 void ServoTick::connect(double t) noexcept {
     safety_.connect(t);

@@ -19,6 +19,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <string>
 
 namespace contactlab {
 
@@ -101,6 +102,7 @@ struct ServoSnapshot {
 
 class ServoTick {
 public:
+    // Throws std::invalid_argument naming the field when config or params cannot be honoured.
     ServoTick(const ServoConfig& config, const ServoParams& params);
     ~ServoTick();
     ServoTick(const ServoTick&) = delete;
@@ -116,7 +118,10 @@ public:
     ServoFault fault() const noexcept { return safety_.fault(); }
 
     // --- other threads ----------------------------------------------------------------------
-    void publish_params(const ServoParams& p) noexcept { params_in_.store(p); }
+    // Publishes p for the next tick boundary. Parameters the tick cannot honour with this device
+    // (servo_params_check.hpp) are not published: the message says which and why, and the servo
+    // carries on with what it had. Returns "" when published. Allocation-free when p is valid.
+    std::string publish_params(const ServoParams& p);
     SceneExchange& scenes() noexcept { return scenes_; }
     ServoSnapshot snapshot() const noexcept { return snapshot_.load(); }
     // Asks the servo to leave a latched fault (applied at the next tick boundary).

@@ -285,7 +285,9 @@ int run_editor(const EditorOptions& o) {
             }
             const ServoParams params = servo_params_for(s.doc.last_valid(), s.roller, host.watchdog_timeout());
             if (!same_params(params, published)) {
-                servo.publish_params(params);
+                // Refused parameters are said once; the servo keeps the last ones it accepted.
+                if (const std::string problem = servo.publish_params(params); !problem.empty())
+                    s.say("servo kept its parameters: " + problem, true);
                 published = params;
             }
             servo.reclaim();

@@ -43,7 +43,8 @@ public:
     void stop();
     bool running() const { return runner_ && runner_->running(); }
 
-    void publish_params(const ServoParams& p) { tick_.publish_params(p); }
+    // "" when published; otherwise why the servo refused them (servo_params_check.hpp).
+    std::string publish_params(const ServoParams& p) { return tick_.publish_params(p); }
     // Builds the servo's scene (environment, proxy) here, off the servo thread, and hands it over.
     void publish_scene(const Scene& scene);
     void reclaim() { tick_.scenes().reclaim(); }

@@ -107,7 +107,7 @@ TEST_CASE("servo parameters the tick cannot honour name the field and the value"
     };
     const Case cases[] = {
         {"stiffness", [](ServoParams& p) { p.stiffness = kNaN; }},
-        {"stiffness", [](ServoParams& p) { p.stiffness = 1e6 * kNominalStiffness; }},
+        {"stiffness", [](ServoParams& p) { p.stiffness = 1e7 * kNominalStiffness; }},
         {"stiffness", [](ServoParams& p) { p.stiffness = -1.0; }},
         {"max_force", [](ServoParams& p) { p.max_force = kInf; }},
         {"stiffness_slew", [](ServoParams& p) { p.stiffness_slew = 0.0; }},
