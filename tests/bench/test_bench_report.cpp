@@ -125,8 +125,9 @@ TEST_CASE("bench report: one chart per figure, cost charts with ContactLab and b
     CHECK(pareto.references[0].value == doctest::Approx(9500.0));
     CHECK(pareto.series[0].x.size() == 2);
     // Stability: the 2b/T bound beside the measured stiffnesses.
-    CHECK(charts[3].chart.series[0].name == "2b/T passivity bound");
+    CHECK(charts[3].chart.series[0].name == "2b/T, b along the normal");
     CHECK(charts[3].chart.series[0].y[1] == doctest::Approx(10000.0));
+    CHECK(charts[3].chart.series[1].name == "2b/T, b declared (servo's)");
 }
 
 TEST_CASE("bench report: PNGs written at the plot size and linked from the Markdown") {
