@@ -33,6 +33,14 @@ double spring_energy(double depth, double k, double max_force) noexcept {
 }
 
 namespace {
+// The part of the device's roller travel (m) the servo may use: `length` (m) centred in it, or
+// all of it when length is 0 or longer than the device's.
+RollerTravel usable_travel(const RollerTravel& device, double length) {
+    if (!(length > 0.0) || length >= device.max - device.min) return device;
+    const double centre = 0.5 * (device.min + device.max);  // m
+    return {centre - 0.5 * length, centre + 0.5 * length};
+}
+
 const ServoConfig& checked(const ServoConfig& c, const ServoParams& p) {
     std::string problem = servo_config_problem(c);
     if (problem.empty()) problem = servo_params_problem(p, c);
@@ -45,7 +53,7 @@ ServoTick::ServoTick(const ServoConfig& config, const ServoParams& params)
     : config_(checked(config, params)), target_(params), current_(params), params_in_(params) {
     params_seen_ = params_in_.version();
     current_.max_force = std::min(current_.max_force, config_.device_max_force);
-    roller_ = RollerController(params.roller, config.roller_travel);
+    roller_ = RollerController(params.roller, usable_travel(config.roller_travel, params.roller_travel));
     safety_.set_params(params.safety);
     limit_cycle_.set_params(params.limit_cycle);
 }
@@ -81,6 +89,8 @@ void ServoTick::apply_params(double dt) noexcept {
         // Gains and safety settings take effect at this boundary; the controller keeps its
         // integral in output units, so a gain change does not step the drive.
         roller_.set_gains(target_.roller);
+        roller_.set_travel(usable_travel(config_.roller_travel, target_.roller_travel));
+        current_.roller_travel = target_.roller_travel;
         safety_.set_params(target_.safety);
         current_.roller = target_.roller;
         current_.safety = target_.safety;
@@ -209,7 +219,7 @@ const ServoCommand& ServoTick::tick(const ServoInput& in) noexcept {
             cmd_.roller_target = roller_.target();
         } else {
             cmd_.roller_drive = 0.0;
-            cmd_.roller_target = std::clamp(proxy_out_.l_d, config_.roller_travel.min, config_.roller_travel.max);
+            cmd_.roller_target = std::clamp(proxy_out_.l_d, roller_.travel().min, roller_.travel().max);
             roller_.reset(in.roller_l);
         }
 

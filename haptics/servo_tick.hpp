@@ -31,6 +31,10 @@ struct ServoParams {
     double stiffness_slew = 20000.0;   // N/m per s: how fast Ke follows an edit
     double max_force_slew = 10.0;      // N per s
     RollerGains roller;                // live gains (bumpless: integral kept in output units)
+    // Roller travel the contact location may use (m), centred in the device's own travel
+    // (ServoConfig::roller_travel) and never beyond it; 0 uses all of the device's. Seed 002's
+    // CLD uses 18 mm of a 20 mm screw; a smaller value keeps l_d off worn or padded ends.
+    double roller_travel = 0.0;
     SafetyParams safety;
     // Net energy the loop may generate before it is called unstable, as a multiple of the most
     // the spring holds in its linear range, max_force^2 / (2 Ke) (1.1 mJ at 1.5 N, 1000 N/m).

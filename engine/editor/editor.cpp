@@ -203,11 +203,11 @@ int run_editor(const EditorOptions& o) {
     s.history = PlotHistory(plot_capacity(o.rate));
     {
         const std::string err = host.start("mouse", o.rate, s.doc.last_valid(),
-                                           servo_params_for(s.doc.last_valid(), s.roller, host.watchdog_timeout()), s.pose);
+                                           servo_params_for(s.doc.last_valid(), s.roller, host.watchdog_timeout(), s.roller_travel), s.pose);
         if (!err.empty()) std::fprintf(stderr, "contactlab edit: %s\n", err.c_str());
     }
     sync_haptics(s);
-    ServoParams published = servo_params_for(s.doc.last_valid(), s.roller, host.watchdog_timeout());
+    ServoParams published = servo_params_for(s.doc.last_valid(), s.roller, host.watchdog_timeout(), s.roller_travel);
     std::uint64_t published_revision = s.doc.revision();
     std::uint64_t published_to = host.generation();  // a new servo (device or rate switch) got both at start
     s.camera.resize(target.extent().width, target.extent().height);
@@ -277,13 +277,13 @@ int run_editor(const EditorOptions& o) {
             if (published_to != host.generation()) {
                 published_to = host.generation();
                 published_revision = s.doc.revision();
-                published = servo_params_for(s.doc.last_valid(), s.roller, host.watchdog_timeout());
+                published = servo_params_for(s.doc.last_valid(), s.roller, host.watchdog_timeout(), s.roller_travel);
             }
             if (s.doc.valid() && s.doc.revision() != published_revision) {
                 servo.publish_scene(s.doc.scene());
                 published_revision = s.doc.revision();
             }
-            const ServoParams params = servo_params_for(s.doc.last_valid(), s.roller, host.watchdog_timeout());
+            const ServoParams params = servo_params_for(s.doc.last_valid(), s.roller, host.watchdog_timeout(), s.roller_travel);
             if (!same_params(params, published)) {
                 // Refused parameters are said once; the servo keeps the last ones it accepted.
                 if (const std::string problem = servo.publish_params(params); !problem.empty())

@@ -59,6 +59,7 @@ struct EditorState {
     char record_path[512] = "recording.csv";  // the panel's recording file
     char replay_path[512] = "recording.csv";  // the panel's replay file
     RollerGains roller;                // published with the scene's Ke and max force
+    double roller_travel = 0.0;        // m of roller travel l_d may use (0: the device's whole)
     PlotHistory history;
     // The most recent fault the servo reported (kept after it recovers), from the tick records.
     ServoFault last_fault = ServoFault::none;

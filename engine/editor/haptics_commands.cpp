@@ -16,7 +16,7 @@ bool restart(EditorState& s, const std::string& spec, double rate, const char* w
     const bool stopped = s.servo && s.servo->stopped();
     const bool was_recording = s.haptics->recording();
     const std::string rec = s.haptics->recording_path();
-    const ServoParams params = servo_params_for(s.doc.last_valid(), s.roller, s.haptics->watchdog_timeout());
+    const ServoParams params = servo_params_for(s.doc.last_valid(), s.roller, s.haptics->watchdog_timeout(), s.roller_travel);
     const std::string err = s.haptics->start(spec, rate, s.doc.last_valid(), params, s.pose, stopped);
     sync_haptics(s);
     s.history = PlotHistory(plot_capacity(s.haptics->rate()));

@@ -34,6 +34,57 @@ void edit_field(EditorState& s, const char* label, Get get, double lo, double hi
     if (ImGui::IsItemDeactivated()) s.doc.end_continuous();
 }
 
+// Seed 004's other way to set the ellipsoid field: eccentricity e = k_normal / k_tangential and
+// total stiffness k (printed formula, force_law.hpp). Both sliders write k_tangential and
+// k_normal, one undoable edit per drag.
+void edit_ellipsoid_ek(EditorState& s) {
+    Scene copy = s.doc.scene();
+    ForceLaw& law = copy.force.law;
+    double e = law.k_normal / law.k_tangential;
+    double k = std::sqrt((law.k_tangential * law.k_tangential + 2.0 * law.k_normal * law.k_normal) / 3.0);  // N/m
+    const double elo = 0.01, ehi = 100.0, klo = 10.0, khi = 5000.0;
+    bool changed = ImGui::SliderScalar("eccentricity e", ImGuiDataType_Double, &e, &elo, &ehi, "%.3f",
+                                       ImGuiSliderFlags_Logarithmic);
+    bool active = ImGui::IsItemActivated(), done = ImGui::IsItemDeactivated();
+    changed |= ImGui::SliderScalar("total k (N/m)", ImGuiDataType_Double, &k, &klo, &khi, "%.0f",
+                                   ImGuiSliderFlags_Logarithmic);
+    active |= ImGui::IsItemActivated();
+    done |= ImGui::IsItemDeactivated();
+    if (active) s.doc.begin_continuous("eccentricity and total stiffness");
+    if (changed && e > 0.0 && k > 0.0) {
+        law.k_tangential = tangential_stiffness_from(k, e);
+        law.k_normal = e * law.k_tangential;
+        s.doc.update_continuous(std::move(copy));
+    }
+    if (done) s.doc.end_continuous();
+}
+
+// How curves become what the proxy touches (scene.hpp, CurveDef): exact arc splines, or chords
+// within a tolerance (faster, with the error `contactlab bench` measures).
+void edit_accuracy(EditorState& s) {
+    const Scene& sc = s.doc.scene();
+    int mode = sc.curves.mode == CurveMode::exact ? 0 : 1;
+    if (ImGui::Combo("curves", &mode, "exact (arc spline, 1e-10 m)\0flatten (chords)\0")) {
+        Scene c = sc;
+        c.curves.mode = mode == 0 ? CurveMode::exact : CurveMode::flatten;
+        s.doc.edit(std::move(c), "curve accuracy");
+    }
+    if (sc.curves.mode == CurveMode::flatten)
+        edit_field(s, "chord tolerance (um)", [](Scene& x) { return &x.curves.tolerance; }, 1e-7, 1e-3, "%.2f", 1e6, true);
+}
+
+// The roller travel l_d may use (live, not in the scene): centred in the device's travel.
+void edit_roller_travel(EditorState& s) {
+    double mm = s.roller_travel * 1e3;
+    if (ImGui::InputDouble("usable travel (mm)", &mm, 0.0, 0.0, "%.1f", ImGuiInputTextFlags_EnterReturnsTrue))
+        s.roller_travel = std::clamp(mm, 0.0, 1000.0) * 1e-3;
+    ImGui::SameLine();
+    if (ImGui::SmallButton("all")) s.roller_travel = 0.0;
+    ImGui::SameLine();
+    if (ImGui::SmallButton("18")) s.roller_travel = 0.018;  // seed 002's CLD
+    if (s.roller_travel == 0.0) ImGui::TextDisabled("(0: the device's whole travel)");
+}
+
 void menu_bar(EditorState& s) {
     static char path_buf[1024] = "";
     bool open_popup = false, save_popup = false;
@@ -231,6 +282,7 @@ void tuning_window(EditorState& s) {
     if (sc.force.law.model == ForceModel::ellipsoid) {
         edit_field(s, "k tangential (N/m)", [](Scene& x) { return &x.force.law.k_tangential; }, 10.0, 5000.0, "%.0f", 1.0, true);
         edit_field(s, "k normal (N/m)", [](Scene& x) { return &x.force.law.k_normal; }, 10.0, 5000.0, "%.0f", 1.0, true);
+        edit_ellipsoid_ek(s);
     }
     edit_field(s, "damping (N s/m)", [](Scene& x) { return &x.force.law.damping; }, 0.0, 10.0, "%.2f");
     edit_field(s, "mu static", [](Scene& x) { return &x.force.law.mu_static; }, 0.0, 2.0, "%.2f");
@@ -243,6 +295,7 @@ void tuning_window(EditorState& s) {
     }
     edit_field(s, "finger R (mm)", [](Scene& x) { return &x.finger.radius; }, 0.005, 0.05, "%.1f", 1e3);
     edit_field(s, "pad L (mm)", [](Scene& x) { return &x.finger.length; }, 0.002, 0.06, "%.1f", 1e3);
+    edit_accuracy(s);
 
     ImGui::Separator();
     rate_controls(s);
@@ -256,7 +309,8 @@ void tuning_window(EditorState& s) {
     s.roller.kp = std::max(0.0, s.roller.kp);
     s.roller.ki = std::max(0.0, s.roller.ki);
     s.roller.kd = std::max(0.0, s.roller.kd);
-    s.roller.max_drive = std::clamp(s.roller.max_drive, 0.0, 24.0);
+    s.roller.max_drive = std::clamp(s.roller.max_drive, 0.1, 24.0);  // V: 0 would hold the roller still
+    edit_roller_travel(s);
     ImGui::PopItemWidth();
     ImGui::End();
 }

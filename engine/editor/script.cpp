@@ -171,6 +171,23 @@ bool Script::run(EditorState& s, const Line& line, double now) {
         } else if (n == "kp" || n == "ki" || n == "kd") {
             (n == "kp" ? s.roller.kp : n == "ki" ? s.roller.ki : s.roller.kd) = number(w[2]);
             return true;
+        } else if (n == "travel_mm") {
+            const double mm = number(w[2]);
+            if (!(mm >= 0.0 && mm <= 1000.0)) throw ScriptError("travel_mm: 0..1000 (0: the device's whole travel)");
+            s.roller_travel = mm * 1e-3;  // m
+            return true;
+        } else if (n == "curves") {
+            if (w[2] != "exact" && w[2] != "flatten") throw ScriptError("curves: exact or flatten");
+            sc.curves.mode = w[2] == "exact" ? CurveMode::exact : CurveMode::flatten;
+        } else if (n == "eccentricity" || n == "total_k") {
+            // Seed 004's (e, k) pair: the other one is kept as it is now.
+            ForceLaw& law = sc.force.law;
+            double e = law.k_normal / law.k_tangential;
+            double k = std::sqrt((law.k_tangential * law.k_tangential + 2.0 * law.k_normal * law.k_normal) / 3.0);
+            (n == "eccentricity" ? e : k) = number(w[2]);
+            if (!(e > 0.0) || !(k > 0.0)) throw ScriptError(n + ": must be > 0");
+            law.k_tangential = tangential_stiffness_from(k, e);
+            law.k_normal = e * law.k_tangential;
         } else {
             const double v = number(w[2]);
             if (n == "ke") sc.force.stiffness = v;
@@ -180,6 +197,7 @@ bool Script::run(EditorState& s, const Line& line, double now) {
             else if (n == "mu_d") sc.force.law.mu_dynamic = v;
             else if (n == "k_t") sc.force.law.k_tangential = v;
             else if (n == "k_n") sc.force.law.k_normal = v;
+            else if (n == "tolerance") sc.curves.tolerance = v;
             else throw ScriptError("unknown parameter \"" + n + "\"");
         }
         s.doc.edit(std::move(sc), n);
@@ -253,6 +271,10 @@ bool Script::run(EditorState& s, const Line& line, double now) {
             else if (n == "finger_x") v = snap.finger.x * 1e3;  // mm
             else if (n == "finger_y") v = snap.finger.y * 1e3;  // mm
             else if (n == "depth") v = snap.depth * 1e3;        // mm
+            else if (n == "l_d") v = snap.l_d * 1e3;            // mm
+            else if (n == "roller_target") v = snap.roller_target * 1e3;  // mm
+            else if (n == "k_t") v = s.doc.scene().force.law.k_tangential;
+            else if (n == "k_n") v = s.doc.scene().force.law.k_normal;
             else throw ScriptError("unknown expectation \"" + n + "\"");
             const double tol = w.size() > 3 ? number(w[3]) : 0.0;
             if (tol < 0.0) throw ScriptError("expect: the tolerance must not be negative");

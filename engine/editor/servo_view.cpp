@@ -23,8 +23,10 @@ ProxyOutput proxy_output_from(const ServoSnapshot& snap, const FingerDef& finger
     return o;
 }
 
-ServoParams servo_params_for(const Scene& scene, const RollerGains& roller, double watchdog_timeout) {
+ServoParams servo_params_for(const Scene& scene, const RollerGains& roller, double watchdog_timeout,
+                             double roller_travel) {
     ServoParams p;
+    p.roller_travel = roller_travel;  // m
     p.safety.watchdog_timeout = watchdog_timeout;  // s
     p.stiffness = scene.force.stiffness;  // N/m
     p.max_force = scene.force.max_force;  // N
@@ -38,7 +40,7 @@ bool same_params(const ServoParams& a, const ServoParams& b) {
            a.roller.d_cutoff_hz == b.roller.d_cutoff_hz && a.roller.kff == b.roller.kff &&
            a.roller.pole == b.roller.pole && a.roller.max_pole_period == b.roller.max_pole_period &&
            a.roller.back_emf == b.roller.back_emf &&
-           a.safety.watchdog_timeout == b.safety.watchdog_timeout;
+           a.safety.watchdog_timeout == b.safety.watchdog_timeout && a.roller_travel == b.roller_travel;
 }
 
 }  // namespace contactlab::editor

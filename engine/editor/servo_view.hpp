@@ -18,7 +18,9 @@ ProxyOutput proxy_output_from(const ServoSnapshot& snap, const FingerDef& finger
 // SCHED_FIFO, sees gaps of 10-15 ms (Xvfb's kernel copies of each frame hold its CPU); with the
 // 5 ms default every such gap would fault and drop the force until the finger left contact.
 inline constexpr double kMouseWatchdog = 0.050;  // s
-ServoParams servo_params_for(const Scene& scene, const RollerGains& roller, double watchdog_timeout);
+// roller_travel (m): the usable roller travel (ServoParams::roller_travel; 0: the device's whole).
+ServoParams servo_params_for(const Scene& scene, const RollerGains& roller, double watchdog_timeout,
+                             double roller_travel = 0.0);
 bool same_params(const ServoParams& a, const ServoParams& b);
 
 }  // namespace contactlab::editor

@@ -123,20 +123,25 @@ void stroke_run(DrawList& out, const std::vector<P2>& run, bool dashed, float wi
         out.stroke(run, false, width, color);
         return;
     }
-    float phase = 0.f;  // distance into the current dash+gap period
+    // The pattern is walked in double precision with each step at least kMinStep long: in float,
+    // a dash's last sliver (phase a hair under kDash) added to a position hundreds of px along
+    // rounded back to the same position, and the walk never advanced.
+    constexpr double kPeriod = double(kDash) + double(kGap);  // px
+    constexpr double kMinStep = 1e-3;                          // px
+    double phase = 0.0;  // px into the current dash+gap period
     for (std::size_t i = 0; i + 1 < run.size(); ++i) {
         const P2 a = run[i], b = run[i + 1];
-        const float len = glm::length(b - a);
-        if (len <= 0.f) continue;
-        const P2 dir = (b - a) / len;
-        float s = 0.f;
+        const double len = glm::length(glm::dvec2(b) - glm::dvec2(a));
+        if (!(len > 0.0)) continue;
+        const glm::dvec2 dir = (glm::dvec2(b) - glm::dvec2(a)) / len;
+        double s = 0.0;
         while (s < len) {
             const bool on = phase < kDash;
-            const float left = on ? kDash - phase : kDash + kGap - phase;
-            const float e = std::min(len, s + left);
-            if (on) out.line(a + dir * s, a + dir * e, width, color);
+            const double left = std::max(kMinStep, on ? kDash - phase : kPeriod - phase);
+            const double e = std::min(len, s + left);
+            if (on) out.line(P2(glm::dvec2(a) + dir * s), P2(glm::dvec2(a) + dir * e), width, color);
             phase += e - s;
-            if (phase >= kDash + kGap) phase = 0.f;
+            if (phase >= kPeriod - kMinStep) phase = 0.0;
             s = e;
         }
     }

@@ -9,6 +9,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <random>
 #include <limits>
 
 using namespace render_test;
@@ -221,4 +222,32 @@ TEST_CASE("chart: write_chart_png writes the rendered pixels, which read back at
     CHECK(back.height == c.height);
     CHECK(back.rgba == render_chart(lavapipe(), c).rgba);
     CHECK(lavapipe().validation_messages() == 0);
+}
+
+TEST_CASE("chart: dashed lines end whatever their length and where the dash pattern stands") {
+    // A dash whose remaining length is below float resolution at the segment's position used to
+    // stop the pattern advancing (an endless loop in a `contactlab bench` full run's stability
+    // plot). Thousands of dashed polylines through random points of a log-log plot, including
+    // the full run's bound line, must all be drawn, and draw something.
+    Chart c = explicit_chart(AxisScale::log10, 10.0, 1e5, AxisScale::log10, 10.0, 1e6);
+    ChartSeries bound = series("2b/T declared", {100, 250, 1000, 4000, 10000, 20000},
+                               {229.36184798097, 573.40461995244, 2293.6184798097, 9174.4739192389,
+                                22936.184798097, 45872.369596195},
+                               Color{0, 0, 0, 255}, Marker::none);
+    bound.dashed = true;
+    c.series.push_back(bound);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> ex(1.0, 5.0), ey(1.0, 6.0);
+    for (int k = 0; k < 200; ++k) {
+        ChartSeries s = series("random " + std::to_string(k), {}, {}, Color{200, 0, 0, 255}, Marker::none);
+        s.dashed = true;
+        for (int i = 0; i < 12; ++i) {
+            s.x.push_back(std::pow(10.0, ex(rng)));
+            s.y.push_back(std::pow(10.0, ey(rng)));
+        }
+        c.series.push_back(s);
+    }
+    DrawList out(c.width, c.height);
+    draw_chart(c, out);
+    CHECK(out.vertices().size() > 1000);
 }

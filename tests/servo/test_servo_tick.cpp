@@ -212,3 +212,39 @@ TEST_CASE("force clamp keeps direction, then per-axis saturation") {
     CHECK(g.y == doctest::Approx(1.2));
     CHECK(clamp_then_saturate({kNaN, 1.0}, 1.5, {1.0, 1.0}) == Vec2{0.0});
 }
+
+TEST_CASE("roller travel: l_d is held within the usable travel, centred in the device's, changed live") {
+    // Pressed 1 mm into the floor with the finger tilted by phi: the pad touches at l = -R phi
+    // (seed 000), 6.5 mm at phi = -0.25 rad, inside the device's +-10 mm.
+    ServoTick s(ServoConfig{}, ServoParams{});
+    s.scenes().publish(std::make_unique<ServoScene>(floor_scene()));
+    s.connect(0.0);
+    double t = 0.0;
+    ServoInput in;
+    in.phi = -0.25;  // rad
+    auto run = [&](double depth, int ticks) {
+        ServoCommand c;
+        in.finger = {0.0, R - depth};
+        for (int k = 0; k < ticks; ++k) {
+            in.t = (t += 1e-3);
+            c = s.tick(in);
+        }
+        return c;
+    };
+    run(-0.005, 5);
+    ServoCommand c = run(0.001, 400);
+    REQUIRE(s.state() == ServoState::engaged);
+    CHECK(c.roller_target == doctest::Approx(0.25 * R).epsilon(1e-9));
+    ServoParams p;
+    p.roller_travel = 0.006;  // m: +-3 mm usable
+    REQUIRE(s.publish_params(p).empty());
+    c = run(0.001, 2);
+    CHECK(c.roller_target == doctest::Approx(0.003).epsilon(1e-12));
+    // Longer than the device's travel: the device's own limits hold (+-10 mm), l_d unclamped.
+    p.roller_travel = 0.5;
+    REQUIRE(s.publish_params(p).empty());
+    c = run(0.001, 2);
+    CHECK(c.roller_target == doctest::Approx(0.25 * R).epsilon(1e-9));
+    p.roller_travel = -0.001;
+    CHECK(s.publish_params(p).find("roller_travel:") != std::string::npos);
+}
