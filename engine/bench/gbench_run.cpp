@@ -8,8 +8,9 @@ namespace contactlab::bench {
 void run_registered() {
     static bool initialised = false;
     if (!initialised) {
-        char name[] = "contactlab-bench";
-        char* argv[] = {name, nullptr};
+        // Static: the library keeps argv[0] and prints it as "Running ..." before every run.
+        static char name[] = "contactlab-bench";
+        static char* argv[] = {name, nullptr};
         int argc = 1;
         benchmark::Initialize(&argc, argv);
         initialised = true;

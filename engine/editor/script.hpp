@@ -3,7 +3,9 @@
 //
 //   tool finger|select|line|quad|arc|arc_center|cubic   click X Y        rclick X Y       drag X0 Y0 X1 Y1
 //   finger X Y [PHI]               key NAME (space, delete, ctrl+z, ctrl+y, f, 1, 2, 3, q, e)
-//   set NAME VALUE   (ke, max_force, damping, mu_s, mu_d, k_t, k_n  SI units;
+//   set NAME VALUE   (ke, max_force, damping, mu_s, mu_d, k_t, k_n, tolerance  SI units;
+//                     eccentricity E, total_k N/m: seed 004's pair, the other kept;
+//                     curves exact|flatten; travel_mm MM: usable roller travel, 0 = all;
 //                     model spring|ellipsoid; rule centroid|least_displacement; kp ki kd;
 //                     snap_mm MM: grid snapping for the authoring tools, 0 = off;
 //                     snap_tangent 0|1: G1 tangent continuation at open chain ends)
@@ -21,7 +23,8 @@
 //                       1), state NAME, stopped 0|1, valid 0|1, force_above N, force_below N,
 //                       undo_depth N, dirty 0|1, error 0|1: the last action's message was an error,
 //                       device SPEC, device_state NAME, rate HZ, recording 0|1, force N,
-//                       finger_x MM, finger_y MM, depth MM; numbers equal within TOL, default 0)
+//                       finger_x MM, finger_y MM, depth MM, l_d MM, roller_target MM, k_t N/m,
+//                       k_n N/m; numbers equal within TOL, default 0)
 //   quit
 // Blank lines and lines starting with # are ignored. A failed expectation is reported with its
 // line number and the run goes on; the editor exits 1 if any failed.
