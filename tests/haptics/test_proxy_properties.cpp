@@ -5,6 +5,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -240,6 +241,46 @@ TEST_CASE("anticipation through the index finds exactly the piece a search of ev
             CHECK(a.anticipated_point == b.anticipated_point);
         }
         CHECK(compared > 1000);
+    }
+}
+
+TEST_CASE("in contact the index gathers every piece that matters: the same proxy as a search of every segment") {
+    // The motion gathers segments whose R-offset can come within reach of the finger, and those
+    // near the pad's ends (Proxy::gather_for_motion). A proxy with use_index = false builds every
+    // segment's pieces. Strokes back and forth pressed in at random depths, the finger rocking and
+    // sometimes jumping, over a dense sinusoid, the block and the mixed scene: same proxy, force, l_d.
+    int scene_index = 0;
+    const Contour wave = sinusoid_contour(4000, 0.005, 10.0);
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (const Scene& scene : {scene_of({wave}), block_scene(), mixed_scene()}) {
+        ProxyDef def = proxy_def_of(scene);
+        const Environment env = build_environment(scene);
+        Proxy indexed(env, def);
+        def.use_index = false;
+        Proxy brute(env, def);
+        indexed.reset({-0.17, 0.1}, 0.0);
+        brute.reset({-0.17, 0.1}, 0.0);
+        Vec2 x{-0.17, 0.1};
+        double phi = 0.0;
+        int contacts = 0;
+        for (int k = 0; k < 4000; ++k) {
+            // Mostly small steps along and into the surface; every 50th tick a jump.
+            const bool jump = k % 50 == 49;
+            // Back and forth across the scene twice (up to 0.5 mm a tick), plus the jumps.
+            x.x = std::clamp(0.17 * std::sin(2.0 * kPi * k / 2000.0) + (jump ? 0.05 * (u(rng) - 0.5) : 0.0), -0.18, 0.18);
+            x.y = std::clamp(x.y + (jump ? 0.03 : 0.002) * (u(rng) - 0.6), 0.015, 0.09);
+            phi = std::clamp(phi + (jump ? 0.6 : 0.03) * (u(rng) - 0.5), -0.7, 0.7);
+            const ProxyOutput a = indexed.update(x, phi);
+            const ProxyOutput& b = brute.update(x, phi);
+            REQUIRE(a.contact == b.contact);
+            contacts += a.contact ? 1 : 0;
+            CHECK(glm::length(a.proxy - b.proxy) <= 1e-12);
+            CHECK(glm::length(a.force - b.force) <= 1e-9);
+            CHECK(std::abs(a.l_d - b.l_d) <= 1e-12);
+        }
+        CAPTURE(scene_index++);
+        CHECK(contacts > 1000);
     }
 }
 
