@@ -1,6 +1,7 @@
 // test_live_servo.cpp — the editor's servo on drivers' ServoRunner (the one deadline loop), with a
 // device that records what it is commanded: the force ramps in after arming, and stopping the
 // servo (what every device or rate switch does) leaves zero force as the device's last command.
+#include "drivers/sim/sim_rig.hpp"
 #include "engine/editor/live_servo.hpp"
 #include "engine/editor/servo_view.hpp"
 
@@ -61,13 +62,7 @@ private:
     double t_ = 0.0;
 };
 
-Scene floor_scene() {
-    Scene s;
-    Contour c;
-    c.segments.push_back(LineSegment{{-0.1, 0.0}, {0.1, 0.0}});  // solid below y = 0
-    s.contours.push_back(c);
-    return s;
-}
+using drivers::sim::floor_scene;  // y = 0, solid below
 
 // Polls `pred` every ms for up to `seconds` (s).
 template <class P>

@@ -4,6 +4,7 @@
 // nothing while it runs in contact. Counted on every thread (tests/common/side_effects.hpp); the
 // test thread only sleeps meanwhile.
 #include "engine/editor/cursor_cld_device.hpp"
+#include "drivers/sim/sim_rig.hpp"
 #include "engine/editor/live_servo.hpp"
 #include "engine/editor/mouse_device.hpp"
 #include "engine/editor/servo_view.hpp"
@@ -24,13 +25,7 @@ using namespace contactlab::test;
 
 namespace {
 
-Scene floor_scene() {
-    Scene s;
-    Contour c;
-    c.segments.push_back(LineSegment{{-0.1, 0.0}, {0.1, 0.0}});  // solid below y = 0
-    s.contours.push_back(c);
-    return s;
-}
+using drivers::sim::floor_scene;  // y = 0, solid below
 
 // Runs the live servo on `dev` in contact (the pose 4 mm into the floor), counting for `seconds`.
 void run_counted(drivers::Device& dev, PoseInput& pose_in, double seconds) {
@@ -65,22 +60,6 @@ void run_counted(drivers::Device& dev, PoseInput& pose_in, double seconds) {
 }
 
 }  // namespace
-
-TEST_CASE("the counters see an allocation, a lock and a write (the overrides are in effect)") {
-    reset_side_effects();
-    pthread_mutex_t m = PTHREAD_MUTEX_INITIALIZER;
-    count_all_threads(true);
-    int* volatile p = new int(3);  // volatile: the compiler may not elide the new/delete pair
-    pthread_mutex_lock(&m);
-    (void)!write(-1, "", 0);
-    count_all_threads(false);
-    pthread_mutex_unlock(&m);
-    delete p;
-    const test::SideEffects e = side_effects();
-    CHECK(e.allocs == 1);
-    CHECK(e.locks == 1);
-    CHECK(e.io == 1);
-}
 
 TEST_CASE("editor servo thread with sim-cld in contact: no allocation, lock or write") {
     MousePose start;

@@ -13,23 +13,6 @@
 using namespace contactlab;
 using namespace contactlab::test;
 
-TEST_CASE("the counters see an allocation, a lock and a write (the overrides are in effect)") {
-    reset_side_effects();
-    pthread_mutex_t m = PTHREAD_MUTEX_INITIALIZER;
-    count_all_threads(true);
-    int* volatile p = new int(3);  // volatile: the compiler may not elide the new/delete pair
-    pthread_mutex_lock(&m);
-    (void)!write(-1, "", 0);
-    delete p;
-    count_all_threads(false);
-    pthread_mutex_unlock(&m);
-    const SideEffects e = side_effects();
-    CHECK(e.allocs == 1);
-    CHECK(e.frees == 1);
-    CHECK(e.locks == 1);
-    CHECK(e.io == 1);
-}
-
 TEST_CASE("100,000 servo ticks allocate nothing, lock nothing, write nothing") {
     // The block task repeated: descend, slide, tip over the edge, descend; loop the path so the
     // run stays in varied contact for all 100,000 ticks.
