@@ -211,20 +211,36 @@ TEST_CASE("anticipation: in free space over a convex scene l_d varies continuous
     (void)step;
 }
 
+namespace {
+// The scenes the index is held to a search of every segment on: a dense sinusoid (5 mm amplitude,
+// 10 periods, 4,000 chords), the block and the mixed scene.
+std::vector<Scene> index_test_scenes() { return {scene_of({sinusoid_contour(4000, 0.005, 10.0)}), block_scene(), mixed_scene()}; }
+
+// Two proxies on one environment: through the bounding-volume index, and with use_index = false
+// (pieces of every segment, every tick).
+struct IndexedAndBrute {
+    Environment env;
+    Proxy indexed, brute;
+    static ProxyDef without_index(ProxyDef d) {
+        d.use_index = false;
+        return d;
+    }
+    explicit IndexedAndBrute(const Scene& scene)
+        : env(build_environment(scene)), indexed(env, proxy_def_of(scene)), brute(env, without_index(proxy_def_of(scene))) {}
+};
+}  // namespace
+
 TEST_CASE("anticipation through the index finds exactly the piece a search of every segment finds") {
     // The indexed anticipation gathers only segments whose pieces can come within a short reach
     // (proxy.cpp, Proxy::anticipate); a proxy with use_index = false builds every segment's pieces.
     // Over a dense sinusoid, the block and the mixed scene, hovering and tilting at random, both
     // must name the same nearest point and contact location, bit for bit (same pieces, same order).
-    const Contour wave = sinusoid_contour(4000, 0.005, 10.0);  // 5 mm amplitude, 10 periods
     std::mt19937_64 rng(5);
     std::uniform_real_distribution<double> u(0.0, 1.0);
-    for (const Scene& scene : {scene_of({wave}), block_scene(), mixed_scene()}) {
-        ProxyDef def = proxy_def_of(scene);
-        const Environment env = build_environment(scene);
-        Proxy indexed(env, def);
-        def.use_index = false;
-        Proxy brute(env, def);
+    for (const Scene& scene : index_test_scenes()) {
+        IndexedAndBrute pair(scene);
+        Proxy& indexed = pair.indexed;
+        Proxy& brute = pair.brute;
         int compared = 0;
         for (int k = 0; k < 3000; ++k) {
             const Vec2 x{-0.25 + 0.5 * u(rng), 0.0 + 0.15 * u(rng)};
@@ -250,15 +266,12 @@ TEST_CASE("in contact the index gathers every piece that matters: the same proxy
     // segment's pieces. Strokes back and forth pressed in at random depths, the finger rocking and
     // sometimes jumping, over a dense sinusoid, the block and the mixed scene: same proxy, force, l_d.
     int scene_index = 0;
-    const Contour wave = sinusoid_contour(4000, 0.005, 10.0);
     std::mt19937_64 rng(11);
     std::uniform_real_distribution<double> u(0.0, 1.0);
-    for (const Scene& scene : {scene_of({wave}), block_scene(), mixed_scene()}) {
-        ProxyDef def = proxy_def_of(scene);
-        const Environment env = build_environment(scene);
-        Proxy indexed(env, def);
-        def.use_index = false;
-        Proxy brute(env, def);
+    for (const Scene& scene : index_test_scenes()) {
+        IndexedAndBrute pair(scene);
+        Proxy& indexed = pair.indexed;
+        Proxy& brute = pair.brute;
         indexed.reset({-0.17, 0.1}, 0.0);
         brute.reset({-0.17, 0.1}, 0.0);
         Vec2 x{-0.17, 0.1};
