@@ -117,6 +117,13 @@ void menu_bar(EditorState& s) {
                 s.doc.edit(reverse_contour(s.doc.scene(), s.selected->contour), "flip solid side");
                 s.selected.reset();
             }
+            const bool closed = s.selected && s.selected->contour < static_cast<int>(s.doc.scene().contours.size()) &&
+                                s.doc.scene().contours[s.selected->contour].closed;
+            if (ImGui::MenuItem(closed ? "Open contour (at its seam)" : "Close contour (join its ends)", nullptr, false,
+                                s.selected.has_value())) {
+                s.doc.edit(toggle_closed(s.doc.scene(), s.selected->contour), closed ? "open contour" : "close contour");
+                s.selected.reset();
+            }
             ImGui::MenuItem("Snap to grid", nullptr, &s.snap_grid);
             ImGui::MenuItem("Snap tangent (G1 at chain ends)", nullptr, &s.snap_tangent);
             ImGui::EndMenu();

@@ -310,6 +310,19 @@ Scene reverse_contour(const Scene& scene, int contour) {
     return out;
 }
 
+Scene toggle_closed(const Scene& scene, int contour) {
+    Scene out = scene;
+    if (contour < 0 || contour >= static_cast<int>(out.contours.size())) return out;
+    Contour& c = out.contours[contour];
+    if (c.segments.empty()) return out;
+    if (!c.closed) {
+        const Vec2 first = segment_start(c.segments.front()), last = segment_end(c.segments.back());
+        if (glm::length(first - last) > kSceneJoinTolerance) c.segments.push_back(LineSegment{last, first});
+    }
+    c.closed = !c.closed;
+    return out;
+}
+
 int segment_count(const Scene& scene) {
     int n = 0;
     for (const Contour& c : scene.contours) n += static_cast<int>(c.segments.size());

@@ -72,6 +72,11 @@ Scene delete_segment(const Scene& scene, int contour, int segment);
 // Reverses a contour's direction of travel (flips the solid side).
 Scene reverse_contour(const Scene& scene, int contour);
 
+// Opens a closed contour (its segments kept: the seam becomes the open chain's two ends), or
+// closes an open one: its ends joined as they are when they meet (within kSceneJoinTolerance),
+// otherwise by a new line from its last point back to its first.
+Scene toggle_closed(const Scene& scene, int contour);
+
 // Total number of segments (for the status line and tests).
 int segment_count(const Scene& scene);
 

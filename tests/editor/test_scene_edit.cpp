@@ -105,3 +105,31 @@ TEST_CASE("curves and arcs join chains like lines") {
     REQUIRE(h);
     CHECK(glm::length(handle_position(s, *h) - Vec2(0.01, 0.0)) < 1e-12);
 }
+
+TEST_CASE("closing an open chain joins its ends with a line, opening keeps every segment") {
+    // A U of three 1 cm lines: closing adds the 1 cm top from (0.01, 0.01) back to (0, 0.01).
+    Scene s;
+    s = add_line(s, {0.0, 0.01}, {0.0, 0.0}, 1e-6);
+    s = add_line(s, {0.0, 0.0}, {0.01, 0.0}, 1e-6);
+    s = add_line(s, {0.01, 0.0}, {0.01, 0.01}, 1e-6);
+    REQUIRE(s.contours.size() == 1);
+    REQUIRE_FALSE(s.contours[0].closed);
+    Scene closed = toggle_closed(s, 0);
+    REQUIRE(closed.contours[0].closed);
+    REQUIRE(closed.contours[0].segments.size() == 4);
+    CHECK(segment_start(closed.contours[0].segments[3]) == Vec2(0.01, 0.01));
+    CHECK(segment_end(closed.contours[0].segments[3]) == Vec2(0.0, 0.01));
+    CHECK(segment_length(closed.contours[0].segments[3]) == doctest::Approx(0.01).epsilon(1e-12));
+    CHECK_NOTHROW(validate_scene(closed));
+    // Opened again: closed = false, the four segments kept, still a valid scene.
+    Scene opened = toggle_closed(closed, 0);
+    CHECK_FALSE(opened.contours[0].closed);
+    CHECK(opened.contours[0].segments.size() == 4);
+    CHECK_NOTHROW(validate_scene(opened));
+    // A chain whose ends already meet closes without a new segment.
+    Scene again = toggle_closed(opened, 0);
+    CHECK(again.contours[0].closed);
+    CHECK(again.contours[0].segments.size() == 4);
+    // Out of range: unchanged.
+    CHECK(toggle_closed(s, 5).contours.size() == 1);
+}
