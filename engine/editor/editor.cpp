@@ -202,8 +202,16 @@ int run_editor(const EditorOptions& o) {
     s.pose = initial_pose(s.doc.last_valid());
     s.history = PlotHistory(plot_capacity(o.rate));
     {
-        const std::string err = host.start("mouse", o.rate, s.doc.last_valid(),
-                                           servo_params_for(s.doc.last_valid(), s.roller, host.watchdog_timeout(), s.roller_travel), s.pose);
+        const ServoParams params = servo_params_for(s.doc.last_valid(), s.roller, host.watchdog_timeout(), s.roller_travel);
+        std::string err = host.start(o.device, o.rate, s.doc.last_valid(), params, s.pose);
+        if (!err.empty() && o.device != "mouse") {
+            // As a switch from the panel does: say why, and keep the mouse running.
+            std::fprintf(stderr, "contactlab edit: --device %s: %s\n", o.device.c_str(), err.c_str());
+            s.say("--device " + o.device + ": " + err, true);
+            // A device that did not open has already been replaced by the mouse (haptics_host.cpp);
+            // a spec that could not be used at all (a bad replay file) has not.
+            err = host.servo() != nullptr ? std::string() : host.start("mouse", o.rate, s.doc.last_valid(), params, s.pose);
+        }
         if (!err.empty()) std::fprintf(stderr, "contactlab edit: %s\n", err.c_str());
     }
     sync_haptics(s);

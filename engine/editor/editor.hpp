@@ -16,6 +16,8 @@ struct EditorOptions {
     bool validation = false;      // Vulkan validation layers; any message makes the exit code 1
     bool vsync = true;            // FIFO presentation; off: MAILBOX/IMMEDIATE (for frame timing)
     double rate = 1000.0;         // Hz, servo rate
+    std::string device = "mouse"; // the device the servo starts on (haptics_host.hpp specs); one
+                                  // that does not open leaves the mouse running and says why
     double autosave_interval = 30.0;  // s between recovery-file writes
 };
 

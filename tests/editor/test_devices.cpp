@@ -213,3 +213,28 @@ TEST_CASE("the device menu lists the USB models, and one that cannot open leaves
         CHECK(contains(p.err, "ok: device_state = engaged"));
     }
 }
+
+TEST_CASE("edit --device: the servo starts on the device asked for, or says why and keeps the mouse") {
+    TempDir dir;
+    const std::string script = dir.file("device.txt");
+    write_text(script, "expect device sim-cld\nwait_state engaged 5\nquit\n");
+    const auto p = run_under_xvfb({"edit", "--device", "sim-cld", "--script", script, "--software", "--validation",
+                                   "--timeout", "60"});
+    INFO("stderr: " << p.err);
+    CHECK(p.exit_code == 0);
+    CHECK_FALSE(contains(p.err, "FAILED"));
+    // No hapio board on this bus (the emulated ones live in the usb tests): named, and the mouse runs.
+    const std::string fallback = dir.file("fallback.txt");
+    write_text(fallback, "expect device mouse\nexpect error 1\nquit\n");
+    const auto q = run_under_xvfb({"edit", "--device", "usb:hapio", "--script", fallback, "--software", "--timeout", "60"});
+    INFO("stderr: " << q.err);
+    CHECK(q.exit_code == 0);
+    CHECK(contains(q.err, "--device usb:hapio"));
+    CHECK(contains(q.err, "the mouse drives the finger"));
+    // A replay file that does not exist: named, and the mouse runs.
+    const auto r = run_under_xvfb({"edit", "--device", "replay:" + dir.file("missing.csv"), "--script", fallback,
+                                   "--software", "--timeout", "60"});
+    INFO("stderr: " << r.err);
+    CHECK(r.exit_code == 0);
+    CHECK(contains(r.err, "missing.csv"));
+}
