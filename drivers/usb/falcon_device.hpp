@@ -116,8 +116,7 @@ private:
     StreamParser parser_;
     Vec3 last_p_{0.0, 0.0, 0.11};   // warm start of the forward kinematics
     double last_sent_ = 0.0;
-    int hotplug_handle_ = 0;
-    bool hotplug_registered_ = false;
+    usb::HotplugWatch hotplug_;  // arrivals/departures of this device, while open
 };
 
 }  // namespace contactlab::drivers::falcon

@@ -79,13 +79,7 @@ bool HapioDevice::open() {
         return false;
     }
     wanted_.store(true);
-    if (ctx_->has_hotplug() && !hotplug_registered_) {
-        const int rc = libusb_hotplug_register_callback(
-            ctx_->raw(), LIBUSB_HOTPLUG_EVENT_DEVICE_ARRIVED | LIBUSB_HOTPLUG_EVENT_DEVICE_LEFT,
-            LIBUSB_HOTPLUG_NO_FLAGS, opt_.vendor_id, opt_.product_id, LIBUSB_HOTPLUG_MATCH_ANY,
-            reinterpret_cast<libusb_hotplug_callback_fn>(&HapioDevice::hotplug_callback), this, &hotplug_handle_);
-        hotplug_registered_ = rc == LIBUSB_SUCCESS;
-    }
+    hotplug_.watch(*ctx_, opt_.vendor_id, opt_.product_id, &HapioDevice::hotplug_callback, this);
     bool ok = false;
     ctx_->run([&] { ok = bring_up_with_retries(); });
     return ok;
@@ -94,10 +88,7 @@ bool HapioDevice::open() {
 void HapioDevice::close() {
     wanted_.store(false);
     if (!ctx_ || !ctx_->ok()) return;
-    if (hotplug_registered_) {
-        libusb_hotplug_deregister_callback(ctx_->raw(), hotplug_handle_);
-        hotplug_registered_ = false;
-    }
+    hotplug_.unwatch();
     ctx_->run([&] { teardown(false); });
     fault_code_.store(DeviceFaultCode::none);
     fault_detail_.store("");

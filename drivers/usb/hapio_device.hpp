@@ -138,8 +138,7 @@ private:
     std::array<double, 64> sent_at_{};     // s, per command sequence % 64, for round trips
     std::array<std::uint16_t, 64> sent_seq_{};
     std::array<bool, 64> sent_open_{};
-    int hotplug_handle_ = 0;
-    bool hotplug_registered_ = false;
+    usb::HotplugWatch hotplug_;  // arrivals/departures of this device, while open
 };
 
 }  // namespace contactlab::drivers::hapio

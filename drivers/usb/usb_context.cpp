@@ -76,4 +76,22 @@ void UsbContext::run(const std::function<void()>& task) {
     cv.wait(lock, [&] { return done; });
 }
 
+bool HotplugWatch::watch(UsbContext& ctx, std::uint16_t vendor_id, std::uint16_t product_id, Callback callback,
+                         void* user) {
+    if (ctx_) return true;
+    if (!ctx.ok() || !ctx.has_hotplug()) return false;
+    const int rc = libusb_hotplug_register_callback(
+        ctx.raw(), LIBUSB_HOTPLUG_EVENT_DEVICE_ARRIVED | LIBUSB_HOTPLUG_EVENT_DEVICE_LEFT, LIBUSB_HOTPLUG_NO_FLAGS,
+        vendor_id, product_id, LIBUSB_HOTPLUG_MATCH_ANY, reinterpret_cast<libusb_hotplug_callback_fn>(callback), user,
+        &handle_);
+    if (rc == LIBUSB_SUCCESS) ctx_ = &ctx;
+    return ctx_ != nullptr;
+}
+
+void HotplugWatch::unwatch() {
+    if (!ctx_) return;
+    libusb_hotplug_deregister_callback(ctx_->raw(), handle_);
+    ctx_ = nullptr;
+}
+
 }  // namespace contactlab::drivers::usb

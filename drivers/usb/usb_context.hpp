@@ -8,6 +8,7 @@
 
 #include <atomic>
 #include <condition_variable>
+#include <cstdint>
 #include <deque>
 #include <functional>
 #include <mutex>
@@ -15,6 +16,7 @@
 #include <thread>
 
 struct libusb_context;
+struct libusb_device;
 
 namespace contactlab::drivers::usb {
 
@@ -48,6 +50,26 @@ private:
     std::mutex mu_;  // guards tasks_ (never taken by the servo thread)
     std::deque<std::function<void()>> tasks_;
     std::thread thread_;
+};
+
+// One hot-plug registration (arrivals and departures of vendor:product) on a context, shared by
+// the device classes. Removed by unwatch() or when the watch is destroyed.
+class HotplugWatch {
+public:
+    // The devices' callbacks take the event as a plain int (libusb's enum in disguise).
+    using Callback = int (*)(libusb_context*, libusb_device*, int event, void* user);
+    HotplugWatch() = default;
+    HotplugWatch(const HotplugWatch&) = delete;
+    HotplugWatch& operator=(const HotplugWatch&) = delete;
+    ~HotplugWatch() { unwatch(); }
+
+    // Registers unless already registered or the context has no hot-plug; true when registered.
+    bool watch(UsbContext& ctx, std::uint16_t vendor_id, std::uint16_t product_id, Callback callback, void* user);
+    void unwatch();
+
+private:
+    UsbContext* ctx_ = nullptr;  // set while registered
+    int handle_ = 0;
 };
 
 }  // namespace contactlab::drivers::usb
