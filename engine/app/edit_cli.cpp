@@ -2,6 +2,7 @@
 // interactive editor (engine/editor). Needs a display; without one it says how to run it under
 // xvfb-run and which subcommands work headless, and exits 2.
 #include "engine/app/subcommands.hpp"
+#include "haptics/parameter_limits.hpp"
 #include "engine/editor/editor.hpp"
 #include "engine/editor/script.hpp"
 #include "engine/render/vk_check.hpp"
@@ -23,7 +24,8 @@ int run_edit_command() {
     if (!o.screenshot.empty() && o.frames <= 0 && o.script.empty())
         throw BadInput("--screenshot needs --frames N (the screenshot is the last frame)");
     if (o.frames < 0) throw BadInput("--frames: must be at least 1");
-    if (!(o.rate >= 100.0 && o.rate <= 20000.0)) throw BadInput("--rate: must be between 100 and 20000 Hz");
+    if (!(o.rate >= limits::kMinServoRate && o.rate <= limits::kMaxRealtimeServoRate))
+        throw BadInput("--rate: must be between 100 and 20000 Hz");  // haptics/parameter_limits.hpp
     try {
         return editor::run_editor(o);
     } catch (const editor::ScriptError& e) {

@@ -1,6 +1,7 @@
 // simulate_command.cpp — wiring for `contactlab simulate` (see simulate_command.hpp).
 #include "engine/app/simulate_command.hpp"
 #include "engine/app/subcommands.hpp"
+#include "haptics/parameter_limits.hpp"
 
 #include "drivers/hand_path.hpp"
 #include "drivers/record_writer.hpp"
@@ -144,7 +145,8 @@ int run_roller_bandwidth(const SimulateOptions& o) {
 }  // namespace
 
 int run_simulate(const SimulateOptions& o) {
-    if (!(o.rate >= 100.0 && o.rate <= 20000.0)) throw BadInput("--rate: must be between 100 and 20000 Hz");
+    if (!(o.rate >= limits::kMinServoRate && o.rate <= limits::kMaxRealtimeServoRate))
+        throw BadInput("--rate: must be between 100 and 20000 Hz");  // haptics/parameter_limits.hpp
     if (o.output.empty()) throw BadInput("--output is required");
     if (o.task == "roller-bandwidth") return run_roller_bandwidth(o);
     Scene scene = load_scene_file(o.scene_path);

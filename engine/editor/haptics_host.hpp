@@ -16,6 +16,8 @@
 // thread (file I/O there, never in the tick and never on the UI thread).
 #pragma once
 
+#include "haptics/parameter_limits.hpp"
+
 #include "drivers/device.hpp"
 #include "drivers/record_writer.hpp"
 #include "drivers/tick_record.hpp"
@@ -39,8 +41,9 @@ struct DeviceOption {
     std::string why;     // when not available: the reason (e.g. "no hapio board on the USB bus")
 };
 
-inline constexpr double kMinRate = 100.0;    // Hz, the servo rates the editor offers
-inline constexpr double kMaxRate = 20000.0;  // Hz
+// Hz, the servo rates the editor offers: the real-time range (haptics/parameter_limits.hpp).
+inline constexpr double kMinRate = limits::kMinServoRate;
+inline constexpr double kMaxRate = limits::kMaxRealtimeServoRate;
 
 class HapticsHost {
 public:
