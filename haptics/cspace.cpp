@@ -10,6 +10,13 @@ namespace {
 // A pad end whose tangent makes less than this (cosine) with the contour is not a distinct
 // contact: the pad's interior (an offset piece) already covers it.
 constexpr double kEndpointCosTolerance = 1e-12;
+// Where a line's contact passes from the pad's interior to its end (|R phi| = L/2 on a floor) both
+// tests below sit on their threshold, and rounding can reject both: for that one angle the line
+// had no piece at all and the proxy fell through the floor, never to come back (it was then
+// behind every piece). Each test accepts this much (cosine) past its threshold, so near the
+// transition both pieces exist. They coincide there; away from it the extra one lies inside the
+// obstacle by about R (1 - cos(1e-12 / sin(L/2R))), far below 1e-20 m, so it never shows.
+constexpr double kLineHandoverOverlap = 1e-12;
 
 // The span of pad angles theta (rad) that can touch, for finger angle phi.
 AngleSpan pad_span(const FingerShape& f, double phi) {
@@ -58,14 +65,14 @@ void append_line(const EnvSegment& s, int index, const PadFrame& pad, std::vecto
     p.n = s.normal;
     // Pad interior pressed by the line: the pad point facing -n must be on the pad, i.e. -n within
     // the pad's half-angle of its middle direction (a dot product: no atan2 per segment).
-    if (glm::dot(-s.normal, pad.mid_dir) >= pad.cos_half) {
+    if (glm::dot(-s.normal, pad.mid_dir) >= pad.cos_half - kLineHandoverOverlap) {
         p.source = CPiece::Source::line_offset;
         p.a = s.start + f.radius * s.normal;
         out.push_back(p);
     }
     if (!pad_has_endpoints(f)) return;
     for (int k = 0; k < 2; ++k) {
-        if (glm::dot(pad.end_tangent[k], s.normal) <= kEndpointCosTolerance) continue;
+        if (glm::dot(pad.end_tangent[k], s.normal) <= -kLineHandoverOverlap) continue;
         p.source = CPiece::Source::endpoint;
         p.pad_theta = pad.end_theta[k];
         p.pad_l = pad.end_l[k];

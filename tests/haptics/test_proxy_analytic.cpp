@@ -238,3 +238,38 @@ TEST_CASE("least displacement rule: in a concave corner l_d stays with the conta
     }
     CHECK(two > 10);
 }
+
+// Regression (issue: "tunnelling at the pad's end"): pressed 1 mm into a floor and tilted slowly,
+// the contact passes from the pad's interior to its end at |R phi| = L/2. At that one angle both
+// of the floor's pieces (offset line, pad-end copy) were rejected by rounding, the proxy fell to
+// the finger and stayed behind every piece: contact 0 for the rest of the press. The pad sizes are
+// the ones reported (h = L/2R landing on the 0.0005 rad tilt grid); 26/20 mm was always fine.
+TEST_CASE("flat floor, tilted slowly through the pad's end: the contact is never lost") {
+    struct Pad { double r, l; };
+    for (const Pad pad : {Pad{0.010, 0.010}, Pad{0.015, 0.015}, Pad{0.020, 0.0204}, Pad{0.008, 0.016},
+                          Pad{0.026, 0.020}}) {
+        CAPTURE(pad.r);
+        CAPTURE(pad.l);
+        ProxyRig rig(floor_scene(), FingerShape{FingerKind::arc_pad, pad.r, pad.l});
+        const double depth = 0.001;              // m below the touching height R
+        const double h = pad.l / (2.0 * pad.r);  // rad, the pad's half-angle
+        rig.proxy->reset({0.0, pad.r + 0.005}, 0.0);
+        for (int sign : {1, -1}) {
+            rig.proxy->reset({0.0, pad.r + 0.005}, 0.0);
+            // Tilt in 0.0005 rad steps (0.5 rad/s at 1 kHz) until the pad end leaves the floor:
+            // the lowest pad point is R cos(|phi| - h) below the centre once |phi| > h.
+            for (int k = 0;; ++k) {
+                const double phi = sign * 0.0005 * k;
+                const double lowest = std::abs(phi) <= h ? pad.r : pad.r * std::cos(std::abs(phi) - h);  // m
+                const double pressed = lowest - (pad.r - depth);  // m, how deep the pad is in the floor
+                if (pressed < 1e-6) break;
+                const ProxyOutput& o = rig.at({0.0, pad.r - depth}, phi);
+                CAPTURE(phi);
+                REQUIRE(o.contact);
+                CHECK(std::abs(o.proxy.y - lowest) <= kTol);
+                CHECK(std::abs(o.depth - pressed) <= kTol);
+                CHECK(std::abs(o.force.y - 1000.0 * pressed) <= 1000.0 * kTol);
+            }
+        }
+    }
+}
