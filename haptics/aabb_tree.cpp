@@ -97,7 +97,7 @@ Aabb arc_bounds(Vec2 c, double r, double start, double width) {
     return b;
 }
 
-void AabbTree::query_offset_reach(Vec2 p, double r, double reach, std::vector<int>& out) const {
+void AabbTree::query_offset_reach(Vec2 p, double r, double reach, std::vector<int>& out, double side) const {
     if (nodes_.empty()) return;
     int stack[kMaxDepth * 2];
     int top = 0;
@@ -107,8 +107,9 @@ void AabbTree::query_offset_reach(Vec2 p, double r, double reach, std::vector<in
         if (n.box.distance_to(p) > r + reach) continue;
         if (n.normals.width < kPi) {
             // q + r n within reach of p  <=>  q within reach of p - r n: the node's box must come
-            // within reach of the arc of points p - r n, n in the cone.
-            if (arc_bounds(p, r, n.normals.start + kPi, n.normals.width).gap_to(n.box) > reach) continue;
+            // within reach of the arc of points p - r n, n in the cone (p + r n for side -1).
+            const double turn = side > 0.0 ? kPi : 0.0;
+            if (arc_bounds(p, r, n.normals.start + turn, n.normals.width).gap_to(n.box) > reach) continue;
         } else if (n.box.max_distance_to(p) < r - reach) {
             continue;  // every q within r - reach of p: |q + r n - p| >= r - |q - p| > reach
         }

@@ -70,7 +70,9 @@ public:
     // return more, never fewer. Why: under a pad pressed into a densely sampled contour, the box
     // around the pad holds thousands of tiny segments of which only those near the contact can
     // matter.
-    void query_offset_reach(Vec2 p, double r, double reach, std::vector<int>& out) const;
+    // side = -1 offsets against the free-side normals instead (q - r n): where the pad's concave
+    // side touches the contour from the solid's side (cspace.hpp, the inner pieces).
+    void query_offset_reach(Vec2 p, double r, double reach, std::vector<int>& out, double side = 1.0) const;
 
     // Smallest exact distance (m) from p to any item, where `item_distance(i)` is the exact distance
     // to item i. Nodes farther than the best distance so far are skipped.

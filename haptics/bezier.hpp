@@ -54,7 +54,7 @@ struct CurvePiece {
 // the proxy rests on the arc spline; the proxy then re-solves its contacts on the true curve
 // (proxy.cpp, refine_on_curves), so this only has to be fine enough to find the right place:
 // 0.1 um keeps a 20 cm stimulus to a few hundred arcs (a finer spline costs time every tick).
-inline constexpr double kExactCurveTolerance = 1e-7;
+inline constexpr double kExactCurveTolerance = 2e-8;
 
 // Arc spline of the curve, G1 along each piece between stationary points, within `tolerance` (m).
 void bezier_to_arcs(const Bezier& b, double tolerance, std::vector<CurvePiece>& out);

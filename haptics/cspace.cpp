@@ -17,6 +17,10 @@ constexpr double kEndpointCosTolerance = 1e-12;
 // transition both pieces exist. They coincide there; away from it the extra one lies inside the
 // obstacle by about R (1 - cos(1e-12 / sin(L/2R))), far below 1e-20 m, so it never shows.
 constexpr double kLineHandoverOverlap = 1e-12;
+// m: an arc_inner piece of smaller radius than this is a point, not a curve to slide along.
+constexpr double kMinInnerRadius = 1e-9;
+// rad: inner vertex pieces leave out this much of each side of the vertex's normal cone (below).
+constexpr double kInnerConeMargin = 1e-6;
 
 // The span of pad angles theta (rad) that can touch, for finger angle phi.
 AngleSpan pad_span(const FingerShape& f, double phi) {
@@ -53,6 +57,19 @@ void append_vertex(int owner, Vec2 vertex, const AngleSpan& cone, const FingerSh
     // Centre at angle alpha about the vertex <=> the pad touches it at theta = alpha - pi, and the
     // contact normal (vertex toward centre) is u(alpha): it must lie in the vertex's normal cone.
     push_circle(out, p, cone, {wrap_2pi(pads.start + kPi), pads.width});
+    if (!pad_has_endpoints(f)) return;
+    // The concave side: both edges leave the vertex toward the centre, i.e. the pad's outward
+    // direction u(theta) lies in the normal cone. Moving the vertex out of the pad's circle there
+    // makes the edges cross the arc, so free space is inside.
+    // An edge along the pad's tangent (the cone's rim) only grazes the arc when the vertex leaves
+    // the circle: edges at an angle eps inside the rim cut the arc no deeper than eps^2 R / 2, so
+    // the rim's kInnerConeMargin is a block of at most ~1e-12 R, while keeping it made the cusp of a
+    // contour that doubles back on itself a phantom wall for a pad sliding over it.
+    if (cone.width <= 2.0 * kInnerConeMargin) return;
+    p.source = CPiece::Source::vertex_inner;
+    p.free_outside = false;
+    push_circle(out, p, {wrap_2pi(cone.start + kPi + kInnerConeMargin), cone.width - 2.0 * kInnerConeMargin},
+                {wrap_2pi(pads.start + kPi), pads.width});
 }
 
 void append_line(const EnvSegment& s, int index, const PadFrame& pad, std::vector<CPiece>& out) {
@@ -101,6 +118,16 @@ void append_arc(const EnvSegment& s, int index, const PadFrame& pad, std::vector
         push_circle(out, p, s.angles, pads);
     }
     if (!pad_has_endpoints(f)) return;
+    // A bump tighter than the pad touching its concave side (cspace.hpp): the pad's circle holds
+    // the bump's, tangent at contour angle beta = theta; the centre sits at beta + pi about the
+    // bump's centre, R - rho from it. (At rho = R the piece shrinks to a point: skipped.)
+    if (s.free_outside && s.radius < f.radius - kMinInnerRadius) {
+        p.source = CPiece::Source::arc_inner;
+        p.radius = f.radius - s.radius;
+        p.free_outside = false;
+        push_circle(out, p, {wrap_2pi(s.angles.start + kPi), s.angles.width}, {wrap_2pi(pads.start + kPi), pads.width});
+        p.free_outside = s.free_outside;
+    }
     for (int k = 0; k < 2; ++k) {
         p.source = CPiece::Source::endpoint;
         p.pad_theta = pad.end_theta[k];
@@ -204,7 +231,15 @@ PieceFoot piece_foot(const CPiece& piece, Vec2 p) {
 Vec2 piece_contact_point(const CPiece& piece, const FingerShape& finger, Vec2 c) {
     switch (piece.source) {
         case CPiece::Source::line_offset: return c - finger.radius * piece.n;
-        case CPiece::Source::vertex: return piece.center;
+        case CPiece::Source::vertex:
+        case CPiece::Source::vertex_inner: return piece.center;
+        case CPiece::Source::arc_inner: {
+            // The contact lies beyond the bump's centre as seen from x_f.
+            const Vec2 r = piece.center - c;
+            const double len = glm::length(r);
+            const Vec2 u = len > 0.0 ? r / len : Vec2(1.0, 0.0);
+            return piece.center + piece.contour_radius * u;
+        }
         case CPiece::Source::arc_offset: {
             const Vec2 r = c - piece.center;
             const double len = glm::length(r);
@@ -223,7 +258,8 @@ double piece_contact_location(const CPiece& piece, const FingerShape& finger, do
     double theta = 0.0;
     if (piece.source == CPiece::Source::line_offset) {
         theta = angle_of(-piece.n);
-    } else if (piece.source == CPiece::Source::vertex) {
+    } else if (piece.source == CPiece::Source::vertex || piece.source == CPiece::Source::vertex_inner ||
+               piece.source == CPiece::Source::arc_inner) {
         theta = angle_of(piece.center - c);
     } else {  // arc_offset: x_f lies on the ray from the arc's centre through the contact
         const Vec2 r = c - piece.center;

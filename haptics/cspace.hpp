@@ -9,6 +9,17 @@
 //   arc_offset        interior   arc            concentric arc of radius rho + R (bump) / rho - R (bowl)
 //   vertex            interior   convex vertex  circle of radius R about the vertex
 //   endpoint          an end     line or arc    the segment translated by -R u(theta_end)
+//   vertex_inner      interior,  convex vertex  circle of radius R about the vertex, free inside
+//                     concave side
+//   arc_inner         interior,  bump, rho < R  concentric circle of radius R - rho, free inside
+//                     concave side
+//
+// The pad is an arc, not a disc (seed 000: "the rest of the finger is disregarded"): pushed far
+// past a thin wall or a sharp corner, the contour can come round a pad end and reach the pad from
+// its concave side, behind it. The two inner sources are those contacts; without them the pad's
+// end slid round the foot of a thin wall and the pad then cut through the wall (fuzz-contact).
+// Lines cannot touch a circle from inside, and a bowl touching it from inside would already be
+// penetrating, so only convex vertices and bumps tighter than the pad have inner pieces.
 //
 // Each piece exists only where the contact is locally non-penetrating (the contact normal inside
 // the pad's span, the pad leaving an endpoint toward free space). Every piece lies in the closed
@@ -24,7 +35,7 @@ namespace contactlab {
 
 struct CPiece {
     enum class Kind : std::uint8_t { line, circle };
-    enum class Source : std::uint8_t { line_offset, arc_offset, vertex, endpoint };
+    enum class Source : std::uint8_t { line_offset, arc_offset, vertex, endpoint, vertex_inner, arc_inner };
     Kind kind = Kind::line;
     Source source = Source::line_offset;
     int segment = -1;       // EnvSegment index this piece comes from (the vertex's owner for vertex)

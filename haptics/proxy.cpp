@@ -43,7 +43,11 @@ double graze_tolerance(const CPiece& piece) {
 // 5 cm/s that is ~25 per tick, and a cap below that makes the proxy lag and dig in, as if sticky.
 // The bound keeps a pathological tick's cost finite.
 constexpr int kMaxWalkIterations = kProxyMaxWalkSteps;
-constexpr int kMaxDepenetrationIterations = 4;
+constexpr int kMaxDepenetrationIterations = 8;
+// A corner push (Proxy::depenetrate) may move the proxy at most this many times the distance the
+// pieces moved: a corner whose sides meet at an angle alpha moves by 1 / sin(alpha / 2) times that,
+// so this accepts corners sharper than 2 degrees and no phantom crossings far away.
+constexpr double kMaxCornerPushFactor = 64.0;
 // Free-space anticipation first looks this far (m) beyond the nearest a piece can be: far enough
 // that a flat or gently curved surface's nearest piece is found in the first gather.
 constexpr double kAnticipationReachMargin = 1e-3;
@@ -239,6 +243,8 @@ void Proxy::gather_near(Vec2 finger, double phi_from, double phi_to, double reac
     const FingerShape& shape = def_.finger;
     env_->tree.query_offset_reach(finger, shape.radius, reach, segment_ids_);
     if (pad_has_endpoints(shape)) {
+        // The inner pieces (cspace.hpp) lie on the solid's side: q - R n.
+        env_->tree.query_offset_reach(finger, shape.radius, reach, segment_ids_, -1.0);
         const double h = pad_half_angle(shape);
         for (const double side : {-1.0, 1.0}) {
             Aabb box;
@@ -261,22 +267,59 @@ void Proxy::build_pieces(double phi) {
 
 // After phi changed, pieces made by the pad's ends moved by at most `max_push` (m). If the proxy
 // ended up inside the obstacle, push it back out along the normal of the piece it is deepest
-// behind, repeatedly (a corner needs two pushes).
+// behind. If that push lands behind a second piece, the nearest free point is their corner: both
+// pad ends wedged in a valley, say, where the pad is lifted out as it turns. Alternating pushes
+// between two nearly opposite pieces converge slowly (by cos^2 of their angle per round), and the
+// few allowed left the proxy a micrometre behind one of them, which the walk then passed through
+// as if it were not there (fuzz-contact: the pad dropped 12 mm into a crevice).
 void Proxy::depenetrate(double max_push) {
-    for (int it = 0; it < kMaxDepenetrationIterations; ++it) {
+    // The piece the point x is deepest behind (depth <= max_push), or -1.
+    auto deepest_behind = [&](Vec2 x, int skip, double& depth) {
         int deepest = -1;
         double deepest_d = -kOnTolerance;
         for (int i = 0; i < static_cast<int>(pieces_.size()); ++i) {
+            if (i == skip) continue;
             const CPiece& piece = pieces_[i];
-            const double d = piece_signed_distance(piece, proxy_);
+            const double d = piece_signed_distance(piece, x);
             if (d >= deepest_d || d < -max_push) continue;
-            if (!inside_or_past_concave_end(piece, piece_param(piece, proxy_), max_push)) continue;
+            if (!inside_or_past_concave_end(piece, piece_param(piece, x), max_push)) continue;
             deepest = i;
             deepest_d = d;
         }
-        if (deepest < 0) return;
-        const CPiece& piece = pieces_[deepest];
-        proxy_ += (-deepest_d) * piece_normal_at(piece, proxy_);
+        depth = -deepest_d;
+        return deepest;
+    };
+    for (int it = 0; it < kMaxDepenetrationIterations; ++it) {
+        double depth = 0.0;
+        const int a = deepest_behind(proxy_, -1, depth);
+        if (a < 0) return;
+        const CPiece& pa = pieces_[a];
+        const Vec2 pushed = proxy_ + depth * piece_normal_at(pa, proxy_);
+        double depth_b = 0.0;
+        const int b = deepest_behind(pushed, a, depth_b);
+        if (b < 0) {
+            proxy_ = pushed;
+            return;
+        }
+        // Onto both boundaries: Newton on (d_a(x), d_b(x)) = 0, whose Jacobian rows are the normals.
+        const CPiece& pb = pieces_[b];
+        Vec2 x = proxy_;
+        bool converged = false;
+        for (int k = 0; k < 16; ++k) {
+            const double fa = piece_signed_distance(pa, x), fb = piece_signed_distance(pb, x);
+            if (std::abs(fa) <= 1e-14 && std::abs(fb) <= 1e-14) { converged = true; break; }
+            const Vec2 na = piece_normal_at(pa, x), nb = piece_normal_at(pb, x);
+            const double det = cross(na, nb);
+            if (!(std::abs(det) > 1e-12)) break;  // parallel boundaries: no corner to stand in
+            // Solve [na; nb] dx = (-fa, -fb) by Cramer's rule.
+            x += Vec2{(-fa * nb.y + fb * na.y) / det, (-fb * na.x + fa * nb.x) / det};
+        }
+        // A corner far beyond what the pieces moved belongs to another branch of the circles.
+        if (converged && glm::length(x - proxy_) <= kMaxCornerPushFactor * max_push) {
+            proxy_ = x;
+        } else {
+            proxy_ = pushed;
+        }
     }
 }
 
@@ -288,7 +331,10 @@ bool Proxy::inside_or_past_concave_end(const CPiece& piece, double param, double
     const bool line = piece.kind == CPiece::Kind::line;
     const double on_slack = line ? kOnTolerance : kOnTolerance / piece.radius;
     if (piece_param_inside(piece, param, on_slack)) return true;
-    if (piece.source == CPiece::Source::vertex) return false;  // vertices are convex by definition
+    // Vertices are convex by definition; inner pieces end where the pad's concave side stops
+    // facing the contour, not at a junction of it.
+    if (piece.source == CPiece::Source::vertex || piece.source == CPiece::Source::vertex_inner ||
+        piece.source == CPiece::Source::arc_inner) return false;
     const EnvSegment& seg = env_->segments[static_cast<std::size_t>(piece.segment)];
     auto concave_at_start = [&] { return seg.prev >= 0 && env_->segments[seg.prev].end_cone.width <= 0.0; };
     auto concave_at_end = [&] { return seg.next >= 0 && seg.end_cone.width <= 0.0; };
@@ -761,6 +807,9 @@ void Proxy::refine_on_curves(Vec2 goal) {
         const Bezier& b = env_->curves[static_cast<std::size_t>(ci)];
         const double s0 = bezier_nearest(b, c.point).s;
         const bool interior = c.source != CPiece::Source::endpoint;
+        // The pad's concave side on a curve: the arc spline's piece stands (within
+        // kExactCurveTolerance); the exact re-solve below is for the pad's outer side.
+        if (c.source == CPiece::Source::vertex_inner || c.source == CPiece::Source::arc_inner) continue;
         if (out_.contact_count == 1) {
             // One contact: the proxy is the exact nearest point of the c-space curve to the finger.
             if (interior) {
@@ -807,7 +856,8 @@ void Proxy::refine_corner() {
         const ProxyContact& c = out_.contacts[i];
         k[i].piece = &pieces_[static_cast<std::size_t>(contact_pieces_[i])];
         const int ci = env_->segments[static_cast<std::size_t>(c.segment)].curve;
-        if (ci >= 0) {
+        const bool inner = c.source == CPiece::Source::vertex_inner || c.source == CPiece::Source::arc_inner;
+        if (ci >= 0 && !inner) {  // an inner contact keeps its arc spline piece (refine_on_curves)
             any_curve = true;
             k[i].curve = &env_->curves[static_cast<std::size_t>(ci)];
             k[i].interior = c.source != CPiece::Source::endpoint;
