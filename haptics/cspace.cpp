@@ -19,7 +19,7 @@ constexpr double kEndpointCosTolerance = 1e-12;
 constexpr double kLineHandoverOverlap = 1e-12;
 // m: an arc_inner piece of smaller radius than this is a point, not a curve to slide along.
 constexpr double kMinInnerRadius = 1e-9;
-// rad: inner vertex pieces leave out this much of each side of the vertex's normal cone (below).
+// rad: inner vertex pieces of a needle's tip leave out this much of each side of its normal cone.
 constexpr double kInnerConeMargin = 1e-6;
 
 // The span of pad angles theta (rad) that can touch, for finger angle phi.
@@ -61,15 +61,20 @@ void append_vertex(int owner, Vec2 vertex, const AngleSpan& cone, const FingerSh
     // The concave side: both edges leave the vertex toward the centre, i.e. the pad's outward
     // direction u(theta) lies in the normal cone. Moving the vertex out of the pad's circle there
     // makes the edges cross the arc, so free space is inside.
-    // An edge along the pad's tangent (the cone's rim) only grazes the arc when the vertex leaves
-    // the circle: edges at an angle eps inside the rim cut the arc no deeper than eps^2 R / 2, so
-    // the rim's kInnerConeMargin is a block of at most ~1e-12 R, while keeping it made the cusp of a
-    // contour that doubles back on itself a phantom wall for a pad sliding over it.
-    if (cone.width <= 2.0 * kInnerConeMargin) return;
+    // At the tip of a needle (a contour doubling back on itself: cone width pi, both edges along
+    // the pad's tangent at the cone's rim) the edges only graze the arc when the vertex leaves the
+    // circle; the full cone made that tip a phantom wall for a pad sliding over a zero-thickness
+    // overlap. Only there the rim's kInnerConeMargin is left out (an edge eps inside the rim cuts
+    // the arc no deeper than eps^2 R / 2, ~1e-12 R). Elsewhere the rim must stay: it is where the
+    // next curve's arc_inner piece takes over, and a gap there let the pad through.
+    double lo = cone.start, width = cone.width;
+    if (width >= kPi - kInnerConeMargin) {
+        lo += kInnerConeMargin;
+        width -= 2.0 * kInnerConeMargin;
+    }
     p.source = CPiece::Source::vertex_inner;
     p.free_outside = false;
-    push_circle(out, p, {wrap_2pi(cone.start + kPi + kInnerConeMargin), cone.width - 2.0 * kInnerConeMargin},
-                {wrap_2pi(pads.start + kPi), pads.width});
+    push_circle(out, p, {wrap_2pi(lo + kPi), width}, {wrap_2pi(pads.start + kPi), pads.width});
 }
 
 void append_line(const EnvSegment& s, int index, const PadFrame& pad, std::vector<CPiece>& out) {

@@ -361,10 +361,10 @@ bool Proxy::inside_or_past_concave_end(const CPiece& piece, double param, double
 // onto, if any piece through `at` keeps t within its extent (a convex junction, or a tangential
 // one). If none does, t points into the wedge beyond both ends: at a concave junction that wedge
 // is solid, so piece i's own normal still decides (returns false).
-bool Proxy::handed_over(int i, Vec2 at, Vec2 t) const {
+bool Proxy::handed_over(int i, Vec2 at, Vec2 t, int ended) const {
     if (!leaves_range(pieces_[i], at, t)) return false;
     for (int j = 0; j < static_cast<int>(pieces_.size()); ++j) {
-        if (j == i || !piece_boxes_[static_cast<std::size_t>(j)].contains(at)) continue;
+        if (j == i || j == ended || !piece_boxes_[static_cast<std::size_t>(j)].contains(at)) continue;
         const CPiece& other = pieces_[j];
         if (std::abs(piece_signed_distance(other, at)) > kOnTolerance) continue;
         const double slack = other.kind == CPiece::Kind::line ? kOnTolerance : kOnTolerance / other.radius;
@@ -384,9 +384,27 @@ Vec2 Proxy::walk(Vec2 p, Vec2 goal) {
     for (int it = 0; it < kMaxWalkIterations; ++it) {
         work_.walk_steps = it + 1;
         if (active_count_ == 0) {
-            const Hit hit = first_entry_line(proxy_, goal, excluded, -1);
+            // The piece just slid off cannot be where the boundary continues: if the move toward
+            // the finger heads back over it (a circle's chord from its end into a concave
+            // junction), the neighbour through the junction is entered (fuzz-contact found the
+            // proxy leaving a terrain's valley corner into the solid).
+            const Hit hit = first_entry_line(proxy_, goal, excluded, -1, excluded);
+            const int ended = excluded;
             excluded = -1;
-            if (!hit.found) return goal;  // free motion all the way
+            if (!hit.found) {
+                // Off a piece's end at a concave junction, with the finger in the wedge beyond both
+                // pieces' ends: that wedge is solid, so the piece's own normal still decides
+                // (handed_over). The proxy rests at the junction; before, the straight move
+                // crossed the piece's extension into the solid (fuzz-contact: a terrain valley).
+                const Vec2 v = goal - proxy_;
+                if (ended >= 0 && glm::length(v) > 0.0 && pressing(pieces_[ended], proxy_, goal) &&
+                    !handed_over(ended, proxy_, v / glm::length(v))) {
+                    active_[0] = ended;
+                    active_count_ = 1;
+                    return proxy_;
+                }
+                return goal;  // free motion all the way
+            }
             proxy_ = hit.point;
             active_[0] = hit.piece;
             active_count_ = 1;
@@ -460,7 +478,7 @@ bool Proxy::try_release_corner(Vec2 goal) {
 }
 
 // ---- first_entry_line / first_entry_arc --------------------------------------------------------
-Proxy::Hit Proxy::first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b) const {
+Proxy::Hit Proxy::first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b, int ended) const {
     Hit best;
     const Vec2 v = q - p;
     const double len = glm::length(v);
@@ -484,7 +502,7 @@ Proxy::Hit Proxy::first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b)
             if (t >= best.s) continue;
             const Vec2 x = p + t * v;
             if (!piece_param_inside(piece, piece_param(piece, x), kOnTolerance)) continue;
-            if (t <= t_slack && handed_over(i, x, v / len)) continue;
+            if (t <= t_slack && handed_over(i, x, v / len, ended)) continue;
             best = {true, t, x, i};
         } else {
             if (piece.free_outside && std::abs(piece_signed_distance(piece, p)) <= kOnTolerance) {
@@ -494,7 +512,7 @@ Proxy::Hit Proxy::first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b)
                 if (0.0 >= best.s) continue;
                 const Vec2 radial = glm::normalize(p - piece.center);
                 if (glm::dot(v, radial) / len >= -graze_tolerance(piece)) continue;
-                if (handed_over(i, p, v / len)) continue;
+                if (handed_over(i, p, v / len, ended)) continue;
                 if (!piece_param_inside(piece, piece_param(piece, p), kOnTolerance / piece.radius)) continue;
                 best = {true, 0.0, p, i};
                 continue;
@@ -513,7 +531,7 @@ Proxy::Hit Proxy::first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b)
                 if (!piece_param_inside(piece, piece_param(piece, x), kOnTolerance / piece.radius)) {
                     continue;
                 }
-                if (t <= t_slack && handed_over(i, x, v / len)) continue;
+                if (t <= t_slack && handed_over(i, x, v / len, ended)) continue;
                 best = {true, std::max(t, 0.0), t < 0.0 ? p : x, i};
             }
         }

@@ -103,10 +103,10 @@ private:
     void gather_near(Vec2 finger, double phi_from, double phi_to, double reach, double end_reach);
     void build_pieces(double phi);                         // pieces_ of segment_ids_ at phi
     void depenetrate(double max_push);
-    bool handed_over(int i, Vec2 at, Vec2 t) const;
+    bool handed_over(int i, Vec2 at, Vec2 t, int ended = -1) const;
     bool inside_or_past_concave_end(const CPiece& piece, double param, double reach) const;
     Vec2 walk(Vec2 from, Vec2 goal);
-    Hit first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b) const;
+    Hit first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b, int ended = -1) const;
     Hit first_entry_arc(const CPiece& on, double s0, double s1, int exclude) const;
     bool try_release_corner(Vec2 goal);
     void collect_contacts(Vec2 goal);
