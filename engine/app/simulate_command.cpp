@@ -4,6 +4,7 @@
 #include "haptics/parameter_limits.hpp"
 
 #include "drivers/hand_path.hpp"
+#include "engine/app/start_inside_warning.hpp"
 #include "drivers/record_writer.hpp"
 #include "drivers/replay_device.hpp"
 #include "drivers/servo_loop.hpp"
@@ -75,6 +76,9 @@ std::unique_ptr<Device> make_device(const SimulateOptions& o, const Scene& scene
         }
     }
     path_duration = path.end() - path.start();
+    const PathPoint first = path.at(path.start());
+    const std::string warning = start_inside_warning("simulate", scene, path.start(), first.x, first.phi);
+    if (!warning.empty()) std::fprintf(stderr, "%s\n", warning.c_str());
     sim::SimCldParams sp;
     // The amplifiers' watchdog must outlast a period: at 100 Hz a tick comes every 10 ms.
     sp.watchdog_timeout = watchdog_timeout_for(o.rate);

@@ -1,4 +1,5 @@
 // trace_cli.cpp — the `trace` and `demo` subcommands on the command line.
+#include "engine/app/start_inside_warning.hpp"
 #include "engine/app/subcommands.hpp"
 #include "engine/app/trace_command.hpp"
 #include "haptics/scene_io.hpp"
@@ -36,6 +37,11 @@ int trace_main(const std::string& scene_path, const std::string& input, const st
     Scene scene = load_scene_file(scene_path);
     apply_overrides(scene, overrides);
     const auto samples = read_finger_samples_file(input);
+    if (!samples.empty()) {
+        const FingerSample& first = samples.front();
+        const std::string warning = start_inside_warning("trace", scene, first.t, first.x, first.phi);
+        if (!warning.empty()) std::fprintf(stderr, "%s\n", warning.c_str());
+    }
     const auto outputs = run_trace(scene, samples);
     write_trace_file(output, samples, outputs);
     std::size_t in_contact = 0;

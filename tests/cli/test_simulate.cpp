@@ -149,3 +149,16 @@ TEST_CASE("simulate runs the block task at the ends of the rate range without a 
         CHECK(contains(p.err, "state engaged, 0 fault(s)"));
     }
 }
+
+TEST_CASE("simulate: a hand path starting with the pad inside the floor is said, with its time and depth") {
+    TempDir dir;
+    const double R = kFlatR;
+    const std::string inside = samples_csv({{0.0, 0.0, R - 0.002, 0.0}, {0.2, 0.0, R + 0.01, 0.0}});
+    const SimRun r = run_simulate(dir, scene("flat.json"), inside, {});
+    REQUIRE(r.proc.exit_code == 0);
+    CHECK(r.proc.err.find("simulate: warning: the first hand sample (t = 0 s") != std::string::npos);
+    CHECK(r.proc.err.find("2.000 mm inside a solid") != std::string::npos);
+    const SimRun clear = run_simulate(dir, scene("flat.json"), tilt_hand(), {});
+    REQUIRE(clear.proc.exit_code == 0);
+    CHECK(clear.proc.err.find("warning") == std::string::npos);
+}

@@ -286,3 +286,23 @@ TEST_CASE("trace rejects absurd force-law options with exit 2 naming them") {
         CHECK_FALSE(r.output_exists);
     }
 }
+
+TEST_CASE("trace: a first sample with the pad inside the floor is said, with its time and depth; the output is unchanged") {
+    TempDir dir;
+    // Pad bottom 1.5 mm below the floor from the start, then up and out, then down 1 mm onto it.
+    const double R = kFlatR;
+    const std::vector<Sample> in = {{0.25, 0.0, R - 0.0015, 0.0}, {0.251, 0.0, R + 0.002, 0.0}, {0.252, 0.0, R - 0.001, 0.0}};
+    const TraceRun r = run_trace(dir, scene("flat.json"), samples_csv(in));
+    REQUIRE(r.proc.exit_code == 0);
+    CHECK(r.proc.err.find("trace: warning: the first hand sample (t = 0.25 s") != std::string::npos);
+    CHECK(r.proc.err.find("1.500 mm inside a solid") != std::string::npos);
+    REQUIRE(r.csv.rows.size() == 3);
+    CHECK(r.csv.rows[0][CONTACT] == 0.0);  // no history: the proxy starts at the hand
+    CHECK(r.csv.rows[2][CONTACT] == 1.0);  // came from above: the floor is felt, 1 mm deep
+    CHECK(std::abs(r.csv.rows[2][DEPTH] - 0.001) <= kTol);
+
+    const std::vector<Sample> clear = {{0.0, 0.0, R + 0.001, 0.0}, {0.001, 0.0, R - 0.001, 0.0}};
+    const TraceRun quiet = run_trace(dir, scene("flat.json"), samples_csv(clear));
+    REQUIRE(quiet.proc.exit_code == 0);
+    CHECK(quiet.proc.err.find("warning") == std::string::npos);
+}
