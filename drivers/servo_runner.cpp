@@ -115,4 +115,16 @@ void ServoRunner::run() noexcept {
     done_.store(true, std::memory_order_release);
 }
 
+int reserve_servo_core() {
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    if (sched_getaffinity(0, sizeof set, &set) != 0 || CPU_COUNT(&set) < 2) return -1;
+    int last = -1;
+    for (int c = 0; c < CPU_SETSIZE; ++c)
+        if (CPU_ISSET(c, &set)) last = c;
+    CPU_CLR(last, &set);
+    if (sched_setaffinity(0, sizeof set, &set) != 0) return -1;
+    return last;
+}
+
 }  // namespace contactlab::drivers

@@ -37,6 +37,11 @@ struct RunnerOptions {
     TickBoundaryHook* hook = nullptr;
 };
 
+// Splits the process's CPUs: removes the last one from the calling thread's affinity (so every
+// thread it starts later, a Vulkan driver's included, stays off it) and returns it for
+// RunnerOptions::core. -1 (and nothing changed) with fewer than two CPUs.
+int reserve_servo_core();
+
 class ServoRunner {
 public:
     ServoRunner(ServoLoop& loop, const RunnerOptions& options);

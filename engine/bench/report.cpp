@@ -28,8 +28,10 @@ std::string fmt(const char* f, double v) {
 
 // ns as a readable figure: 950 ns, 1.52 us, 3.10 ms.
 std::string duration(double ns) {
-    if (ns < 1e3) return fmt("%.0f ns", ns);
-    if (ns < 1e6) return fmt("%.3g us", ns / 1e3);
+    // The thresholds sit where %.3g would round up to the next unit (999.95 us is "1.00 ms", not
+    // "1e+03 us").
+    if (ns < 999.5) return fmt("%.0f ns", ns);
+    if (ns < 999.5e3) return fmt("%.3g us", ns / 1e3);
     return fmt("%.3g ms", ns / 1e6);
 }
 
@@ -112,6 +114,22 @@ nlohmann::json results_json(const BenchResults& r) {
                                                         {"max", row.frame.max_ns / 1e6},
                                                         {"frames", row.frame.ticks},
                                                         {"triangles", row.triangles}};
+    // The servo's period (us) alone and beside the renderer (servo_beside_renderer.hpp).
+    const ServoBesideRenderer& sb = r.servo_beside;
+    if (!sb.skipped.empty()) {
+        j["servo_beside_renderer"]["skipped"] = sb.skipped;
+    } else {
+        auto period = [](const ServoPeriodFigures& f) {
+            return nlohmann::json{{"p50_us", f.p50 * 1e6}, {"p99_us", f.p99 * 1e6}, {"max_us", f.max * 1e6},
+                                  {"overruns", f.overruns}, {"ticks", f.ticks}};
+        };
+        j["servo_beside_renderer"] = {{"alone", period(sb.alone)},
+                                      {"beside", period(sb.beside)},
+                                      {"p99_ratio", sb.alone.p99 > 0.0 ? sb.beside.p99 / sb.alone.p99 : 0.0},
+                                      {"fps", sb.fps},
+                                      {"device", sb.device},
+                                      {"scheduling", sb.scheduling}};
+    }
     return j;
 }
 
@@ -198,6 +216,23 @@ std::string results_markdown(const BenchResults& r, const ReportPlots* plots) {
                   duration(row.frame.median_ns) + " | " + duration(row.frame.p99_ns) + " | " +
                   duration(row.frame.max_ns) + " | " + std::to_string(row.frame.ticks) + " |\n";
         md += figure(plots, "render_frame.png");
+    }
+    const ServoBesideRenderer& sb = r.servo_beside;
+    md += "\n## Servo beside renderer (1 kHz, sim-cld block task)\n\n";
+    if (!sb.skipped.empty()) {
+        md += "Skipped: " + sb.skipped + "\n";
+    } else {
+        md += fmt("Each phase %.0f s; servo ", sb.seconds) + sb.scheduling + "; renderer " + sb.device +
+              fmt(", 1280x720 offscreen frames as fast as it goes (%.1f fps) on the other CPUs.\n\n", sb.fps) +
+              "| servo | period p50 | p99 | max | overruns / ticks |\n| --- | ---: | ---: | ---: | ---: |\n";
+        auto row = [&](const char* name, const ServoPeriodFigures& f) {
+            md += std::string("| ") + name + " | " + duration(f.p50 * 1e9) + " | " + duration(f.p99 * 1e9) + " | " +
+                  duration(f.max * 1e9) + " | " + std::to_string(f.overruns) + " / " + std::to_string(f.ticks) + " |\n";
+        };
+        row("alone", sb.alone);
+        row("beside the renderer", sb.beside);
+        md += fmt("\np99 beside / alone: %.3f (issue 15's goal: at most 1.1).\n",
+                  sb.alone.p99 > 0.0 ? sb.beside.p99 / sb.alone.p99 : 0.0);
     }
     return md;
 }

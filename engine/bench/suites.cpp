@@ -234,6 +234,7 @@ BenchResults run_suites(const BenchOptions& options) {
     r.roller = roller_tracking_table(options.quick);
     r.roller_bandwidth_hz = roller_bandwidth_hz(options.quick);
     r.render = render_frame_suite(options.quick);
+    r.servo_beside = servo_beside_renderer(options.quick);
     return r;
 }
 

@@ -8,6 +8,7 @@
 
 #include "engine/bench/cost_scenes.hpp"
 #include "engine/bench/render_frames.hpp"
+#include "engine/bench/servo_beside_renderer.hpp"
 #include "engine/bench/tick_stats.hpp"
 #include "drivers/sim/bench_probes.hpp"
 #include "haptics/scene.hpp"
@@ -64,6 +65,7 @@ struct BenchResults {
     std::vector<FeatureRow> features;
     std::vector<ParetoRow> pareto;
     RenderFrameResults render;                    // offscreen frame time (engine/render)
+    ServoBesideRenderer servo_beside;             // the real-time servo's period, alone and drawing
 };
 
 BenchResults run_suites(const BenchOptions& options);

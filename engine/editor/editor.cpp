@@ -1,6 +1,7 @@
 // editor.cpp — the editor's frame loop: events -> ImGui + canvas (or script) -> servo publish ->
 // draw list (the shared scene drawer + the editor's marks) -> window target (+ ImGui) -> present.
 #include "engine/editor/editor.hpp"
+#include "engine/editor/x_server_affinity.hpp"
 
 #include "engine/editor/canvas.hpp"
 #include "engine/editor/display.hpp"
@@ -180,6 +181,10 @@ int run_editor(const EditorOptions& o) {
     }
 
     Window window(o.width, o.height, "ContactLab editor");
+    // The X server too, when it is a local Xvfb (x_server_affinity.hpp: its frame copies ran on
+    // the servo's core and made the late ticks).
+    const std::string x_affinity = keep_x_server_off_core(servo_core);
+    if (!x_affinity.empty()) std::fprintf(stderr, "contactlab edit: %s\n", x_affinity.c_str());
     render::ContextOptions copt;
     copt.software = o.software;
     copt.validation = o.validation;

@@ -219,6 +219,23 @@ TEST_CASE("bench --quick --report: every PNG decodes at the plot size, render_ms
         CHECK(j["render_ms"][n]["frames"].get<int>() >= 1);
     }
     CHECK_FALSE(j["render_device"].get<std::string>().empty());
+    // The servo beside the renderer: 2 s a phase at 1 kHz, or the reason it could not run.
+    const nlohmann::json& sb = j["servo_beside_renderer"];
+    if (sb.contains("skipped")) {
+        CHECK_FALSE(sb["skipped"].get<std::string>().empty());
+        CHECK(md.find("## Servo beside renderer") != std::string::npos);
+    } else {
+        for (const char* phase : {"alone", "beside"}) {
+            CAPTURE(phase);
+            CHECK(sb[phase]["ticks"].get<int>() == 2000);
+            const double p50 = sb[phase]["p50_us"].get<double>(), p99 = sb[phase]["p99_us"].get<double>();
+            CHECK(p50 > 0.0);
+            CHECK(p99 >= p50);
+            CHECK(sb[phase]["max_us"].get<double>() >= p99);
+        }
+        CHECK(sb["fps"].get<double>() > 0.0);
+        CHECK(md.find("| beside the renderer | ") != std::string::npos);
+    }
     // Every cost-growth case has its contact and free-space (hover) tick times.
     for (const char* key : {"lines", "arcs", "curves", "lines_dense", "arcs_dense", "curves_dense"}) {
         for (const char* n : {"10", "1000", "100000"}) {
