@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <set>
+#include <thread>
 
 using namespace cli_test;
 using namespace contactlab;
@@ -84,6 +85,13 @@ TEST_CASE("--frames 3 --screenshot writes the swapchain image at the window's si
     CHECK(bar[0] == 36);
     CHECK(bar[1] == 36);
     CHECK(bar[2] == 36);
+    // Under xvfb-run the X server is a local Xvfb: with two CPUs or more it is kept off the servo's
+    // (x_server_affinity.hpp), and the line says which.
+    if (std::thread::hardware_concurrency() >= 2) {
+        CHECK(contains(p.err, "contactlab edit: Xvfb (pid "));
+        CHECK(contains(p.err, "kept off the servo's CPU"));
+        CHECK_FALSE(contains(p.err, "refused"));
+    }
     const double open_ms = window_open_ms(p.err);
     MESSAGE("window open (first frame presented) after " << open_ms << " ms");
     CHECK(open_ms > 0.0);
