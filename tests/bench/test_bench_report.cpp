@@ -10,6 +10,7 @@
 #include "engine/bench/report.hpp"
 #include "engine/render/image.hpp"
 
+#include <algorithm>
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
 
@@ -219,6 +220,20 @@ TEST_CASE("bench --quick --report: every PNG decodes at the plot size, render_ms
         CHECK(j["render_ms"][n]["frames"].get<int>() >= 1);
     }
     CHECK_FALSE(j["render_device"].get<std::string>().empty());
+    // What the user reads: one header, none of the library's per-run context or warnings, the
+    // summary tables (issue 19: it was ~800 lines with 80 "built as DEBUG" warnings).
+    const std::string out = read_text(CONTACTLAB_BENCH_QUICK_STDOUT);
+    auto count = [&](const std::string& what) {
+        std::size_t n = 0;
+        for (std::size_t at = out.find(what); at != std::string::npos; at = out.find(what, at + 1)) ++n;
+        return n;
+    };
+    CHECK(count("contactlab bench: Google Benchmark on ") == 1);
+    CHECK(count("WARNING") == 0);
+    CHECK(count("Running contactlab-bench") == 0);
+    CHECK(count("## Render frame time") == 1);
+    CHECK(count("## Servo beside renderer") == 1);
+    CHECK(std::count(out.begin(), out.end(), '\n') < 250);
     // The servo beside the renderer: 2 s a phase at 1 kHz, or the reason it could not run.
     const nlohmann::json& sb = j["servo_beside_renderer"];
     if (sb.contains("skipped")) {
