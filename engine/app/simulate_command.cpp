@@ -5,6 +5,7 @@
 
 #include "drivers/hand_path.hpp"
 #include "engine/app/start_inside_warning.hpp"
+#include "engine/app/task_scene_check.hpp"
 #include "drivers/record_writer.hpp"
 #include "drivers/replay_device.hpp"
 #include "drivers/servo_loop.hpp"
@@ -67,6 +68,7 @@ std::unique_ptr<Device> make_device(const SimulateOptions& o, const Scene& scene
         BlockTaskParams bp;
         bp.finger_radius = scene.finger.radius;
         bp.speed = o.task_speed;
+        check_block_task_scene(scene, bp);
         path = contour_block_task(bp);
     } else {
         try {

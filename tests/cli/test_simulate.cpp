@@ -162,3 +162,18 @@ TEST_CASE("simulate: a hand path starting with the pad inside the floor is said,
     REQUIRE(clear.proc.exit_code == 0);
     CHECK(clear.proc.err.find("warning") == std::string::npos);
 }
+
+TEST_CASE("simulate --task contour-block refuses a scene that is not seed 000's block, naming the probe it failed") {
+    TempDir dir;
+    for (const char* other : {"flat.json", "bowl.json", "steps.json"}) {
+        CAPTURE(other);
+        const std::string out = dir.file("out.csv");
+        const auto p = run_contactlab({"simulate", scene(other), "--task", "contour-block", "-o", out});
+        CHECK(p.exit_code == 2);
+        CHECK(p.err.find("--task contour-block: the scene is not seed 000's block") != std::string::npos);
+        CHECK(p.err.find(" m is ") != std::string::npos);  // the probe point that failed
+        CHECK_FALSE(fs::exists(out));
+    }
+    const auto ok = run_contactlab({"simulate", scene("block.json"), "--task", "contour-block", "-o", dir.file("b.csv")});
+    CHECK(ok.exit_code == 0);
+}
