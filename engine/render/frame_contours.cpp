@@ -2,8 +2,10 @@
 //
 // Closed contours are filled inside. An open (terrain) chain is filled on its solid side (the
 // right of travel) down to beyond the view's edge: the polygon is the chain, then from its end
-// out along the end's solid-side normal, across to the same distance beyond the start, and back
-// to the start. The fill's edge is aliased (stencil); the anti-aliased contour stroke covers it.
+// out along the axis direction nearest the chord's right normal (straight down for a terrain
+// drawn left to right), across to the same distance beyond the start, and back to the start. A chain that
+// crosses itself or the sweep is filled by the nonzero rule. The fill's edge is aliased
+// (stencil); the anti-aliased contour stroke covers it.
 #include "engine/render/frame_parts.hpp"
 
 #include <algorithm>
@@ -89,14 +91,25 @@ void draw_solids(const Scene& scene, const View& view, const Theme& theme, const
         if (contour.segments.empty()) continue;
         pts = outlines[i];
         if (!contour.closed) {
+            // Swept from the chain in one direction past the view's edge: the axis direction
+            // nearest the chord's right normal, i.e. straight down for a terrain drawn left to
+            // right, up for a ceiling drawn right to left. Each end's own normal (as before) made
+            // a chain that rises or tilts at its ends, like seed 002's bump stimuli, fill a
+            // crossed polygon: the nonzero rule then left most of the solid under the surface
+            // empty, a sliver along it (issue 19).
             const Vec2 start = segment_start(contour.segments.front());
             const Vec2 end = segment_end(contour.segments.back());
-            const Vec2 n_start = solid_normal(segment_start_tangent(contour.segments.front()));
-            const Vec2 n_end = solid_normal(segment_end_tangent(contour.segments.back()));
+            Vec2 normal = solid_normal(end - start);
+            if (!(glm::length(normal) > 1e-12)) {  // the chain comes back to its start: its ends' normals
+                normal = solid_normal(segment_start_tangent(contour.segments.front())) +
+                         solid_normal(segment_end_tangent(contour.segments.back()));
+            }
+            const Vec2 down = std::abs(normal.x) > std::abs(normal.y) ? Vec2{normal.x > 0.0 ? 1.0 : -1.0, 0.0}
+                                                                      : Vec2{0.0, normal.y > 0.0 ? 1.0 : -1.0};
             // Far points measured from the view's centre distance, so they always leave the view.
             const double reach = beyond + glm::length(end - view.center) + glm::length(start - view.center);
-            pts.push_back(view.to_px(end + n_end * reach));
-            pts.push_back(view.to_px(start + n_start * reach));
+            pts.push_back(view.to_px(end + down * reach));
+            pts.push_back(view.to_px(start + down * reach));
         }
         out.fill_polygon(pts, theme.solid_fill);
     }

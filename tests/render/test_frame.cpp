@@ -4,6 +4,7 @@
 
 #include "engine/render/frame.hpp"
 #include "engine/render/offscreen.hpp"
+#include "haptics/stimuli.hpp"
 
 #include <doctest/doctest.h>
 
@@ -223,5 +224,56 @@ TEST_CASE("frame: labels are drawn only when asked (goldens carry no text), the 
     const Vec2 pad_point = c.finger->finger + def.finger.radius * unit_at(-0.5 * kPi + 0.005 / def.finger.radius);
     CHECK(near_color(roller, view.to_px(pad_point), dark_theme().target));
     CHECK_FALSE(near_color(plain, view.to_px(pad_point), dark_theme().target));
+    CHECK(lavapipe().validation_messages() == 0);
+}
+
+TEST_CASE("frame: open chains fill straight down from the surface, whatever their ends do (seed 002's bumps, a V)") {
+    const Theme& t = dark_theme();
+    // A surface point p with unit tangent `along` and the solid below it: 6 px below is fill, 6 px
+    // above is not (6 px from the surface across it: clear of the stroke and its fringe).
+    auto check_below = [&](const RenderResult& r, Vec2 p, Vec2 along = {1.0, 0.0}) {
+        CAPTURE(p.x);
+        CAPTURE(p.y);
+        if (std::abs(along.x) < 0.2) return;  // a near-vertical flank: straight down runs along it
+        const double off = 6.0 / r.view.px_per_m / std::abs(along.x);  // m
+        // The anticipation line (finger to its anticipated contact) is drawn over the fill: a
+        // probe within 4 px of it says nothing about the fill.
+        if (r.proxy.anticipating) {
+            const Vec2 a = r.proxy.finger, b = r.proxy.anticipated_point, q = p + Vec2{0.0, -off};
+            const double s = std::clamp(glm::dot(q - a, b - a) / glm::dot(b - a, b - a), 0.0, 1.0);
+            if (glm::length(q - (a + s * (b - a))) * r.view.px_per_m < 4.0) return;
+        }
+        CHECK(rgb_equal(r.image, r.view.to_px(p + Vec2{0.0, -off}), t.solid_fill));
+        CHECK_FALSE(rgb_equal(r.image, r.view.to_px(p + Vec2{0.0, off}), t.solid_fill));
+    };
+    SUBCASE("bumps, seeds 7, 3 and 11: a profile that rises overall and ends on falling slopes") {
+        for (const std::uint64_t seed : {7ull, 3ull, 11ull}) {
+            CAPTURE(seed);
+            BumpsDef def;
+            def.seed = seed;
+            const Scene scene = generate_bumps(def).scene;
+            RenderRequest req;
+            req.width = 640;
+            req.height = 480;
+            req.finger = FingerPose{{0.09, 0.3}, 0.0};  // far above, out of the way
+            const RenderResult r = render_scene(lavapipe(), scene, req);
+            const Contour& chain = scene.contours.front();
+            REQUIRE_FALSE(chain.closed);
+            // Every 8th segment's end, away from the chain's two ends.
+            for (std::size_t i = 4; i + 4 < chain.segments.size(); i += 8)
+                check_below(r, segment_end(chain.segments[i]), segment_end_tangent(chain.segments[i]));
+        }
+    }
+    SUBCASE("a V whose arms end above the view") {
+        Contour v{false, {LineSegment{{-0.3, 0.4}, {0.0, -0.02}}, LineSegment{{0.0, -0.02}, {0.3, 0.4}}}};
+        RenderRequest req;
+        req.width = 400;
+        req.height = 300;
+        req.finger = FingerPose{{0.0, 0.05}, 0.0};
+        const RenderResult r = render_scene(lavapipe(), scene_of({v}), req);
+        check_below(r, {0.0, -0.02});
+        check_below(r, {-0.02, -0.02 + 0.42 * 0.02 / 0.3}, glm::normalize(Vec2{0.3, -0.42}));
+        check_below(r, {0.02, -0.02 + 0.42 * 0.02 / 0.3}, glm::normalize(Vec2{0.3, 0.42}));
+    }
     CHECK(lavapipe().validation_messages() == 0);
 }
