@@ -85,4 +85,18 @@ Bezier segment_bezier(const Segment& s) {
     return bezier_of(std::get<CubicSegment>(s));
 }
 
+void set_force_model(ForceDef& force, ForceModel model) {
+    if (force.law.model == model) return;
+    ForceLaw& law = force.law;
+    if (model == ForceModel::ellipsoid) {
+        const bool has_e = law.k_tangential > 0.0 && law.k_normal > 0.0 && std::isfinite(law.k_normal / law.k_tangential);
+        const double e = has_e ? law.k_normal / law.k_tangential : 1.0;
+        law.k_normal = force.stiffness;
+        law.k_tangential = force.stiffness / e;
+    } else {
+        force.stiffness = law.k_normal;
+    }
+    law.model = model;
+}
+
 }  // namespace contactlab

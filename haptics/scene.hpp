@@ -77,6 +77,13 @@ struct ForceDef {
     ForceLaw law;               // model, ellipsoid stiffnesses, damping, friction (force_law.hpp)
 };
 
+// Switches the force model keeping the stiffness the user feels pressing straight in: to the
+// ellipsoid, k_normal = Ke and k_tangential = Ke / e with the eccentricity e = k_normal /
+// k_tangential the scene already had (1 for a fresh scene: the same wall, anisotropy then added
+// by e); back to the spring, Ke = k_normal. Setting the model alone left k_n = k_t = 1000 N/m
+// under a 1500 N/m spring: the wall softened by a third on a click (issue 19).
+void set_force_model(ForceDef& force, ForceModel model);
+
 // How curves (quad, cubic) become the lines and arcs the proxy touches (bezier.hpp):
 //   exact   — an arc spline within 1e-10 m of the curve (G1, so force and l_d stay continuous);
 //   flatten — chords within `tolerance` m: cheaper to build and to touch, error up to tolerance.

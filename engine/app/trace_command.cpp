@@ -43,10 +43,11 @@ void apply_overrides(Scene& scene, const SceneOverrides& o) {
     ForceLaw& law = scene.force.law;
     if (o.force_model) {
         given += std::string(given.empty() ? "" : ", ") + "--force-model " + *o.force_model;
+        // As in the editor: the switch keeps the stiffness felt pressing straight in (scene.hpp).
         if (*o.force_model == "spring") {
-            law.model = ForceModel::spring;
+            set_force_model(scene.force, ForceModel::spring);
         } else if (*o.force_model == "ellipsoid") {
-            law.model = ForceModel::ellipsoid;
+            set_force_model(scene.force, ForceModel::ellipsoid);
         } else {
             throw SceneError("command-line options (" + given + "): expected spring or ellipsoid");
         }

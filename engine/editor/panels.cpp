@@ -274,7 +274,7 @@ void tuning_window(EditorState& s) {
     int model = sc.force.law.model == ForceModel::spring ? 0 : 1;
     if (ImGui::Combo("model", &model, "spring\0ellipsoid\0")) {
         Scene c = sc;
-        c.force.law.model = model == 0 ? ForceModel::spring : ForceModel::ellipsoid;
+        set_force_model(c.force, model == 0 ? ForceModel::spring : ForceModel::ellipsoid);
         s.doc.edit(std::move(c), "force model");
     }
     const double kmax = s.device ? s.device->limits().max_stable_stiffness : 2000.0;

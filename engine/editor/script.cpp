@@ -156,7 +156,7 @@ bool Script::run(EditorState& s, const Line& line, double now) {
         const std::string& n = w[1];
         if (n == "model") {
             if (w[2] != "spring" && w[2] != "ellipsoid") throw ScriptError("model: spring or ellipsoid");
-            sc.force.law.model = w[2] == "spring" ? ForceModel::spring : ForceModel::ellipsoid;
+            set_force_model(sc.force, w[2] == "spring" ? ForceModel::spring : ForceModel::ellipsoid);
         } else if (n == "rule") {
             if (w[2] != "centroid" && w[2] != "least_displacement") throw ScriptError("rule: centroid or least_displacement");
             sc.contact_location.rule = w[2] == "centroid" ? ContactRule::centroid : ContactRule::least_displacement;

@@ -51,3 +51,25 @@ TEST_CASE("tuning: usable roller travel holds the roller target, e and k set the
     CHECK_FALSE(contains(p.err, "FAILED"));
     CHECK(contains(p.err, "validation layers on, 0 messages"));
 }
+
+TEST_CASE("tuning: switching the force model keeps the wall's stiffness (k_n = Ke there, Ke = k_n back) and e") {
+    TempDir dir;
+    const std::string script = dir.file("model.txt");
+    write_text(script,
+               "set ke 1500\n"
+               "set model ellipsoid\n"
+               "expect k_n 1500 0.000001\nexpect k_t 1500 0.000001\n"
+               // Seed 004's e holds the total stiffness k (eq. 3): k_t = 1500 sqrt(2), k_n = k_t / 2.
+               "set eccentricity 0.5\n"
+               "expect k_n 1060.660172 0.00001\n"
+               "set model spring\n"
+               "expect ke 1060.660172 0.00001\n"
+               "set ke 1200\n"
+               "set model ellipsoid\n"
+               "expect k_n 1200 0.000001\nexpect k_t 2400 0.000001\n"
+               "quit\n");
+    const auto p = run_under_xvfb({"edit", "--script", script, "--software", "--timeout", "60"});
+    INFO("stderr: " << p.err);
+    CHECK(p.exit_code == 0);
+    CHECK_FALSE(contains(p.err, "FAILED"));
+}

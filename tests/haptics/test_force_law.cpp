@@ -218,3 +218,28 @@ TEST_CASE("sum over contact pairs: a thin wall's far face never pushes the finge
     CHECK(std::abs(o.force.x - (-Ke * d)) <= 1e-9);
     CHECK(std::abs(o.force.y) <= 1e-12);
 }
+
+TEST_CASE("switching the force model keeps the stiffness felt pressing straight in, and the eccentricity") {
+    ForceDef f;
+    f.stiffness = 1500.0;  // N/m
+    set_force_model(f, ForceModel::ellipsoid);
+    CHECK(f.law.model == ForceModel::ellipsoid);
+    CHECK(f.law.k_normal == 1500.0);
+    CHECK(f.law.k_tangential == 1500.0);  // e = 1: the same wall
+    // Pressing straight in (p along the normal) the ellipsoid gives k_normal |p|, as the spring did.
+    const Vec2 n{0.0, 1.0};
+    const Vec2 p{0.0, -0.001};
+    CHECK(glm::length(ellipsoid_force(p, n, f.law.k_tangential, f.law.k_normal)) == doctest::Approx(1.5).epsilon(1e-12));
+    // The user adds anisotropy (e = 0.4), goes back to the spring and raises Ke: e is kept.
+    f.law.k_tangential = f.law.k_normal / 0.4;
+    set_force_model(f, ForceModel::spring);
+    CHECK(f.stiffness == 1500.0);
+    f.stiffness = 2000.0;
+    set_force_model(f, ForceModel::ellipsoid);
+    CHECK(f.law.k_normal == 2000.0);
+    CHECK(f.law.k_normal / f.law.k_tangential == doctest::Approx(0.4).epsilon(1e-12));
+    // Switching to the model in use changes nothing.
+    const ForceDef before = f;
+    set_force_model(f, ForceModel::ellipsoid);
+    CHECK(f.law.k_tangential == before.law.k_tangential);
+}
