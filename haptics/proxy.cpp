@@ -145,6 +145,14 @@ void Proxy::reset(Vec2 finger, double phi) {
     active_count_ = 0;
 }
 
+void Proxy::place(Vec2 proxy, double phi, double max_push) {
+    reset(proxy, phi);
+    if (!(max_push > 0.0)) return;
+    gather_within_reach(proxy, phi, max_push + kOnTolerance);
+    build_pieces(phi);
+    depenetrate(max_push);
+}
+
 // ---- Proxy::update ------------------------------------------------------------------------------
 const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
     if (!initialised_) reset(finger, phi);

@@ -82,6 +82,12 @@ public:
 
     // Places the proxy at the finger (no history), e.g. when a device connects.
     void reset(Vec2 finger, double phi);
+    // Places the proxy at `proxy` (m) with angle phi (rad), a position remembered from before
+    // (the last proxy of a servo being restarted at another rate or on another device, or of the
+    // scene before an edit), then pushes it out of any solid it now lies inside by at most
+    // `max_push` (m), along the nearest boundary: the least displacement. Allocation-free once
+    // the proxy's buffers have grown (the servo calls it in a tick).
+    void place(Vec2 proxy, double phi, double max_push);
     // One servo tick: measured finger centre x_f (m) and angle phi (rad); dt (s) since the last
     // tick matters only for damping.
     const ProxyOutput& update(Vec2 finger, double phi, double dt = kDefaultServoPeriod);

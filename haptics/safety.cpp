@@ -1,4 +1,4 @@
-// safety.cpp — clamp/saturate, engage gate + ramp + fault latch, passivity observer.
+// safety.cpp — clamp/saturate, ramp-in + fault latch, passivity observer.
 #include "haptics/safety.hpp"
 
 #include <algorithm>
@@ -40,7 +40,7 @@ const char* to_string(ServoFault f) noexcept {
 
 void SafetySupervisor::connect(double t) noexcept {
     if (state_ == ServoState::fault) return;
-    state_ = ServoState::arming;
+    state_ = ServoState::ramping;
     since_ = t;
 }
 
@@ -59,7 +59,7 @@ void SafetySupervisor::raise(ServoFault f, double t) noexcept {
     since_ = t;  // a persisting cause keeps extending the hold
 }
 
-double SafetySupervisor::step(double t, double commanded_force) noexcept {
+double SafetySupervisor::step(double t) noexcept {
     switch (state_) {
         case ServoState::idle: return 0.0;
         case ServoState::fault: {
@@ -68,15 +68,12 @@ double SafetySupervisor::step(double t, double commanded_force) noexcept {
             if (held && (!latched || clear_requested_)) {
                 clear_requested_ = false;
                 fault_ = ServoFault::none;
-                state_ = ServoState::arming;
+                state_ = ServoState::ramping;
                 since_ = t;
             }
             return 0.0;
         }
-        case ServoState::arming:
-            // Never switch on into a large force (finger starting inside an object): wait until
-            // the user has backed out to where the commanded force is small.
-            if (!(commanded_force < p_.engage_force)) return 0.0;
+        case ServoState::arming:  // not entered any more; treated as the start of a ramp
             state_ = ServoState::ramping;
             since_ = t;
             return 0.0;

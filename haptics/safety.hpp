@@ -1,6 +1,6 @@
 // safety.hpp — what stands between the rendered force and the motors (DESIGN.md "Threads and
 // safety"): magnitude clamp (direction kept) then per-axis saturation, a NaN/Inf guard, the
-// engage gate and ramp-in after connect or fault, stall detection, and a passivity observer that
+// ramp-in after connect, fault clear or emergency-stop release, stall detection, and a passivity observer that
 // turns a loop going unstable into a reported fault instead of a growing oscillation.
 #pragma once
 
@@ -16,8 +16,8 @@ Vec2 clamp_then_saturate(Vec2 f, double max_force, Vec2 axis_max) noexcept;
 
 enum class ServoState : std::uint8_t {
     idle,        // no device / not started: output zero
-    arming,      // connected or re-armed: output zero until the commanded force is small
-    ramping,     // force scaled up linearly from 0 to 1 over the ramp time
+    arming,      // no longer entered (kept so recorded state codes keep their numbers, see ramp_time)
+    ramping,     // connected or re-armed: force scaled up linearly from 0 to 1 over the ramp time
     engaged,     // full force
     fault,       // output zero; see ServoFault
 };
@@ -35,14 +35,18 @@ const char* to_string(ServoState s) noexcept;
 const char* to_string(ServoFault f) noexcept;
 
 struct SafetyParams {
-    double engage_force = 0.05;   // N: the commanded force must fall below this to engage
-    double ramp_time = 0.25;      // s: 0 -> full force after engaging
+    // s: after connect, a fault cleared or the emergency stop released, the force scale rises
+    // linearly from 0 to 1 over this time, starting at once, whatever the commanded force: the
+    // user feels the wall come back within ramp_time, never above its steady Ke d (the scale is
+    // at most 1). It used to wait, at zero, until the commanded force fell below 0.05 N, so a
+    // finger resting in a wall after a switch felt nothing for as long as it stayed (issue 15).
+    double ramp_time = 0.2;
     double fault_hold = 0.5;      // s: a fault holds output at zero at least this long
     double watchdog_timeout = 0.005;  // s: a gap between ticks longer than this is a stall
     bool latch_instability = true;    // an instability fault needs clear_fault() to re-arm
 };
 
-// Engage gate, ramp and fault latch. step() returns the scale (0..1) applied to the force.
+// Ramp-in and fault latch. step() returns the scale (0..1) applied to the force.
 class SafetySupervisor {
 public:
     void set_params(const SafetyParams& p) noexcept { p_ = p; }
@@ -53,8 +57,8 @@ public:
     void raise(ServoFault f, double t) noexcept; // enter fault at time t (s); first reason kept
     void clear_fault() noexcept { clear_requested_ = true; }
 
-    // Once per tick at time t (s) with the unscaled commanded force magnitude (N).
-    double step(double t, double commanded_force) noexcept;
+    // Once per tick at time t (s).
+    double step(double t) noexcept;
 
     ServoState state() const noexcept { return state_; }
     ServoFault fault() const noexcept { return fault_; }

@@ -70,7 +70,6 @@ std::string servo_params_problem(const ServoParams& p, const ServoConfig& c) {
           range("passivity_threshold", p.passivity_threshold, 0.0, std::numeric_limits<double>::max(),
                 "x the spring's linear energy", true),
           range("roller_travel", p.roller_travel, 0.0, 1.0, "m (0: the device's whole travel)"),
-          range("safety.engage_force", p.safety.engage_force, 0.0, kMaxForceLimit, "N"),
           range("safety.ramp_time", p.safety.ramp_time, 0.0, 60.0, "s"),
           range("safety.fault_hold", p.safety.fault_hold, 0.0, 60.0, "s"),
           range("safety.watchdog_timeout", p.safety.watchdog_timeout, 0.0, 1.0, "s", true), roller_gains_problem(p.roller)})

@@ -109,21 +109,26 @@ void ServoTick::apply_params(double dt) noexcept {
     observer_.set_params({config_.device_damping, current_.passivity_threshold * linear_energy, 0.5});
 }
 
+void ServoTick::seed_proxy(Vec2 proxy, double phi) noexcept {
+    if (!is_finite(proxy) || !std::isfinite(phi)) return;
+    seeded_ = true;
+    seed_ = proxy;
+    seed_phi_ = phi;
+}
+
 void ServoTick::swap_scene(const ServoInput& in) noexcept {
     ServoScene* next = scenes_.take(scene_);
     if (next == nullptr) return;
     // Continuity: the new proxy starts where the old one was (its history), so the force changes
-    // only by what the geometry changed. Without a previous scene it starts at the finger.
+    // only by what the geometry changed; an edit that moved the surface over the old proxy pushes
+    // it out to the new boundary, by at most kSwapPush, the least displacement. The first scene
+    // starts at the seed from a servo this one replaced, if any, else at the finger.
+    constexpr double kSwapPush = 0.002;  // m: the largest geometry change followed continuously
     if (scene_ != nullptr) {
-        // If the edit moved the surface over the old proxy, the proxy must be pushed out to the
-        // new boundary, not left inside (it would render nothing). Proxy has no public
-        // "depenetrate" (reported upstream); its phi re-projection does exactly that, bounded by
-        // the chord the pad's ends sweep, so the new proxy starts at a slightly different angle
-        // and rotates back: it is pushed out by at most kSwapPush.
-        constexpr double kSwapPush = 0.002;  // m: the largest geometry change followed continuously
-        const double R = next->proxy.def().finger.radius;
-        const double dphi = 2.0 * std::asin(std::min(1.0, 0.5 * kSwapPush / R));
-        next->proxy.reset(scene_->proxy.output().proxy, scene_->proxy.output().phi + dphi);
+        next->proxy.place(scene_->proxy.output().proxy, scene_->proxy.output().phi, kSwapPush);
+    } else if (seeded_) {
+        next->proxy.place(seed_, seed_phi_, kSwapPush);
+        seeded_ = false;
     } else {
         next->proxy.reset(in.finger, in.phi);
     }
@@ -182,7 +187,7 @@ const ServoCommand& ServoTick::tick(const ServoInput& in) noexcept {
         const double rendered_mag = is_finite(rendered) ? glm::length(rendered) : 0.0;
         if (!is_finite(rendered)) fault_tick(in, dt, ServoFault::non_finite_output);
 
-        const double scale = safety_.step(in.t, rendered_mag);
+        const double scale = safety_.step(in.t);
         Vec2 f = clamp_then_saturate(rendered * scale, current_.max_force, config_.axis_max);
 
         // Instability watch while force is being applied.
@@ -231,7 +236,7 @@ const ServoCommand& ServoTick::tick(const ServoInput& in) noexcept {
         snap.l_d = proxy_out_.l_d;
     } else {
         // No scene or unusable input: nothing to render, and never a NaN to the motors.
-        safety_.step(std::isfinite(in.t) ? in.t : 0.0, 0.0);
+        safety_.step(std::isfinite(in.t) ? in.t : 0.0);
         cmd_ = ServoCommand{};
         applied_ = Vec2{0.0};
         if (!finite) proxy_out_ = ProxyOutput{};

@@ -113,7 +113,7 @@ public:
     ServoTick& operator=(const ServoTick&) = delete;
 
     // --- servo thread -----------------------------------------------------------------------
-    // Device became ready (ramp-in starts once the force is small) / went away.
+    // Device became ready (the force ramps in over safety.ramp_time) / went away.
     void connect(double t) noexcept;
     void disconnect() noexcept;
     const ServoCommand& tick(const ServoInput& in) noexcept;
@@ -130,6 +130,11 @@ public:
     ServoSnapshot snapshot() const noexcept { return snapshot_.load(); }
     // Asks the servo to leave a latched fault (applied at the next tick boundary).
     void request_clear_fault() noexcept { clear_request_.store(true, std::memory_order_release); }
+    // Before the servo thread starts (not thread-safe): the proxy's history from a servo this one
+    // replaces (another rate, another device). The first scene's proxy then starts there, pushed
+    // out to the surface if needed (Proxy::place), instead of at the first finger sample: a finger
+    // resting in a wall keeps feeling it across the switch (issue 15).
+    void seed_proxy(Vec2 proxy, double phi) noexcept;
 
     const ServoConfig& config() const noexcept { return config_; }
 
@@ -158,6 +163,9 @@ private:
     Vec2 applied_{0.0};  // N, force commanded on the previous tick (held until now)
     double last_t_ = std::numeric_limits<double>::quiet_NaN();
     std::uint64_t ticks_ = 0;
+    bool seeded_ = false;  // seed_proxy() was called: the first scene's proxy starts at seed_
+    Vec2 seed_{0.0};
+    double seed_phi_ = 0.0;
 };
 
 // Energy (J) stored in the rendered spring at penetration `depth` (m) with stiffness k (N/m) and

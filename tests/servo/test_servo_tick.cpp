@@ -70,7 +70,7 @@ TEST_CASE("a NaN reading gives zero force and a fault, never a NaN command") {
     CHECK(s.snapshot().fault == ServoFault::non_finite_input);
 }
 
-TEST_CASE("no kick: starting inside an object gives no force, after a fault, force waits until small") {
+TEST_CASE("no kick: starting inside an object gives no force; after a fault the force ramps back to Ke d within ramp_time") {
     ServoTick s(cfg_no_roller(), ServoParams{});
     s.scenes().publish(std::make_unique<ServoScene>(floor_scene()));
     s.connect(0.0);
@@ -81,29 +81,39 @@ TEST_CASE("no kick: starting inside an object gives no force, after a fault, for
     REQUIRE(s.state() == ServoState::engaged);
     REQUIRE(press(s, t, 0.001, 50).force.y == doctest::Approx(1.0).epsilon(1e-6));
 
-    // A fault while pressing (NaN reading), then valid readings still pressing 1 mm: after the
-    // fault hold the servo re-arms, but holds zero while the commanded force (1 N) is not small.
+    // A fault while pressing 1 mm (a NaN reading), then valid readings, still 1 mm deep. The fault
+    // holds zero for fault_hold; then the force ramps in at once, without waiting for the finger
+    // to back off (the old engage rule left it at zero for as long as the finger stayed).
     ServoInput bad;
     bad.t = (t += 1e-3);
     bad.finger = {kNaN, 0.0};
     s.tick(bad);
     REQUIRE(s.state() == ServoState::fault);
-    CHECK(press(s, t, 0.001, 1000).force == Vec2{0.0});
-    CHECK(s.state() == ServoState::arming);
-    // Backing off to 0.02 mm (20 mN < the 50 mN gate) opens it; force then ramps over 0.25 s.
-    press(s, t, 0.00002, 1);
-    CHECK(s.state() == ServoState::ramping);
-    double prev = 0.0, max_step = 0.0;
-    for (int k = 0; k < 400; ++k) {
-        const double depth = std::min(0.001, 0.00002 + k * 1e-5);  // back in over 0.1 s
-        const ServoCommand c = press(s, t, depth, 1);
+    const double fault_t = t;
+    const SafetyParams sp;  // the defaults: fault_hold, ramp_time 0.2 s
+    CHECK(sp.ramp_time == 0.2);
+    const double steady = 1000.0 * 0.001;  // N: Ke d
+    double prev = 0.0, max_step = 0.0, ramp_start = -1.0, full_at = -1.0;
+    bool contact_lost = false;
+    for (int k = 0; k < 1200; ++k) {
+        const ServoCommand c = press(s, t, 0.001, 1);
+        contact_lost = contact_lost || !s.snapshot().contact;
+        CHECK(c.force.y <= steady * (1.0 + 1e-9));  // never above the steady value: no kick
+        CHECK(std::abs(c.force.x) < 1e-9);
+        if (ramp_start < 0.0 && c.force.y > 0.0) ramp_start = t;
+        if (full_at < 0.0 && c.force.y >= steady * (1.0 - 1e-9)) full_at = t;
         max_step = std::max(max_step, std::abs(c.force.y - prev));
         prev = c.force.y;
     }
+    CHECK_FALSE(contact_lost);  // the proxy kept its history through the fault
     CHECK(s.state() == ServoState::engaged);
-    CHECK(prev == doctest::Approx(1.0).epsilon(1e-6));
-    // Per tick: the ramp adds <= 1 N / 250 ticks and the motion <= Ke x 0.01 mm = 10 mN.
-    CHECK(max_step < 0.004 + 0.01 + 1e-9);
+    // Zero through the hold, then from 0 to Ke d in ramp_time (to a tick).
+    CHECK(ramp_start - fault_t >= sp.fault_hold - 1e-9);
+    CHECK(ramp_start - fault_t <= sp.fault_hold + 2e-3 + 1e-9);
+    CHECK(full_at - ramp_start <= sp.ramp_time + 1e-3 + 1e-9);
+    CHECK(full_at - ramp_start >= sp.ramp_time - 2e-3 - 1e-9);
+    // Per tick the ramp adds Ke d T / ramp_time = 5 mN.
+    CHECK(max_step <= steady * 1e-3 / sp.ramp_time + 1e-9);
 }
 
 TEST_CASE("a scene swap in contact changes the force only by what the geometry changed") {

@@ -98,7 +98,7 @@ TEST_CASE("unplug in contact: servo sees Fault(disconnected) and outputs zero fo
     CHECK_FALSE(rig.dev.read(r));
 }
 
-TEST_CASE("replug: hot-plug brings the board back and the servo re-engages through gate and ramp") {
+TEST_CASE("replug: hot-plug brings the board back and, still pressing, the force ramps back to Ke d") {
     HapioEmulator emu;
     UsbRig rig;
     emu.set_encoders(counts_at(rig.cal, rig.free_x));
@@ -115,26 +115,31 @@ TEST_CASE("replug: hot-plug brings the board back and the servo re-engages throu
     CHECK(emu.address() != first_address);
     CHECK(emu.streaming());
 
-    // Back, but the finger is inside the object: the gate keeps the force at zero (no kick).
-    double max_force = 0.0;
-    rig.run_until([] { return false; }, 0.4,
-                  [&](const ServoSnapshot& s) { max_force = std::max(max_force, glm::length(s.force)); });
-    CHECK(max_force == 0.0);
-    CHECK(rig.servo.state() == ServoState::arming);
-
-    // The user backs out: the gate opens, then pushes in again while the force ramps.
-    emu.set_encoders(counts_at(rig.cal, rig.free_x));
-    REQUIRE(rig.run_until([&] { return rig.servo.state() == ServoState::ramping; }));
-    emu.set_encoders(counts_at(rig.cal, rig.contact_x()));
+    // Back, still pressing 1 mm into the floor: the proxy kept its place on the surface, and the
+    // force ramps from zero to Ke d = 1 N over ramp_time, rising every tick and never above it
+    // (no kick; it used to stay at zero until the user backed out).
     std::vector<double> ramp;
+    bool contact = true;
     REQUIRE(rig.run_until([&] { return rig.servo.state() == ServoState::engaged; }, 5.0,
-                          [&](const ServoSnapshot& s) { ramp.push_back(s.force.y); }));
+                          [&](const ServoSnapshot& s) {
+                              ramp.push_back(s.force.y);
+                              contact = contact && s.contact;
+                          }));
+    CHECK(contact);
     REQUIRE(ramp.size() > 20);
     CHECK(ramp.front() < 0.2);  // starts near zero
     int drops = 0;
-    for (std::size_t i = 1; i < ramp.size(); ++i)
+    double highest = 0.0;
+    for (std::size_t i = 1; i < ramp.size(); ++i) {
         if (ramp[i] < ramp[i - 1] - 1e-9) ++drops;
-    CHECK(drops == 0);          // never steps down while ramping in
+        highest = std::max(highest, ramp[i]);
+    }
+    CHECK(drops == 0);  // never steps down while ramping in
+    // Never above the steady Ke d (the encoders' counts make d 1 mm to within a few um).
+    rig.run_until([] { return false; }, 0.1);
+    const double steady = rig.servo.snapshot().force.y;
+    CHECK(steady == doctest::Approx(1.0).epsilon(0.01));
+    CHECK(highest <= steady * (1.0 + 1e-6));
     REQUIRE(rig.run_until([&] { return std::abs(rig.servo.snapshot().force.y - 1.0) < 0.05; }));
     CHECK(wait_until([&] { return (emu.last_command().flags & hapio::kCommandEnable) != 0; }));
     CHECK(rig.dev.state() == DeviceState::engaged);
