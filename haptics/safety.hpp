@@ -106,6 +106,11 @@ public:
     // spring's stored energy (J) now; dt: period (s); linear: in contact with the force below the
     // clamp now. Returns true once either sum passes the threshold.
     bool step(Vec2 x, Vec2 f_prev, double stored, double dt, bool linear = false) noexcept;
+    // The spring's stored energy was scaled by `factor` without any motion (the safety ramp turning
+    // the force up on a finger at rest): rescales the previous tick's value so the rise is not
+    // counted as energy the loop generated. Without it a ramp into a finger resting 5 mm deep
+    // (6 mJ at 1.5 N) read as an instability and faulted the servo it was bringing back.
+    void rescale_stored(double factor) noexcept { prev_stored_ *= factor; }
     double energy() const noexcept { return energy_; }  // J
     double linear_energy() const noexcept { return linear_energy_; }  // J
 

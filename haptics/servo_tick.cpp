@@ -202,6 +202,9 @@ const ServoCommand& ServoTick::tick(const ServoInput& in) noexcept {
             const double stored = scale * kept * spring_energy(proxy_out_.depth, current_.stiffness, current_.max_force);
             const bool linear = proxy_out_.contact && proxy_out_.depth > 0.0 && kept > 1.0 - 1e-9 &&
                                 current_.stiffness * proxy_out_.depth < current_.max_force;
+            // The ramp scales the stored energy with the finger at rest: not the loop's doing.
+            if (last_scale_ > 0.0 && scale != last_scale_) observer_.rescale_stored(scale / last_scale_);
+            last_scale_ = scale;
             const bool energy_grew = observer_.step(in.finger, applied_, stored, dt, linear);
             // Armed where the sampled spring's hold outdoes the device's damping along its
             // weakest direction: K T / 2 > b (N s/m both), T the nominal period (s).
@@ -215,6 +218,7 @@ const ServoCommand& ServoTick::tick(const ServoInput& in) noexcept {
         } else {
             observer_.reset();
             limit_cycle_.reset();
+            last_scale_ = 0.0;
         }
 
         cmd_.force = f;

@@ -161,6 +161,7 @@ private:
     ProxyOutput proxy_out_;
     ServoCommand cmd_;
     Vec2 applied_{0.0};  // N, force commanded on the previous tick (held until now)
+    double last_scale_ = 0.0;  // the safety scale on the previous watched tick (0..1)
     double last_t_ = std::numeric_limits<double>::quiet_NaN();
     std::uint64_t ticks_ = 0;
     bool seeded_ = false;  // seed_proxy() was called: the first scene's proxy starts at seed_

@@ -68,6 +68,20 @@ std::string HapticsHost::start(const std::string& spec, double rate, const Scene
     std::unique_ptr<drivers::Device> next = same ? nullptr : make_device(spec, pose, error);
     if (!same && !next) return error;  // likewise: the running device carries on
 
+    // The proxy's history goes over to the new servo (issue 15): a finger resting in a wall keeps
+    // feeling it across a rate change or a device switch; the new servo's first tick walks from
+    // there to wherever the (new) device puts the finger, so a hand that jumped meets the surface
+    // from the side it was on.
+    bool have_history = false;
+    Vec2 last_proxy{0.0};
+    double last_phi = 0.0;
+    if (servo_) {
+        const ServoSnapshot snap = servo_->snapshot();
+        have_history = snap.ticks > 0 && is_finite(snap.proxy) && std::isfinite(snap.phi);
+        last_proxy = snap.proxy;
+        last_phi = snap.phi;
+    }
+
     // The safety path: the old servo's last tick commands zero force; then its device closes.
     if (writer_) stop_recording();
     if (same) {
@@ -87,6 +101,7 @@ std::string HapticsHost::start(const std::string& spec, double rate, const Scene
         pose_input_ = dynamic_cast<PoseInput*>(device_.get());
         if (pose_input_) pose_input_->set_pose(pose);
         servo_ = std::make_unique<LiveServo>(*device_, rate, p);
+        if (have_history) servo_->seed_proxy(last_proxy, last_phi);
         servo_->publish_scene(scene);
         if (stopped) servo_->engage_stop();
         return servo_->start(core_);

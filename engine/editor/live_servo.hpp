@@ -50,6 +50,8 @@ public:
     void reclaim() { tick_.scenes().reclaim(); }
     ServoSnapshot snapshot() const { return tick_.snapshot(); }
     void clear_fault() { tick_.request_clear_fault(); }
+    // Before start(): the proxy's history from the servo this one replaces (ServoTick::seed_proxy).
+    void seed_proxy(Vec2 proxy, double phi) { tick_.seed_proxy(proxy, phi); }
 
     void engage_stop() { stop_requested_.store(true, std::memory_order_release); }
     void release_stop() { stop_requested_.store(false, std::memory_order_release); }

@@ -316,12 +316,12 @@ bool Script::run(EditorState& s, const Line& line, double now) {
         std::fprintf(stderr,
                      "script report %s: device=%s device_state=%s rate_hz=%.17g cursor_x_mm=%.17g cursor_y_mm=%.17g "
                      "finger_x_mm=%.17g finger_y_mm=%.17g phi_deg=%.17g contact=%d depth_mm=%.17g force_n=%.17g "
-                     "ke=%.17g servo_state=%s ticks=%llu p50_us=%.6g p99_us=%.6g max_us=%.6g late=%zu count=%zu\n",
+                     "ke=%.17g servo_state=%s fault=%s ticks=%llu p50_us=%.6g p99_us=%.6g max_us=%.6g late=%zu count=%zu\n",
                      w[1].c_str(), s.haptics ? s.haptics->spec().c_str() : "none",
                      s.device ? drivers::to_string(s.device->state()) : "none", s.servo ? s.servo->rate() : 0.0,
                      s.pose.finger.x * 1e3, s.pose.finger.y * 1e3, snap.finger.x * 1e3, snap.finger.y * 1e3,
                      snap.phi * 180.0 / kPi, snap.contact ? 1 : 0, snap.depth * 1e3, std::hypot(snap.force.x, snap.force.y),
-                     snap.stiffness, to_string(snap.state), static_cast<unsigned long long>(snap.ticks), ps.p50 * 1e6,
+                     snap.stiffness, to_string(snap.state), to_string(snap.fault), static_cast<unsigned long long>(snap.ticks), ps.p50 * 1e6,
                      ps.p99 * 1e6, ps.max * 1e6, ps.late, ps.count);
     } else if (c == "quit") {
         s.quit = true;

@@ -47,10 +47,11 @@ TEST_CASE("sim-cld in the editor: the finger follows the cursor into contact, fo
                            "wait 1.0\n"
                            "report contact\n"
                            "key space\nwait 0.05\nexpect force_below 0.000001\n"
-                           "# A switch keeps the emergency stop engaged; released with the finger 5 mm\n"
-                           "# inside the floor, the new servo does not kick: no force.\n"
+                           "# A switch keeps the emergency stop engaged; released with the mouse finger 5 mm\n"
+                           "# inside the floor, the new servo has the old proxy (on the surface): the force\n"
+                           "# ramps in to Ke d = 5 N, clamped at the scene's 1.5 N, without a kick.\n"
                            "device mouse\nexpect stopped 1\nexpect state idle\n"
-                           "key space\nwait 0.3\nexpect stopped 0\nexpect force_below 0.000001\n"
+                           "key space\nwait 0.3\nexpect stopped 0\nexpect contact 1\nexpect force 1.5 0.000001\n"
                            "quit\n");
     setenv("TMPDIR", dir.path().c_str(), 1);
     const auto p = run_under_xvfb({"edit", "--script", script, "--software", "--validation", "--timeout", "100"});
