@@ -352,7 +352,12 @@ bool Proxy::inside_or_past_concave_end(const CPiece& piece, double param, double
     }
     // Circle pieces of an arc: the span's ends are the segment's ends only where the piece was
     // not trimmed there; the low angle is the travel start for a bowl (counter-clockwise travel).
-    const double angular_reach = reach / piece.radius;
+    // Past an end by at most `reach` of arc, and never by more than a quarter turn: a bowl whose
+    // radius is within a hair of the pad's has an offset circle of a few micrometres, and an
+    // angular reach of reach / radius (several radians) made it claim nearly every point round it
+    // as "behind its end", so the corner push chased it against a neighbour's piece and left the
+    // pad's end inside the curve (fuzz-contact, case seed 11419799571873864837).
+    const double angular_reach = std::min(reach / piece.radius, 0.5 * kPi);
     const double tol = 1e-12;
     const double span_end = piece.span.start + piece.span.width;
     const double seg_end = seg.angles.start + seg.angles.width;

@@ -160,3 +160,9 @@ TEST_CASE("regression: a pad pushed round a curved star on a terrain (the valley
                      "1 star(s), 0 thin wall(s), terrain; R 28.8 mm, L 35.8 mm; curves: quad arc arc cubic cubic quad cubic arc "
                      "cubic arc cubic cubic arc cubic cubic ");
 }
+
+TEST_CASE("regression: a bowl within a hair of the pad's radius does not claim every point round its tiny offset circle") {
+    check_regression(11419799571873864837ull,
+                     "3 star(s), 0 thin wall(s), terrain; R 24.3 mm, L 30.6 mm; curves: quad quad quad quad arc quad cubic quad "
+                     "cubic arc cubic quad arc quad ");
+}
