@@ -287,7 +287,7 @@ TEST_CASE("trace rejects absurd force-law options with exit 2 naming them") {
     }
 }
 
-TEST_CASE("trace: a first sample with the pad inside the floor is said, with its time and depth; the output is unchanged") {
+TEST_CASE("trace: a first sample with the pad inside the floor is said, with its time and depth, and the output is unchanged") {
     TempDir dir;
     // Pad bottom 1.5 mm below the floor from the start, then up and out, then down 1 mm onto it.
     const double R = kFlatR;

@@ -132,7 +132,7 @@ void check_regression(std::uint64_t seed, const char* summary) {
 }
 }  // namespace
 
-TEST_CASE("regression: the pad's end slides round a thin wall's foot; the wall must not cut through the pad (inner vertex)") {
+TEST_CASE("regression: the pad's end slides round a thin wall's foot, and the wall must not cut through the pad (inner vertex)") {
     check_regression(16860738450190168606ull, "0 star(s), 2 thin wall(s); R 26.3 mm, L 20.2 mm; curves: none");
 }
 

@@ -70,7 +70,7 @@ TEST_CASE("a NaN reading gives zero force and a fault, never a NaN command") {
     CHECK(s.snapshot().fault == ServoFault::non_finite_input);
 }
 
-TEST_CASE("no kick: starting inside an object gives no force; after a fault the force ramps back to Ke d within ramp_time") {
+TEST_CASE("no kick: starting inside an object gives no force, and after a fault the force ramps back to Ke d within ramp_time") {
     ServoTick s(cfg_no_roller(), ServoParams{});
     s.scenes().publish(std::make_unique<ServoScene>(floor_scene()));
     s.connect(0.0);
