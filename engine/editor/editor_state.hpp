@@ -72,6 +72,9 @@ struct EditorState {
     // Messages for the status bar: the last action's outcome.
     std::string message;
     bool message_is_error = false;
+    // The last refused parameter edit (parameter_edit.hpp): its name and why, shown beside the
+    // field until that field is set again.
+    std::string field_error_name, field_error;
     void say(std::string m, bool error = false) {
         message = std::move(m);
         message_is_error = error;

@@ -14,6 +14,7 @@
 #include "drivers/servo_loop.hpp"
 #include "drivers/servo_runner.hpp"
 #include "drivers/tick_record.hpp"
+#include "haptics/servo_params_check.hpp"
 #include "haptics/servo_tick.hpp"
 #include "haptics/spsc_ring.hpp"
 
@@ -45,6 +46,8 @@ public:
 
     // "" when published; otherwise why the servo refused them (servo_params_check.hpp).
     std::string publish_params(const ServoParams& p) { return tick_.publish_params(p); }
+    // What publish_params(p) would refuse, without publishing ("" when it would be accepted).
+    std::string params_problem(const ServoParams& p) const { return servo_params_problem(p, tick_.config()); }
     // Builds the servo's scene (environment, proxy) here, off the servo thread, and hands it over.
     void publish_scene(const Scene& scene);
     void reclaim() { tick_.scenes().reclaim(); }

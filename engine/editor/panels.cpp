@@ -3,6 +3,7 @@
 
 #include "engine/editor/canvas.hpp"
 #include "engine/editor/haptics_commands.hpp"
+#include "engine/editor/parameter_edit.hpp"
 #include "haptics/scene_io.hpp"
 
 #include <imgui.h>
@@ -16,47 +17,43 @@
 namespace contactlab::editor {
 namespace {
 
-// An ImGui slider bound to one double of the scene: one undoable edit per drag or entry.
-// `scale` converts the stored SI value to the displayed unit (e.g. 1e3 for mm).
-template <class Get>
-void edit_field(EditorState& s, const char* label, Get get, double lo, double hi, const char* fmt, double scale = 1.0,
-                bool log = false) {
-    Scene copy = s.doc.scene();
-    double shown = *get(copy) * scale;
+// The refused value's message under its field (parameter_edit.hpp), until the field is set again.
+void field_error_line(const EditorState& s, const char* name) {
+    if (s.field_error_name != name) return;
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "refused: %s", s.field_error.c_str());
+    ImGui::PopTextWrapPos();
+}
+
+// An ImGui slider bound to one tunable parameter (parameter_edit.hpp names): one undoable edit
+// per drag or entry, every step through set_parameter, so a refused value (Ctrl+click lets one
+// type past the slider's range) never shows as if it were in effect. `scale` converts the SI
+// value to the displayed unit (e.g. 1e3 for mm).
+void edit_field(EditorState& s, const char* label, const char* name, double lo, double hi, const char* fmt,
+                double scale = 1.0, bool log = false) {
+    double shown = parameter_value(s, name).value_or(0.0) * scale;
     const double slo = lo * scale, shi = hi * scale;
     const bool changed = ImGui::SliderScalar(label, ImGuiDataType_Double, &shown, &slo, &shi, fmt,
                                              log ? ImGuiSliderFlags_Logarithmic : 0);
     if (ImGui::IsItemActivated()) s.doc.begin_continuous(label);
-    if (changed) {
-        *get(copy) = shown / scale;
-        s.doc.update_continuous(std::move(copy));
-    }
+    if (changed) set_parameter(s, name, shown / scale, EditKind::drag_step);
     if (ImGui::IsItemDeactivated()) s.doc.end_continuous();
+    field_error_line(s, name);
+}
+
+// A live parameter outside the scene (roller gains): typed, Enter or the step buttons apply it.
+void edit_live(EditorState& s, const char* label, const char* name, double step, double fast, const char* fmt) {
+    double v = parameter_value(s, name).value_or(0.0);
+    if (ImGui::InputDouble(label, &v, step, fast, fmt, ImGuiInputTextFlags_EnterReturnsTrue)) set_parameter(s, name, v);
+    field_error_line(s, name);
 }
 
 // Seed 004's other way to set the ellipsoid field: eccentricity e = k_normal / k_tangential and
 // total stiffness k (printed formula, force_law.hpp). Both sliders write k_tangential and
 // k_normal, one undoable edit per drag.
 void edit_ellipsoid_ek(EditorState& s) {
-    Scene copy = s.doc.scene();
-    ForceLaw& law = copy.force.law;
-    double e = law.k_normal / law.k_tangential;
-    double k = std::sqrt((law.k_tangential * law.k_tangential + 2.0 * law.k_normal * law.k_normal) / 3.0);  // N/m
-    const double elo = 0.01, ehi = 100.0, klo = 10.0, khi = 5000.0;
-    bool changed = ImGui::SliderScalar("eccentricity e", ImGuiDataType_Double, &e, &elo, &ehi, "%.3f",
-                                       ImGuiSliderFlags_Logarithmic);
-    bool active = ImGui::IsItemActivated(), done = ImGui::IsItemDeactivated();
-    changed |= ImGui::SliderScalar("total k (N/m)", ImGuiDataType_Double, &k, &klo, &khi, "%.0f",
-                                   ImGuiSliderFlags_Logarithmic);
-    active |= ImGui::IsItemActivated();
-    done |= ImGui::IsItemDeactivated();
-    if (active) s.doc.begin_continuous("eccentricity and total stiffness");
-    if (changed && e > 0.0 && k > 0.0) {
-        law.k_tangential = tangential_stiffness_from(k, e);
-        law.k_normal = e * law.k_tangential;
-        s.doc.update_continuous(std::move(copy));
-    }
-    if (done) s.doc.end_continuous();
+    edit_field(s, "eccentricity e", "eccentricity", 0.01, 100.0, "%.3f", 1.0, true);
+    edit_field(s, "total k (N/m)", "total_k", 10.0, 5000.0, "%.0f", 1.0, true);
 }
 
 // How curves become what the proxy touches (scene.hpp, CurveDef): exact arc splines, or chords
@@ -70,19 +67,19 @@ void edit_accuracy(EditorState& s) {
         s.doc.edit(std::move(c), "curve accuracy");
     }
     if (sc.curves.mode == CurveMode::flatten)
-        edit_field(s, "chord tolerance (um)", [](Scene& x) { return &x.curves.tolerance; }, 1e-7, 1e-3, "%.2f", 1e6, true);
+        edit_field(s, "chord tolerance (um)", "tolerance", 1e-7, 1e-3, "%.2f", 1e6, true);
 }
 
 // The roller travel l_d may use (live, not in the scene): centred in the device's travel.
 void edit_roller_travel(EditorState& s) {
-    double mm = s.roller_travel * 1e3;
-    if (ImGui::InputDouble("usable travel (mm)", &mm, 0.0, 0.0, "%.1f", ImGuiInputTextFlags_EnterReturnsTrue))
-        s.roller_travel = std::clamp(mm, 0.0, 1000.0) * 1e-3;
+    edit_live(s, "usable travel (mm)", "travel_mm", 0.0, 0.0, "%.1f");
+    if (ImGui::SmallButton("all")) set_parameter(s, "travel_mm", 0.0);
     ImGui::SameLine();
-    if (ImGui::SmallButton("all")) s.roller_travel = 0.0;
-    ImGui::SameLine();
-    if (ImGui::SmallButton("18")) s.roller_travel = 0.018;  // seed 002's CLD
-    if (s.roller_travel == 0.0) ImGui::TextDisabled("(0: the device's whole travel)");
+    if (ImGui::SmallButton("18 mm")) set_parameter(s, "travel_mm", 18.0);  // seed 002's CLD
+    if (s.roller_travel == 0.0) {
+        ImGui::SameLine();
+        ImGui::TextDisabled("(0: the device's whole travel)");
+    }
 }
 
 void menu_bar(EditorState& s) {
@@ -278,30 +275,30 @@ void tuning_window(EditorState& s) {
         s.doc.edit(std::move(c), "force model");
     }
     const double kmax = s.device ? s.device->limits().max_stable_stiffness : 2000.0;
-    edit_field(s, "Ke (N/m)", [](Scene& x) { return &x.force.stiffness; }, 10.0, 5000.0, "%.0f", 1.0, true);
+    edit_field(s, "Ke (N/m)", "ke", 10.0, 5000.0, "%.0f", 1.0, true);
     if (s.servo) {
         // Discrete stability bound for a spring through the device's damping: K < 2 b / T.
         const double bound = 2.0 * s.device->limits().damping / s.servo->period();
         ImGui::TextColored(sc.force.stiffness > kmax ? ImVec4(1, 0.4f, 0.3f, 1) : ImVec4(0.6f, 0.8f, 0.6f, 1),
                            "device stable limit %.0f N/m, 2b/T = %.0f N/m", kmax, bound);
     }
-    edit_field(s, "max force (N)", [](Scene& x) { return &x.force.max_force; }, 0.0, 5.0, "%.2f");
+    edit_field(s, "max force (N)", "max_force", 0.01, 5.0, "%.2f");
     if (sc.force.law.model == ForceModel::ellipsoid) {
-        edit_field(s, "k tangential (N/m)", [](Scene& x) { return &x.force.law.k_tangential; }, 10.0, 5000.0, "%.0f", 1.0, true);
-        edit_field(s, "k normal (N/m)", [](Scene& x) { return &x.force.law.k_normal; }, 10.0, 5000.0, "%.0f", 1.0, true);
+        edit_field(s, "k tangential (N/m)", "k_t", 10.0, 5000.0, "%.0f", 1.0, true);
+        edit_field(s, "k normal (N/m)", "k_n", 10.0, 5000.0, "%.0f", 1.0, true);
         edit_ellipsoid_ek(s);
     }
-    edit_field(s, "damping (N s/m)", [](Scene& x) { return &x.force.law.damping; }, 0.0, 10.0, "%.2f");
-    edit_field(s, "mu static", [](Scene& x) { return &x.force.law.mu_static; }, 0.0, 2.0, "%.2f");
-    edit_field(s, "mu dynamic", [](Scene& x) { return &x.force.law.mu_dynamic; }, 0.0, 2.0, "%.2f");
+    edit_field(s, "damping (N s/m)", "damping", 0.0, 10.0, "%.2f");
+    edit_field(s, "mu static", "mu_s", 0.0, 2.0, "%.2f");
+    edit_field(s, "mu dynamic", "mu_d", 0.0, 2.0, "%.2f");
     int rule = sc.contact_location.rule == ContactRule::centroid ? 0 : 1;
     if (ImGui::Combo("contact rule", &rule, "centroid (seed 000)\0least displacement (seed 002)\0")) {
         Scene c = s.doc.scene();
         c.contact_location.rule = rule == 0 ? ContactRule::centroid : ContactRule::least_displacement;
         s.doc.edit(std::move(c), "contact rule");
     }
-    edit_field(s, "finger R (mm)", [](Scene& x) { return &x.finger.radius; }, 0.005, 0.05, "%.1f", 1e3);
-    edit_field(s, "pad L (mm)", [](Scene& x) { return &x.finger.length; }, 0.002, 0.06, "%.1f", 1e3);
+    edit_field(s, "finger R (mm)", "finger_r", 0.005, 0.05, "%.1f", 1e3);
+    edit_field(s, "pad L (mm)", "pad_l", 0.002, 0.06, "%.1f", 1e3);
     edit_accuracy(s);
 
     ImGui::Separator();
@@ -309,14 +306,10 @@ void tuning_window(EditorState& s) {
     selection_editor(s);
     ImGui::Separator();
     ImGui::TextDisabled("roller PID (live, not in the scene)");
-    ImGui::InputDouble("Kp (V/m)", &s.roller.kp, 1000.0, 10000.0, "%.0f");
-    ImGui::InputDouble("Ki (V/(m s))", &s.roller.ki, 1e4, 1e5, "%.0f");
-    ImGui::InputDouble("Kd (V s/m)", &s.roller.kd, 1.0, 10.0, "%.1f");
-    ImGui::InputDouble("max drive (V)", &s.roller.max_drive, 0.5, 1.0, "%.1f");
-    s.roller.kp = std::max(0.0, s.roller.kp);
-    s.roller.ki = std::max(0.0, s.roller.ki);
-    s.roller.kd = std::max(0.0, s.roller.kd);
-    s.roller.max_drive = std::clamp(s.roller.max_drive, 0.1, 24.0);  // V: 0 would hold the roller still
+    edit_live(s, "Kp (V/m)", "kp", 1000.0, 10000.0, "%.0f");
+    edit_live(s, "Ki (V/(m s))", "ki", 1e4, 1e5, "%.0f");
+    edit_live(s, "Kd (V s/m)", "kd", 1.0, 10.0, "%.1f");
+    edit_live(s, "max drive (V)", "max_drive", 0.5, 1.0, "%.1f");
     edit_roller_travel(s);
     ImGui::PopItemWidth();
     ImGui::End();

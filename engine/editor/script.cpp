@@ -3,6 +3,7 @@
 
 #include "engine/editor/canvas.hpp"
 #include "engine/editor/haptics_commands.hpp"
+#include "engine/editor/parameter_edit.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -168,39 +169,19 @@ bool Script::run(EditorState& s, const Line& line, double now) {
             s.grid_mm = number(w[2]);
             s.snap_grid = s.grid_mm > 0.0;
             return true;
-        } else if (n == "kp" || n == "ki" || n == "kd") {
-            (n == "kp" ? s.roller.kp : n == "ki" ? s.roller.ki : s.roller.kd) = number(w[2]);
-            return true;
-        } else if (n == "travel_mm") {
-            const double mm = number(w[2]);
-            if (!(mm >= 0.0 && mm <= 1000.0)) throw ScriptError("travel_mm: 0..1000 (0: the device's whole travel)");
-            s.roller_travel = mm * 1e-3;  // m
-            return true;
         } else if (n == "curves") {
             if (w[2] != "exact" && w[2] != "flatten") throw ScriptError("curves: exact or flatten");
             sc.curves.mode = w[2] == "exact" ? CurveMode::exact : CurveMode::flatten;
-        } else if (n == "eccentricity" || n == "total_k") {
-            // Seed 004's (e, k) pair: the other one is kept as it is now.
-            ForceLaw& law = sc.force.law;
-            double e = law.k_normal / law.k_tangential;
-            double k = std::sqrt((law.k_tangential * law.k_tangential + 2.0 * law.k_normal * law.k_normal) / 3.0);
-            (n == "eccentricity" ? e : k) = number(w[2]);
-            if (!(e > 0.0) || !(k > 0.0)) throw ScriptError(n + ": must be > 0");
-            law.k_tangential = tangential_stiffness_from(k, e);
-            law.k_normal = e * law.k_tangential;
+        } else if (is_tunable_parameter(n)) {
+            // The Tuning panel's path (parameter_edit.hpp): a refused value changes nothing and
+            // is said in the status line; check the outcome with `expect error 0|1`.
+            set_parameter(s, n, number(w[2]));
+            return true;
         } else {
-            const double v = number(w[2]);
-            if (n == "ke") sc.force.stiffness = v;
-            else if (n == "max_force") sc.force.max_force = v;
-            else if (n == "damping") sc.force.law.damping = v;
-            else if (n == "mu_s") sc.force.law.mu_static = v;
-            else if (n == "mu_d") sc.force.law.mu_dynamic = v;
-            else if (n == "k_t") sc.force.law.k_tangential = v;
-            else if (n == "k_n") sc.force.law.k_normal = v;
-            else if (n == "tolerance") sc.curves.tolerance = v;
-            else throw ScriptError("unknown parameter \"" + n + "\"");
+            throw ScriptError("unknown parameter \"" + n + "\"");
         }
         s.doc.edit(std::move(sc), n);
+        s.say(n + " = " + w[2]);
     } else if (c == "undo") {
         cmd_undo(s);
     } else if (c == "redo") {
@@ -258,7 +239,6 @@ bool Script::run(EditorState& s, const Line& line, double now) {
             if (n == "contact") v = snap.contact ? 1 : 0;
             else if (n == "segments") v = segment_count(s.doc.scene());
             else if (n == "contours") v = static_cast<double>(s.doc.scene().contours.size());
-            else if (n == "ke") v = s.doc.scene().force.stiffness;
             else if (n == "ke_effective") v = snap.stiffness;
             else if (n == "stopped") v = s.servo && s.servo->stopped() ? 1 : 0;
             else if (n == "valid") v = s.doc.valid() ? 1 : 0;
@@ -273,8 +253,7 @@ bool Script::run(EditorState& s, const Line& line, double now) {
             else if (n == "depth") v = snap.depth * 1e3;        // mm
             else if (n == "l_d") v = snap.l_d * 1e3;            // mm
             else if (n == "roller_target") v = snap.roller_target * 1e3;  // mm
-            else if (n == "k_t") v = s.doc.scene().force.law.k_tangential;
-            else if (n == "k_n") v = s.doc.scene().force.law.k_normal;
+            else if (const auto p = parameter_value(s, n)) v = *p;  // the value shown in its field
             else throw ScriptError("unknown expectation \"" + n + "\"");
             const double tol = w.size() > 3 ? number(w[3]) : 0.0;
             if (tol < 0.0) throw ScriptError("expect: the tolerance must not be negative");

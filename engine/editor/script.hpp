@@ -3,12 +3,15 @@
 //
 //   tool finger|select|line|quad|arc|arc_center|cubic   click X Y        rclick X Y       drag X0 Y0 X1 Y1
 //   finger X Y [PHI]               key NAME (space, delete, ctrl+z, ctrl+y, f, 1, 2, 3, q, e)
-//   set NAME VALUE   (ke, max_force, damping, mu_s, mu_d, k_t, k_n, tolerance  SI units;
-//                     eccentricity E, total_k N/m: seed 004's pair, the other kept;
-//                     curves exact|flatten; travel_mm MM: usable roller travel, 0 = all;
-//                     model spring|ellipsoid; rule centroid|least_displacement; kp ki kd;
+//   set NAME VALUE   a tunable parameter (parameter_edit.hpp, the Tuning panel's one path):
+//                     ke N/m, max_force N, k_t N/m, k_n N/m, eccentricity E and total_k N/m
+//                     (seed 004's pair, the other kept), damping N s/m, mu_s, mu_d, finger_r m,
+//                     pad_l m, tolerance m, kp V/m, ki V/(m s), kd V s/m, max_drive V,
+//                     travel_mm MM (usable roller travel, 0 = all). A refused value changes
+//                     nothing and is said as an error (`expect error 1`).
+//                   also: curves exact|flatten; model spring|ellipsoid; rule centroid|least_displacement;
 //                     snap_mm MM: grid snapping for the authoring tools, 0 = off;
-//                     snap_tangent 0|1: G1 tangent continuation at open chain ends)
+//                     snap_tangent 0|1: G1 tangent continuation at open chain ends
 //   undo  redo  fit  save PATH  open PATH  screenshot PATH  estop on|off  resize W H (px)
 //   generate block|bumps|arc
 //   wait SECONDS     frames N     wait_contact TIMEOUT_S     wait_state STATE TIMEOUT_S
@@ -19,12 +22,12 @@
 //                     "...: unavailable: WHY"; the USB bus is scanned again)
 //   report LABEL     (one line "script report LABEL: key=value ..." on stderr: device, rate, cursor,
 //                     finger, depth, force, servo state, period statistics; for tests to parse)
-//   expect NAME VALUE [TOL]  (contact 0|1, segments N, contours N, ke N/m, ke_effective N/m (within
-//                       1), state NAME, stopped 0|1, valid 0|1, force_above N, force_below N,
-//                       undo_depth N, dirty 0|1, error 0|1: the last action's message was an error,
+//   expect NAME VALUE [TOL]  (contact 0|1, segments N, contours N, any `set` parameter above (the
+//                       value its field shows), ke_effective N/m (what the servo uses, within 1),
+//                       state NAME, stopped 0|1, valid 0|1, force_above N, force_below N, undo_depth N, dirty 0|1, error 0|1: the last action's message was an error,
 //                       device SPEC, device_state NAME, rate HZ, recording 0|1, force N,
-//                       finger_x MM, finger_y MM, depth MM, l_d MM, roller_target MM, k_t N/m,
-//                       k_n N/m; numbers equal within TOL, default 0)
+//                       finger_x MM, finger_y MM, depth MM, l_d MM, roller_target MM;
+//                       numbers equal within TOL, default 0)
 //   quit
 // Blank lines and lines starting with # are ignored. A failed expectation is reported with its
 // line number and the run goes on; the editor exits 1 if any failed.

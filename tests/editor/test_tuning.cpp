@@ -73,3 +73,31 @@ TEST_CASE("tuning: switching the force model keeps the wall's stiffness (k_n = K
     CHECK(p.exit_code == 0);
     CHECK_FALSE(contains(p.err, "FAILED"));
 }
+
+TEST_CASE("tuning: a refused value is said and its field shows the value in effect, in the real editor") {
+    // Issue 19 item 1: `set ke 1e9` used to leave 1e9 in the field while the servo kept 1000 N/m.
+    // Now the field (expect ke) and the servo (expect ke_effective) agree after a refusal, and the
+    // status line carries the error. The servo's stiffness slews at 20,000 N/m per s, so 500 N/m
+    // of change is in effect after 25 ms; 0.3 s leaves ample margin.
+    TempDir dir;
+    const std::string script = dir.file("refused.txt");
+    write_text(script,
+               "set ke 1e9\n"
+               "expect error 1\nexpect ke 1000\nwait 0.3\nexpect ke_effective 1000\n"
+               "set ke 1500\n"
+               "expect error 0\nexpect ke 1500\nwait 0.3\nexpect ke_effective 1500\n"
+               "set max_force 0\n"
+               "expect error 1\nexpect max_force 1.5\n"
+               "set kp -1\n"
+               "expect error 1\nexpect kp 345000\n"
+               "set damping -0.5\n"
+               "expect error 1\nexpect damping 0\n"
+               "set kp 200000\n"
+               "expect error 0\nexpect kp 200000\n"
+               "quit\n");
+    const auto p = run_under_xvfb({"edit", "--script", script, "--software", "--timeout", "60"});
+    INFO("stderr: " << p.err);
+    CHECK(p.exit_code == 0);
+    CHECK_FALSE(contains(p.err, "FAILED"));
+    CHECK(contains(p.err, "ok: ke_effective = 1500"));
+}
