@@ -452,7 +452,8 @@ void validate_scene(const Scene& s) {
                                      "] m, got " + fmt(s.curves.tolerance));
 }
 
-Scene parse_scene(std::string_view text, const std::string& origin) {
+namespace {
+Scene parse_scene_checked(std::string_view text, const std::string& origin, bool validate) {
     try {
         json root;
         // Translates a byte offset (0-based) into a line and column a user can find.
@@ -484,7 +485,7 @@ Scene parse_scene(std::string_view text, const std::string& origin) {
             fail(where.path(), "not a finite number (" + what + ")");
         }
         Scene s = read_scene(root);
-        validate_scene(s);
+        if (validate) validate_scene(s);
         return s;
     } catch (const SceneError& e) {
         throw SceneError(origin + ": " + e.what());
@@ -493,14 +494,21 @@ Scene parse_scene(std::string_view text, const std::string& origin) {
     }
 }
 
-Scene load_scene_file(const std::string& path) {
+std::string read_file_text(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw SceneError(path + ": cannot open (" + std::strerror(errno) + ")");
     std::ostringstream buf;
     buf << in.rdbuf();
     if (in.bad()) throw SceneError(path + ": read error");
-    return parse_scene(buf.str(), path);
+    return buf.str();
 }
+}  // namespace
+
+Scene parse_scene(std::string_view text, const std::string& origin) { return parse_scene_checked(text, origin, true); }
+
+Scene load_scene_file(const std::string& path) { return parse_scene_checked(read_file_text(path), path, true); }
+
+Scene load_work_in_progress(const std::string& path) { return parse_scene_checked(read_file_text(path), path, false); }
 
 std::string scene_to_json_text(const Scene& s) {
     json root;

@@ -23,6 +23,10 @@ inline constexpr double kSceneJoinTolerance = 1e-9;
 Scene parse_scene(std::string_view json_text, const std::string& origin = "scene");
 // Reads a file and parses it; a missing or unreadable file is a SceneError too.
 Scene load_scene_file(const std::string& path);
+// Reads work in progress (an editor recovery file): the JSON structure, types and keys are
+// checked as above, the scene's rules (zero-length segments, gaps, ranges) are not, since a
+// half-drawn shape is still the user's work. Callers validate before using it.
+Scene load_work_in_progress(const std::string& path);
 // Checks a scene built in memory (the same rules the parser applies); throws SceneError.
 void validate_scene(const Scene& scene);
 // Serialises losslessly (doubles round-trip exactly).

@@ -3,8 +3,15 @@
 
 #include "haptics/scene_io.hpp"
 
+#include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <tuple>
+
+#include <unistd.h>
 
 namespace contactlab::editor {
 
@@ -104,44 +111,124 @@ void Document::save(const std::string& path) {
     if (target.empty()) throw SceneError("no file name to save to (use Save As)");
     if (!problem_.empty()) throw SceneError("not saved: the scene is invalid: " + problem_);
     save_scene_file(scene_, target);
-    const std::string old_recovery = recovery_path_for(path_);
     path_ = target;
     dirty_ = false;
-    std::error_code ec;
-    std::filesystem::remove(old_recovery, ec);
-    discard_recovery();
+    discard_recovery();  // this session's only: other sessions' files wait to be offered
     autosaved_revision_ = revision_;
 }
 
-std::string Document::recovery_path_for(const std::string& path) {
-    if (path.empty()) return (std::filesystem::temp_directory_path() / "contactlab-untitled.recovery.json").string();
-    return path + ".recovery.json";
+namespace {
+
+namespace fs = std::filesystem;
+
+// PATH.recovery.json for n = 1, PATH.recovery-N.json after it.
+std::string recovery_name(const std::string& path, int n) {
+    const std::string base = path.empty() ? (fs::temp_directory_path() / "contactlab-untitled").string() : path;
+    return n == 1 ? base + ".recovery.json" : base + ".recovery-" + std::to_string(n) + ".json";
+}
+
+// Writes `text` to a new temporary file beside `near`, flushed; returns its name or "".
+std::string write_temporary(const std::string& near, const std::string& text) {
+    std::string tmp = near + ".XXXXXX";
+    const int fd = ::mkstemp(tmp.data());
+    if (fd < 0) return {};
+    std::size_t done = 0;
+    while (done < text.size()) {
+        const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+        if (n <= 0) break;
+        done += static_cast<std::size_t>(n);
+    }
+    const bool ok = done == text.size() && ::fsync(fd) == 0;
+    ::close(fd);
+    if (!ok) {
+        ::unlink(tmp.c_str());
+        return {};
+    }
+    return tmp;
+}
+
+}  // namespace
+
+std::string Document::recovery_path_for(const std::string& path) { return recovery_name(path, 1); }
+
+std::vector<std::string> Document::recovery_files_for(const std::string& path) {
+    // Names are claimed in order, but a discarded one leaves a gap: look a little past it.
+    std::vector<std::tuple<fs::file_time_type, int, std::string>> found;  // time, then claim order
+    for (int n = 1, misses = 0; misses < 16 && n < 10000; ++n) {
+        const std::string f = recovery_name(path, n);
+        std::error_code ec;
+        const auto t = fs::last_write_time(f, ec);
+        if (ec) {
+            ++misses;
+            continue;
+        }
+        misses = 0;
+        found.emplace_back(t, n, f);
+    }
+    std::sort(found.begin(), found.end());
+    std::vector<std::string> files;
+    for (auto& [t, n, f] : found) files.push_back(f);
+    return files;
 }
 
 std::string Document::autosave() {
     if (revision_ == autosaved_revision_ || !dirty_) return {};
-    const std::string target = recovery_path_for(path_);
     try {
         // The recovery file holds the user's work even when it does not validate yet, so it is
-        // written as plain JSON text (atomically: temporary file, then rename).
+        // written as plain JSON text (atomically: temporary file, then rename or link).
         const std::string text = scene_to_json_text(scene_);
-        const std::string tmp = target + ".tmp";
-        std::FILE* f = std::fopen(tmp.c_str(), "wb");
-        if (!f) return "error: cannot write " + tmp;
-        const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size() && std::fflush(f) == 0;
-        std::fclose(f);
-        if (!ok) return "error: cannot write " + tmp;
-        std::filesystem::rename(tmp, target);
+        const std::string near = own_recovery_.empty() ? recovery_name(path_, 1) : own_recovery_;
+        const std::string tmp = write_temporary(near, text);
+        if (tmp.empty()) return "error: cannot write beside " + near;
+        if (!own_recovery_.empty()) {
+            if (::rename(tmp.c_str(), own_recovery_.c_str()) != 0) {
+                ::unlink(tmp.c_str());
+                return "error: cannot write " + own_recovery_ + " (" + std::strerror(errno) + ")";
+            }
+        } else {
+            // Claim the first free name: link() fails with EEXIST where another session's file
+            // is, so that file is never replaced.
+            for (int n = 1;; ++n) {
+                const std::string candidate = recovery_name(path_, n);
+                if (::link(tmp.c_str(), candidate.c_str()) == 0) {
+                    own_recovery_ = candidate;
+                    break;
+                }
+                if (errno != EEXIST || n >= 10000) {
+                    const std::string why = std::strerror(errno);
+                    ::unlink(tmp.c_str());
+                    return "error: cannot write " + candidate + " (" + why + ")";
+                }
+            }
+            ::unlink(tmp.c_str());
+        }
     } catch (const std::exception& e) {
         return std::string("error: ") + e.what();
     }
     autosaved_revision_ = revision_;
-    return target;
+    return own_recovery_;
 }
 
-void Document::discard_recovery() const {
+void Document::discard_recovery() {
+    if (own_recovery_.empty()) return;
     std::error_code ec;
-    std::filesystem::remove(recovery_path_for(path_), ec);
+    fs::remove(own_recovery_, ec);
+    own_recovery_.clear();
+}
+
+void Document::recover(const std::string& file) {
+    Scene recovered = load_work_in_progress(file);  // throws SceneError: nothing changed
+    edit(std::move(recovered), "recover " + fs::path(file).filename().string());
+    if (own_recovery_.empty()) {
+        own_recovery_ = file;  // this session carries on writing it
+        autosaved_revision_ = revision_;
+        return;
+    }
+    // This session already has a file: the recovered work goes there first, then the other goes.
+    if (autosave().rfind("error: ", 0) != 0) {
+        std::error_code ec;
+        fs::remove(file, ec);
+    }
 }
 
 }  // namespace contactlab::editor

@@ -3,7 +3,8 @@
 // problem, if any, is kept as text for the UI instead of being thrown at the user.
 //
 // Files: save() is scene_io's atomic write (temporary file beside the target, flush, rename);
-// autosave() writes a recovery file the same way, which open() mentions when it is newer.
+// autosave() writes this session's recovery file the same way (recovery.hpp offers other
+// sessions' files at start and on open).
 #pragma once
 
 #include "haptics/scene.hpp"
@@ -57,15 +58,29 @@ public:
     // invalid or the file cannot be written; afterwards path() is `path` and dirty() is false.
     void save(const std::string& path = {});
 
-    // The recovery file for `path` (or for an unnamed scene): PATH.recovery.json.
+    // Recovery files. Each session writes its own: the first free name of PATH.recovery.json,
+    // PATH.recovery-2.json, PATH.recovery-3.json, ... (untitled: $TMPDIR/contactlab-untitled.
+    // recovery.json and so on), claimed atomically on the first autosave (link(2) refuses a name
+    // that exists), so a session never writes over another session's file, crashed or running.
+    //
+    // The first name for `path` (or for an unnamed scene).
     static std::string recovery_path_for(const std::string& path);
-    // Writes the current scene to recovery_path_for(path()) if it changed since the last autosave
-    // (whether valid or not is irrelevant: it is the user's work). Returns the file written, or
-    // empty when nothing needed writing. Never throws; a failure is reported in the returned text
-    // prefixed "error: ".
+    // Every recovery file for `path` now on disk, oldest first.
+    static std::vector<std::string> recovery_files_for(const std::string& path);
+    // The file this session claimed ("" before its first autosave).
+    const std::string& own_recovery() const { return own_recovery_; }
+    // Writes the current scene to this session's recovery file if it changed since the last
+    // autosave (whether valid or not is irrelevant: it is the user's work). Returns the file
+    // written, or empty when nothing needed writing. Never throws; a failure is reported in the
+    // returned text prefixed "error: ".
     std::string autosave();
-    // Removes the recovery file (after a successful save, or when the user discards it).
-    void discard_recovery() const;
+    // Removes this session's recovery file (after a successful save); never another's.
+    void discard_recovery();
+    // Recovers another session's file: its scene replaces this one as an undoable edit (undo
+    // goes back to what was open), the document is dirty, and the file becomes this session's
+    // recovery file (or, if this session already has one, is written there and then removed).
+    // Throws SceneError (nothing changed) if the file is not a scene at all.
+    void recover(const std::string& file);
 
 private:
     struct Entry {
@@ -84,6 +99,7 @@ private:
     bool continuous_changed_ = false;
     std::uint64_t revision_ = 0;
     std::uint64_t autosaved_revision_ = 0;
+    std::string own_recovery_;
 };
 
 }  // namespace contactlab::editor

@@ -9,6 +9,7 @@
 #include "engine/editor/haptics_commands.hpp"
 #include "engine/editor/imgui_layer.hpp"
 #include "engine/editor/panels.hpp"
+#include "engine/editor/recovery.hpp"
 #include "engine/editor/rulers.hpp"
 #include "engine/editor/script.hpp"
 #include "engine/editor/servo_view.hpp"
@@ -53,26 +54,23 @@ const char* present_mode_name(VkPresentModeKHR m) {
 void open_initial(EditorState& s, const std::string& path, bool strict) {
     if (path.empty()) {
         s.say("new scene: draw with the Line tool (3), move the finger with the Finger tool (1)");
-        return;
-    }
-    if (!std::filesystem::exists(path)) {
+    } else if (!std::filesystem::exists(path)) {
         s.doc = Document(Scene{}, path);
         s.say("new scene; Save writes " + path);
-        return;
+    } else {
+        try {
+            s.doc.open(path);
+            s.say("opened " + path);
+        } catch (const SceneError& e) {
+            if (strict) throw;
+            s.say(std::string("could not open: ") + e.what(), true);
+            std::fprintf(stderr, "contactlab edit: %s\n", e.what());
+        }
     }
-    try {
-        s.doc.open(path);
-        s.say("opened " + path);
-    } catch (const SceneError& e) {
-        if (strict) throw;
-        s.say(std::string("could not open: ") + e.what(), true);
-        std::fprintf(stderr, "contactlab edit: %s\n", e.what());
-    }
-    const std::string rec = Document::recovery_path_for(path);
-    std::error_code ec;
-    if (std::filesystem::exists(rec, ec) &&
-        std::filesystem::last_write_time(rec, ec) > std::filesystem::last_write_time(path, ec))
-        s.say("a recovery file newer than the scene exists: " + rec + " (File > Open to recover it)", true);
+    // Named, new or untitled: work an earlier session left unsaved is offered, never overwritten.
+    offer_recovery(s);
+    for (const std::string& f : s.recovery_offers)
+        std::fprintf(stderr, "contactlab edit: unsaved work from an earlier session: %s\n", recovery_summary(f).c_str());
 }
 
 // A finger start above the scene: free space, so the servo arms and ramps in before contact.

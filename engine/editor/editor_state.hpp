@@ -65,6 +65,9 @@ struct EditorState {
     ServoFault last_fault = ServoFault::none;
     double last_fault_t = 0.0;  // s, device time
 
+    // Other sessions' recovery files waiting for an answer (recovery.hpp), the front one shown.
+    std::vector<std::string> recovery_offers;
+
     // View options.
     render::Overlays overlays;
     bool labels = true;

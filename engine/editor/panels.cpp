@@ -4,6 +4,7 @@
 #include "engine/editor/canvas.hpp"
 #include "engine/editor/haptics_commands.hpp"
 #include "engine/editor/parameter_edit.hpp"
+#include "engine/editor/recovery.hpp"
 #include "haptics/scene_io.hpp"
 
 #include <imgui.h>
@@ -90,6 +91,7 @@ void menu_bar(EditorState& s) {
             if (ImGui::MenuItem("New")) {
                 s.doc = Document();
                 s.say("new scene");
+                offer_recovery(s);  // an untitled session's unsaved work, if one ended badly
             }
             if (ImGui::MenuItem("Open...")) open_popup = true;
             if (ImGui::MenuItem("Save", "Ctrl+S", false, !s.doc.path().empty())) {
@@ -170,6 +172,7 @@ void menu_bar(EditorState& s) {
                         s.doc.open(path_buf);
                         cmd_fit(s);
                         s.say("opened " + s.doc.path());
+                        offer_recovery(s);
                     } else {
                         s.doc.save(path_buf);
                         s.say("saved " + s.doc.path());
@@ -367,6 +370,29 @@ void status_window(EditorState& s, const FrameInfo& info) {
     ImGui::End();
 }
 
+// Another session's unsaved work (recovery.hpp): one modal per file, until answered.
+void recovery_window(EditorState& s) {
+    const char* title = "Recover unsaved work";
+    if (s.recovery_offers.empty()) return;
+    if (!ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
+    if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+    ImGui::TextUnformatted("A session ended without saving this work:");
+    ImGui::PushTextWrapPos(560.0f);
+    ImGui::TextColored(ImVec4(1, 0.85f, 0.5f, 1), "%s", recovery_summary(s.recovery_offers.front()).c_str());
+    ImGui::PopTextWrapPos();
+    if (s.recovery_offers.size() > 1) ImGui::TextDisabled("(%zu more after this one)", s.recovery_offers.size() - 1);
+    if (ImGui::Button("Recover")) answer_recovery(s, RecoveryAnswer::recover);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Open it in place of the current scene (undo goes back)");
+    ImGui::SameLine();
+    if (ImGui::Button("Discard")) answer_recovery(s, RecoveryAnswer::discard);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Delete the recovery file");
+    ImGui::SameLine();
+    if (ImGui::Button("Keep both")) answer_recovery(s, RecoveryAnswer::keep_both);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Keep it as NAME.recovered-DATE.json beside the scene");
+    if (s.recovery_offers.empty()) ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+}
+
 void plots_window(EditorState& s, const FrameInfo& info) {
     ImGui::SetNextWindowPos(ImVec2(static_cast<float>(info.width) - 350.0f, 385), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(340, 300), ImGuiCond_FirstUseEver);
@@ -401,6 +427,7 @@ void draw_panels(EditorState& s, const FrameInfo& info) {
     tuning_window(s);
     status_window(s, info);
     plots_window(s, info);
+    recovery_window(s);
     if (!s.message.empty()) {
         // Status line along the bottom edge.
         ImGui::SetNextWindowPos(ImVec2(0, static_cast<float>(info.height) - 26.0f));

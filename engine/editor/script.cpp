@@ -4,6 +4,7 @@
 #include "engine/editor/canvas.hpp"
 #include "engine/editor/haptics_commands.hpp"
 #include "engine/editor/parameter_edit.hpp"
+#include "engine/editor/recovery.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -22,7 +23,7 @@ const std::map<std::string, std::pair<int, int>>& arity() {
         {"redo", {0, 0}},   {"fit", {0, 0}},         {"save", {1, 1}},       {"open", {1, 1}},
         {"screenshot", {1, 1}}, {"estop", {1, 1}},   {"wait", {1, 1}},       {"frames", {1, 1}},
         {"wait_contact", {1, 1}}, {"resize", {2, 2}}, {"generate", {1, 1}}, {"wait_state", {2, 2}}, {"expect", {2, 3}}, {"quit", {0, 0}},
-        {"device", {1, 2}}, {"rate", {1, 1}}, {"record", {1, 1}}, {"report", {1, 1}}, {"devices", {0, 0}},
+        {"device", {1, 2}}, {"rate", {1, 1}}, {"record", {1, 1}}, {"report", {1, 1}}, {"devices", {0, 0}}, {"recovery", {1, 1}},
     };
     return a;
 }
@@ -182,6 +183,12 @@ bool Script::run(EditorState& s, const Line& line, double now) {
         }
         s.doc.edit(std::move(sc), n);
         s.say(n + " = " + w[2]);
+    } else if (c == "recovery") {
+        const std::string& a = w[1];
+        if (a != "recover" && a != "discard" && a != "keep") throw ScriptError("recovery recover|discard|keep");
+        answer_recovery(s, a == "recover" ? RecoveryAnswer::recover
+                           : a == "discard" ? RecoveryAnswer::discard
+                                            : RecoveryAnswer::keep_both);  // outcome: `expect error 0|1`
     } else if (c == "undo") {
         cmd_undo(s);
     } else if (c == "redo") {
@@ -244,6 +251,7 @@ bool Script::run(EditorState& s, const Line& line, double now) {
             else if (n == "valid") v = s.doc.valid() ? 1 : 0;
             else if (n == "undo_depth") v = static_cast<double>(s.doc.undo_depth());
             else if (n == "dirty") v = s.doc.dirty() ? 1 : 0;
+            else if (n == "recovery_offers") v = static_cast<double>(s.recovery_offers.size());
             else if (n == "error") v = s.message_is_error ? 1 : 0;
             else if (n == "force_above" || n == "force_below" || n == "force") v = f;
             else if (n == "rate") v = s.servo ? s.servo->rate() : 0.0;

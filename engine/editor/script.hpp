@@ -12,6 +12,8 @@
 //                   also: curves exact|flatten; model spring|ellipsoid; rule centroid|least_displacement;
 //                     snap_mm MM: grid snapping for the authoring tools, 0 = off;
 //                     snap_tangent 0|1: G1 tangent continuation at open chain ends
+//   recovery recover|discard|keep   (answers the first offer of an earlier session's unsaved work,
+//                     recovery.hpp; `expect recovery_offers N` counts those waiting)
 //   undo  redo  fit  save PATH  open PATH  screenshot PATH  estop on|off  resize W H (px)
 //   generate block|bumps|arc
 //   wait SECONDS     frames N     wait_contact TIMEOUT_S     wait_state STATE TIMEOUT_S

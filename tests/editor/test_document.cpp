@@ -91,3 +91,84 @@ TEST_CASE("save writes the scene atomically and round-trips and autosave writes 
     // Only the scene is left: no temporary file beside it.
     CHECK(dir.entries() == std::vector<std::string>{"scene.json"});
 }
+
+TEST_CASE("recovery files: sessions claim their own, save removes only its own, recover adopts one") {
+    cli_test::TempDir dir;
+    const std::string path = dir.file("new.json");  // a scene never saved
+    Document a(Scene{}, path), b(Scene{}, path);
+    a.edit(floor_scene(), "add line");
+    Scene two = floor_scene();
+    two.contours.push_back(two.contours.front());
+    two.contours.back().segments.front() = LineSegment{{-0.05, 0.02}, {0.05, 0.02}};
+    b.edit(two, "add lines");
+    // Two sessions on one file (or a crashed one and a new one) never share a recovery file.
+    const std::string ra = a.autosave(), rb = b.autosave();
+    CHECK(ra == path + ".recovery.json");
+    CHECK(rb == path + ".recovery-2.json");
+    CHECK(Document::recovery_files_for(path) == std::vector<std::string>{ra, rb});
+    // Later autosaves keep writing the session's own file, atomically (no temporary left).
+    Scene k = a.scene();
+    k.force.stiffness = 640.0;
+    a.edit(k, "Ke");
+    CHECK(a.autosave() == ra);
+    CHECK(load_scene_file(ra).force.stiffness == 640.0);
+    CHECK(load_scene_file(rb).contours.size() == 2);
+    CHECK(dir.entries() == std::vector<std::string>{"new.json.recovery-2.json", "new.json.recovery.json"});
+
+    // a saves: its recovery file goes, b's stays (it is b's work, unsaved).
+    a.save();
+    CHECK_FALSE(std::filesystem::exists(ra));
+    CHECK(std::filesystem::exists(rb));
+
+    // A third session recovers b's file: b's scene, undoable, and the file is now its own.
+    Document c(load_scene_file(path), path);
+    c.recover(rb);
+    CHECK(c.scene().contours.size() == 2);
+    CHECK(c.dirty());
+    CHECK(c.own_recovery() == rb);
+    c.undo();
+    CHECK(c.scene().contours.size() == 1);
+    CHECK(c.autosave() == rb);  // the session's own file follows its edits
+    CHECK(load_scene_file(rb).contours.size() == 1);
+    c.save();
+    CHECK(dir.entries() == std::vector<std::string>{"new.json"});
+}
+
+TEST_CASE("recovery files: recovering into a session that already has one moves the work there") {
+    cli_test::TempDir dir;
+    const std::string path = dir.file("s.json");
+    Document old_session(Scene{}, path), now(Scene{}, path);
+    old_session.edit(floor_scene(), "add line");
+    const std::string old_file = old_session.autosave();
+    Scene k = now.scene();
+    k.force.stiffness = 900.0;
+    now.edit(k, "Ke");
+    const std::string own = now.autosave();
+    REQUIRE(own != old_file);
+    now.recover(old_file);
+    CHECK(now.own_recovery() == own);
+    CHECK_FALSE(std::filesystem::exists(old_file));
+    CHECK(load_scene_file(own).contours.size() == 1);
+}
+
+TEST_CASE("recovery files: work that does not validate yet is still recovered") {
+    cli_test::TempDir dir;
+    const std::string path = dir.file("w.json");
+    Document d(Scene{}, path);
+    Scene bad = floor_scene();
+    bad.contours.front().segments.push_back(LineSegment{{0.05, 0.0}, {0.05, 0.0}});  // zero length
+    d.edit(bad, "add point");
+    REQUIRE_FALSE(d.valid());
+    const std::string rec = d.autosave();
+    CHECK_THROWS_AS(load_scene_file(rec), SceneError);
+    Document e(Scene{}, path);
+    e.recover(rec);
+    CHECK_FALSE(e.valid());
+    CHECK(e.scene().contours.front().segments.size() == 2);
+    // Not a scene at all: refused, nothing changed.
+    cli_test::write_text(rec, "{ not json");
+    Document f(Scene{}, path);
+    CHECK_THROWS_AS(f.recover(rec), SceneError);
+    CHECK(f.scene().contours.empty());
+    CHECK_FALSE(f.dirty());
+}

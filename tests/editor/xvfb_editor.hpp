@@ -7,6 +7,9 @@
 #include <doctest/doctest.h>
 
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <string>
@@ -19,6 +22,42 @@ inline cli_test::ProcessResult run_under_xvfb(std::vector<std::string> args, con
     std::vector<std::string> all = {"-a", "-s", "-screen 0 1600x1000x24", cli_test::exe_path()};
     all.insert(all.end(), args.begin(), args.end());
     return cli_test::run_process("/usr/bin/xvfb-run", all, cwd, std::chrono::seconds(120));
+}
+
+// Starts `xvfb-run ... contactlab ARGS` without waiting (stdout and stderr to `log`); returns the
+// xvfb-run process's id. With kill_editor() below a test can kill the editor as a crash would.
+inline pid_t start_under_xvfb(std::vector<std::string> args, const std::string& log) {
+    setenv("VK_DRIVER_FILES", "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json", 1);
+    std::vector<std::string> store = {"/usr/bin/xvfb-run", "-a", "-s", "-screen 0 1600x1000x24", cli_test::exe_path()};
+    store.insert(store.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (auto& a : store) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    const pid_t pid = ::fork();
+    REQUIRE(pid >= 0);
+    if (pid == 0) {
+        const int in = ::open("/dev/null", O_RDONLY);
+        const int out = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (in < 0 || out < 0 || ::dup2(in, 0) < 0 || ::dup2(out, 1) < 0 || ::dup2(out, 2) < 0) ::_exit(126);
+        ::execv(argv[0], argv.data());
+        ::_exit(127);
+    }
+    return pid;
+}
+
+// The id of the running `contactlab` whose command line contains `marker` (e.g. its script's
+// path), from /proc; 0 if none.
+inline pid_t find_contactlab(const std::string& marker) {
+    for (const auto& e : std::filesystem::directory_iterator("/proc")) {
+        const std::string name = e.path().filename().string();
+        if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+        std::ifstream in(e.path() / "cmdline", std::ios::binary);
+        std::string cmd((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        for (char& c : cmd) if (c == '\0') c = ' ';
+        if (cmd.rfind(cli_test::exe_path(), 0) == 0 && cmd.find(marker) != std::string::npos)
+            return static_cast<pid_t>(std::stol(name));
+    }
+    return 0;
 }
 
 // "script report LABEL: k=v k=v ..." -> {k: v}; REQUIREs that the line exists.
