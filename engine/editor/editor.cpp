@@ -232,6 +232,7 @@ int run_editor(const EditorOptions& o) {
     FrameTimer timer;
     double window_open_ms = -1.0;
     double last_autosave = 0.0;
+    std::optional<ProxyOutput> shown_proxy;  // last frame's, for the status row
     int exit_code = 0;
     std::string shown_title;
     const Clock::time_point t_loop = Clock::now();
@@ -269,8 +270,10 @@ int run_editor(const EditorOptions& o) {
             info.width = static_cast<int>(ext.width);
             info.height = static_cast<int>(ext.height);
             info.validation_messages = ctx.validation_messages();
-            draw_panels(s, info);
-            const float menu_bar_height = ImGui::GetFrameHeight() * ImGui::GetIO().DisplayFramebufferScale.y;
+            draw_panels(s, info, shown_proxy);
+            // The fixed parts' px (ImGui units times the framebuffer scale).
+            const float ui_scale = ImGui::GetIO().DisplayFramebufferScale.y;
+            const EditorLayout layout = current_layout();
             imgui.render();
 
             // Title: the file and whether it has unsaved changes.
@@ -332,12 +335,16 @@ int run_editor(const EditorOptions& o) {
             content.overlays = s.overlays;
             content.text = s.labels;
             content.roller_l = snap.roller_l;
-            content.top_inset_px = menu_bar_height + kRulerBand;
+            content.status_line = false;  // the status row above the rulers shows it (panels.cpp)
+            content.top_inset_px = layout.canvas_top * ui_scale;
+            content.left_inset_px = layout.canvas_left * ui_scale;
+            content.bottom_inset_px = layout.canvas_bottom * ui_scale;
+            shown_proxy = content.finger;
             if (list.width() != static_cast<int>(ext.width) || list.height() != static_cast<int>(ext.height))
                 list = render::DrawList(static_cast<int>(ext.width), static_cast<int>(ext.height));
             render::build_frame(content, s.camera.view(), theme, list);
             draw_canvas_marks(s, theme, list);
-            draw_rulers(s.camera.view(), menu_bar_height, theme, list);
+            draw_rulers(s.camera.view(), layout.top_ruler.y * ui_scale, theme, list);
 
             // Screenshot: the last of --frames N, or when the script asks.
             std::optional<std::string> shot;

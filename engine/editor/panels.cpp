@@ -5,9 +5,11 @@
 #include "engine/editor/haptics_commands.hpp"
 #include "engine/editor/parameter_edit.hpp"
 #include "engine/editor/recovery.hpp"
+#include "engine/render/frame.hpp"
 #include "haptics/scene_io.hpp"
 
 #include <imgui.h>
+#include <imgui_internal.h>  // the window list, for laid_out()
 
 #include <cfloat>
 #include <cmath>
@@ -24,6 +26,13 @@ void field_error_line(const EditorState& s, const char* name) {
     ImGui::PushTextWrapPos(0.0f);
     ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "refused: %s", s.field_error.c_str());
     ImGui::PopTextWrapPos();
+}
+
+// A grey explanatory line, wrapped to the panel (never cut at its edge).
+void wrapped_hint(const char* text) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("%s", text);
+    ImGui::PopStyleColor();
 }
 
 // An ImGui slider bound to one tunable parameter (parameter_edit.hpp names): one undoable edit
@@ -62,11 +71,13 @@ void edit_ellipsoid_ek(EditorState& s) {
 void edit_accuracy(EditorState& s) {
     const Scene& sc = s.doc.scene();
     int mode = sc.curves.mode == CurveMode::exact ? 0 : 1;
-    if (ImGui::Combo("curves", &mode, "exact (arc spline, 1e-10 m)\0flatten (chords)\0")) {
+    if (ImGui::Combo("curves", &mode, "exact (arc spline)\0flatten (chords)\0")) {
         Scene c = sc;
         c.curves.mode = mode == 0 ? CurveMode::exact : CurveMode::flatten;
         s.doc.edit(std::move(c), "curve accuracy");
     }
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("exact: curves become arc splines within 2e-8 m\nflatten: chords within the tolerance below");
     if (sc.curves.mode == CurveMode::flatten)
         edit_field(s, "chord tolerance (um)", "tolerance", 1e-7, 1e-3, "%.2f", 1e6, true);
 }
@@ -79,7 +90,7 @@ void edit_roller_travel(EditorState& s) {
     if (ImGui::SmallButton("18 mm")) set_parameter(s, "travel_mm", 18.0);  // seed 002's CLD
     if (s.roller_travel == 0.0) {
         ImGui::SameLine();
-        ImGui::TextDisabled("(0: the device's whole travel)");
+        ImGui::TextDisabled("(0: all of it)");
     }
 }
 
@@ -246,7 +257,7 @@ void device_controls(EditorState& s) {
 // Servo rate: typed (Enter applies) or a preset; each change restarts the servo safely.
 void rate_controls(EditorState& s) {
     if (!s.haptics) return;
-    ImGui::TextDisabled("servo rate (restarts the servo: zero force, then ramp-in)");
+    wrapped_hint("A change restarts the servo: zero force, then the force ramps in.");
     double hz = s.haptics->rate();
     if (ImGui::InputDouble("rate (Hz)", &hz, 0.0, 0.0, "%.0f", ImGuiInputTextFlags_EnterReturnsTrue) &&
         hz != s.haptics->rate())
@@ -261,71 +272,79 @@ void rate_controls(EditorState& s) {
     }
 }
 
-void tuning_window(EditorState& s) {
-    ImGui::SetNextWindowPos(ImVec2(52, 80), ImGuiCond_FirstUseEver);  // below the frame's status line
-    ImGui::SetNextWindowSize(ImVec2(330, 470), ImGuiCond_FirstUseEver);
-    if (!ImGui::Begin("Tuning")) {
+void tuning_window(EditorState& s, const EditorLayout& layout, ImGuiCond cond) {
+    // As tall as its open sections, at most the column (then it scrolls): the canvas's legend
+    // below it stays in sight.
+    const Rect& r = layout.tuning;
+    ImGui::SetNextWindowPos(ImVec2(r.x, r.y), cond);
+    ImGui::SetNextWindowSizeConstraints(ImVec2(r.w, 0.0f), ImVec2(r.w, std::max(r.h, 100.0f)));
+    if (!ImGui::Begin("Tuning", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
         ImGui::End();
         return;
     }
+    ImGui::PushTextWrapPos(0.0f);  // long lines wrap, never cut
     ImGui::PushItemWidth(170);
-    const Scene& sc = s.doc.scene();
-    ImGui::TextDisabled("force model (scene, undoable)");
-    int model = sc.force.law.model == ForceModel::spring ? 0 : 1;
-    if (ImGui::Combo("model", &model, "spring\0ellipsoid\0")) {
-        Scene c = sc;
-        set_force_model(c.force, model == 0 ? ForceModel::spring : ForceModel::ellipsoid);
-        s.doc.edit(std::move(c), "force model");
+    if (ImGui::CollapsingHeader("Force (scene, undoable)", ImGuiTreeNodeFlags_DefaultOpen)) {
+        const Scene& sc = s.doc.scene();
+        int model = sc.force.law.model == ForceModel::spring ? 0 : 1;
+        if (ImGui::Combo("model", &model, "spring\0ellipsoid\0")) {
+            Scene c = sc;
+            set_force_model(c.force, model == 0 ? ForceModel::spring : ForceModel::ellipsoid);
+            s.doc.edit(std::move(c), "force model");
+            s.say(model == 0 ? "model = spring (Ke = k_n)" : "model = ellipsoid (k_n = Ke)");
+        }
+        const double kmax = s.device ? s.device->limits().max_stable_stiffness : 2000.0;
+        edit_field(s, "Ke (N/m)", "ke", 10.0, 5000.0, "%.0f", 1.0, true);
+        if (s.servo && s.device) {
+            // Discrete stability bound for a spring through the device's damping: K < 2 b / T.
+            const double bound = 2.0 * s.device->limits().damping / s.servo->period();
+            ImGui::TextColored(s.doc.scene().force.stiffness > kmax ? ImVec4(1, 0.4f, 0.3f, 1) : ImVec4(0.6f, 0.8f, 0.6f, 1),
+                               "stable up to: device %.0f N/m, 2b/T %.0f N/m", kmax, bound);
+        }
+        edit_field(s, "max force (N)", "max_force", 0.01, 5.0, "%.2f");
+        if (s.doc.scene().force.law.model == ForceModel::ellipsoid) {
+            edit_field(s, "k tangential (N/m)", "k_t", 10.0, 5000.0, "%.0f", 1.0, true);
+            edit_field(s, "k normal (N/m)", "k_n", 10.0, 5000.0, "%.0f", 1.0, true);
+            edit_ellipsoid_ek(s);
+        }
+        edit_field(s, "damping (N s/m)", "damping", 0.0, 10.0, "%.2f");
+        edit_field(s, "mu static", "mu_s", 0.0, 2.0, "%.2f");
+        edit_field(s, "mu dynamic", "mu_d", 0.0, 2.0, "%.2f");
+        int rule = s.doc.scene().contact_location.rule == ContactRule::centroid ? 0 : 1;
+        if (ImGui::Combo("contact rule", &rule, "centroid (seed 000)\0least displacement\0")) {
+            Scene c = s.doc.scene();
+            c.contact_location.rule = rule == 0 ? ContactRule::centroid : ContactRule::least_displacement;
+            s.doc.edit(std::move(c), "contact rule");
+        }
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("centroid: seed 000\nleast displacement: seed 002");
     }
-    const double kmax = s.device ? s.device->limits().max_stable_stiffness : 2000.0;
-    edit_field(s, "Ke (N/m)", "ke", 10.0, 5000.0, "%.0f", 1.0, true);
-    if (s.servo) {
-        // Discrete stability bound for a spring through the device's damping: K < 2 b / T.
-        const double bound = 2.0 * s.device->limits().damping / s.servo->period();
-        ImGui::TextColored(sc.force.stiffness > kmax ? ImVec4(1, 0.4f, 0.3f, 1) : ImVec4(0.6f, 0.8f, 0.6f, 1),
-                           "device stable limit %.0f N/m, 2b/T = %.0f N/m", kmax, bound);
+    if (ImGui::CollapsingHeader("Finger and curves (scene)", ImGuiTreeNodeFlags_DefaultOpen)) {
+        edit_field(s, "finger R (mm)", "finger_r", 0.005, 0.05, "%.1f", 1e3);
+        edit_field(s, "pad L (mm)", "pad_l", 0.002, 0.06, "%.1f", 1e3);
+        edit_accuracy(s);
     }
-    edit_field(s, "max force (N)", "max_force", 0.01, 5.0, "%.2f");
-    if (sc.force.law.model == ForceModel::ellipsoid) {
-        edit_field(s, "k tangential (N/m)", "k_t", 10.0, 5000.0, "%.0f", 1.0, true);
-        edit_field(s, "k normal (N/m)", "k_n", 10.0, 5000.0, "%.0f", 1.0, true);
-        edit_ellipsoid_ek(s);
+    if (ImGui::CollapsingHeader("Servo rate", ImGuiTreeNodeFlags_DefaultOpen)) rate_controls(s);
+    if (ImGui::CollapsingHeader("Roller PID (live, not in the scene)", ImGuiTreeNodeFlags_DefaultOpen)) {
+        edit_live(s, "Kp (V/m)", "kp", 1000.0, 10000.0, "%.0f");
+        edit_live(s, "Ki (V/(m s))", "ki", 1e4, 1e5, "%.0f");
+        edit_live(s, "Kd (V s/m)", "kd", 1.0, 10.0, "%.1f");
+        edit_live(s, "max drive (V)", "max_drive", 0.5, 1.0, "%.1f");
+        edit_roller_travel(s);
     }
-    edit_field(s, "damping (N s/m)", "damping", 0.0, 10.0, "%.2f");
-    edit_field(s, "mu static", "mu_s", 0.0, 2.0, "%.2f");
-    edit_field(s, "mu dynamic", "mu_d", 0.0, 2.0, "%.2f");
-    int rule = sc.contact_location.rule == ContactRule::centroid ? 0 : 1;
-    if (ImGui::Combo("contact rule", &rule, "centroid (seed 000)\0least displacement (seed 002)\0")) {
-        Scene c = s.doc.scene();
-        c.contact_location.rule = rule == 0 ? ContactRule::centroid : ContactRule::least_displacement;
-        s.doc.edit(std::move(c), "contact rule");
-    }
-    edit_field(s, "finger R (mm)", "finger_r", 0.005, 0.05, "%.1f", 1e3);
-    edit_field(s, "pad L (mm)", "pad_l", 0.002, 0.06, "%.1f", 1e3);
-    edit_accuracy(s);
-
-    ImGui::Separator();
-    rate_controls(s);
-    selection_editor(s);
-    ImGui::Separator();
-    ImGui::TextDisabled("roller PID (live, not in the scene)");
-    edit_live(s, "Kp (V/m)", "kp", 1000.0, 10000.0, "%.0f");
-    edit_live(s, "Ki (V/(m s))", "ki", 1e4, 1e5, "%.0f");
-    edit_live(s, "Kd (V s/m)", "kd", 1.0, 10.0, "%.1f");
-    edit_live(s, "max drive (V)", "max_drive", 0.5, 1.0, "%.1f");
-    edit_roller_travel(s);
+    selection_editor(s);  // also drops a selection the scene no longer has, so always called
     ImGui::PopItemWidth();
+    ImGui::PopTextWrapPos();
     ImGui::End();
 }
 
-
-void status_window(EditorState& s, const FrameInfo& info) {
-    ImGui::SetNextWindowPos(ImVec2(static_cast<float>(info.width) - 350.0f, 50), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(340, 330), ImGuiCond_FirstUseEver);
+void status_window(EditorState& s, const FrameInfo& info, const EditorLayout& layout, ImGuiCond cond) {
+    ImGui::SetNextWindowPos(ImVec2(layout.haptics.x, layout.haptics.y), cond);
+    ImGui::SetNextWindowSize(ImVec2(layout.haptics.w, layout.haptics.h), cond);
     if (!ImGui::Begin("Haptics")) {
         ImGui::End();
         return;
     }
+    ImGui::PushTextWrapPos(0.0f);  // long lines (a device fault, the scheduling) wrap, never cut
     device_controls(s);
     if (s.servo) {
         const ServoSnapshot snap = s.servo->snapshot();
@@ -355,18 +374,16 @@ void status_window(EditorState& s, const FrameInfo& info) {
         ImGui::TextDisabled("%s", s.servo->scheduling().c_str());
     }
     ImGui::Separator();
-    ImGui::Text("%s, %d x %d, %.1f ms/frame (%.0f fps)", info.present_mode.c_str(), info.width, info.height,
-                info.frame_ms, info.fps);
+    ImGui::Text("%s, %dx%d, %.1f ms/frame, %.0f fps", info.present_mode.c_str(), info.width, info.height, info.frame_ms,
+                info.fps);
     ImGui::TextDisabled("%s", info.gpu.c_str());
     if (info.validation_messages) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "validation messages: %d", info.validation_messages);
     ImGui::Text("%d contours, %d segments, undo %zu", static_cast<int>(s.doc.scene().contours.size()),
                 segment_count(s.doc.scene()), s.doc.undo_depth());
-    if (!s.doc.valid()) {
-        ImGui::PushTextWrapPos(0.0f);
+    if (!s.doc.valid())
         ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "Invalid geometry (not sent to the servo, not saved): %s",
                            s.doc.problem().c_str());
-        ImGui::PopTextWrapPos();
-    }
+    ImGui::PopTextWrapPos();
     ImGui::End();
 }
 
@@ -393,9 +410,9 @@ void recovery_window(EditorState& s) {
     ImGui::EndPopup();
 }
 
-void plots_window(EditorState& s, const FrameInfo& info) {
-    ImGui::SetNextWindowPos(ImVec2(static_cast<float>(info.width) - 350.0f, 385), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(340, 300), ImGuiCond_FirstUseEver);
+void plots_window(EditorState& s, const EditorLayout& layout, ImGuiCond cond) {
+    ImGui::SetNextWindowPos(ImVec2(layout.plots.x, layout.plots.y), cond);
+    ImGui::SetNextWindowSize(ImVec2(layout.plots.w, layout.plots.h), cond);
     if (!ImGui::Begin("Plots (last 5 s)")) {
         ImGui::End();
         return;
@@ -420,25 +437,69 @@ void plots_window(EditorState& s, const FrameInfo& info) {
     ImGui::End();
 }
 
+// A fixed, undecorated row the width of the window (the status and message rows).
+bool begin_row(const char* id, const Rect& r) {
+    ImGui::SetNextWindowPos(ImVec2(r.x, r.y));
+    ImGui::SetNextWindowSize(ImVec2(r.w, r.h));
+    ImGui::SetNextWindowBgAlpha(1.0f);  // opaque: the canvas does not show through a row
+    ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(8.0f, 3.0f));
+    ImGui::PushStyleVar(ImGuiStyleVar_WindowBorderSize, 0.0f);
+    ImGui::PushStyleVar(ImGuiStyleVar_WindowMinSize, ImVec2(1.0f, 1.0f));  // a row, not a 32 px window
+    const bool open = ImGui::Begin(id, nullptr,
+                                   ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoSavedSettings |
+                                       ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav |
+                                       ImGuiWindowFlags_NoBringToFrontOnFocus);
+    ImGui::PopStyleVar(3);
+    return open;
+}
+
 }  // namespace
 
-void draw_panels(EditorState& s, const FrameInfo& info) {
+EditorLayout current_layout() {
+    const ImVec2 size = ImGui::GetIO().DisplaySize;
+    return editor_layout(static_cast<int>(size.x), static_cast<int>(size.y), ImGui::GetFrameHeight());
+}
+
+std::vector<LaidOut> laid_out() {
+    std::vector<LaidOut> parts;
+    const EditorLayout l = current_layout();
+    for (const auto& [name, r] : {std::pair{"top ruler", l.top_ruler}, std::pair{"left ruler", l.left_ruler}})
+        parts.push_back({name, r, false, true});
+    // Dear ImGui's windows as drawn last frame (imgui_internal.h: the public API has no list).
+    for (ImGuiWindow* w : GImGui->Windows) {
+        if (!w->WasActive || w->Hidden || (w->Flags & (ImGuiWindowFlags_ChildWindow | ImGuiWindowFlags_Tooltip))) continue;
+        // Content wider than the room inside the padding: something is cut at the right edge.
+        const bool overflow = w->ContentSize.x > w->ContentRegionRect.GetWidth() + 0.5f;
+        const bool popup = (w->Flags & ImGuiWindowFlags_Popup) != 0;
+        parts.push_back({w->Name, Rect{w->Pos.x, w->Pos.y, w->Size.x, w->Size.y}, overflow, !popup, w->ContentSize.x,
+                         w->ContentRegionRect.GetWidth()});
+    }
+    return parts;
+}
+
+void draw_panels(EditorState& s, const FrameInfo& info, const std::optional<ProxyOutput>& proxy) {
+    const EditorLayout layout = current_layout();
+    // Panels go where the layout says on the first frame and again whenever the window's size
+    // changes (a panel left where it was could end up off screen or over another); in between
+    // they stay where the user moved them.
+    static ImVec2 laid_out_for(0.0f, 0.0f);
+    const ImVec2 size = ImGui::GetIO().DisplaySize;
+    const ImGuiCond cond = size.x != laid_out_for.x || size.y != laid_out_for.y ? ImGuiCond_Always : ImGuiCond_FirstUseEver;
+    laid_out_for = size;
     menu_bar(s);
-    tuning_window(s);
-    status_window(s, info);
-    plots_window(s, info);
+    // Status row under the menu bar: the proxy's state, never over the canvas or the rulers.
+    if (begin_row("##proxy status", layout.status_row) && proxy)
+        ImGui::TextUnformatted(render::proxy_status_text(*proxy).c_str());
+    ImGui::End();
+    tuning_window(s, layout, cond);
+    status_window(s, info, layout, cond);
+    plots_window(s, layout, cond);
     recovery_window(s);
-    if (!s.message.empty()) {
-        // Status line along the bottom edge.
-        ImGui::SetNextWindowPos(ImVec2(0, static_cast<float>(info.height) - 26.0f));
-        ImGui::SetNextWindowSize(ImVec2(static_cast<float>(info.width), 26.0f));
-        ImGui::Begin("##status", nullptr,
-                     ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoSavedSettings |
-                         ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav);
+    // Message row along the bottom edge: the last action's outcome.
+    if (begin_row("##status", layout.message_row))
         ImGui::TextColored(s.message_is_error ? ImVec4(1, 0.4f, 0.3f, 1) : ImVec4(0.8f, 0.85f, 0.9f, 1), "%s",
                            s.message.c_str());
-        ImGui::End();
-    }
+    ImGui::End();
 }
 
 }  // namespace contactlab::editor

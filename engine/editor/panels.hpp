@@ -5,6 +5,11 @@
 #pragma once
 
 #include "engine/editor/editor_state.hpp"
+#include "engine/editor/layout.hpp"
+#include "engine/render/frame.hpp"
+
+#include <optional>
+#include <vector>
 
 #include <string>
 
@@ -20,6 +25,21 @@ struct FrameInfo {
     int validation_messages = 0;
 };
 
-void draw_panels(EditorState& s, const FrameInfo& info);
+// The fixed layout for this frame's size (layout.hpp), in ImGui's units.
+EditorLayout current_layout();
+
+// What is on screen, for the layout check (`layout` in scripts): the rulers and every visible
+// Dear ImGui window as drawn last frame, and whether its content is wider than its inside.
+struct LaidOut {
+    std::string name;
+    Rect rect;
+    bool overflow = false;  // a label or text cut at the right edge
+    bool tiled = true;      // false for popups, which float over the rest by design
+    float content_w = 0.0f, inside_w = 0.0f;  // px: the widest item, the room for it
+};
+std::vector<LaidOut> laid_out();
+// Menus, the status row (the proxy's state, `proxy`, when there is one), the Tuning, Haptics and
+// Plots panels, the recovery offer, and the message row.
+void draw_panels(EditorState& s, const FrameInfo& info, const std::optional<ProxyOutput>& proxy);
 
 }  // namespace contactlab::editor

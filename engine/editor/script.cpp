@@ -3,6 +3,7 @@
 
 #include "engine/editor/canvas.hpp"
 #include "engine/editor/haptics_commands.hpp"
+#include "engine/editor/panels.hpp"
 #include "engine/editor/parameter_edit.hpp"
 #include "engine/editor/recovery.hpp"
 
@@ -23,7 +24,7 @@ const std::map<std::string, std::pair<int, int>>& arity() {
         {"redo", {0, 0}},   {"fit", {0, 0}},         {"save", {1, 1}},       {"open", {1, 1}},
         {"screenshot", {1, 1}}, {"estop", {1, 1}},   {"wait", {1, 1}},       {"frames", {1, 1}},
         {"wait_contact", {1, 1}}, {"resize", {2, 2}}, {"generate", {1, 1}}, {"wait_state", {2, 2}}, {"expect", {2, 3}}, {"quit", {0, 0}},
-        {"device", {1, 2}}, {"rate", {1, 1}}, {"record", {1, 1}}, {"report", {1, 1}}, {"devices", {0, 0}}, {"recovery", {1, 1}},
+        {"device", {1, 2}}, {"rate", {1, 1}}, {"record", {1, 1}}, {"report", {1, 1}}, {"devices", {0, 0}}, {"recovery", {1, 1}}, {"layout", {0, 0}},
     };
     return a;
 }
@@ -310,6 +311,12 @@ bool Script::run(EditorState& s, const Line& line, double now) {
                      snap.phi * 180.0 / kPi, snap.contact ? 1 : 0, snap.depth * 1e3, std::hypot(snap.force.x, snap.force.y),
                      snap.stiffness, to_string(snap.state), to_string(snap.fault), static_cast<unsigned long long>(snap.ticks), ps.p50 * 1e6,
                      ps.p99 * 1e6, ps.max * 1e6, ps.late, ps.count);
+    } else if (c == "layout") {
+        // One line per part on screen (panels.hpp, laid_out), for the layout test.
+        for (const LaidOut& p : laid_out())
+            std::fprintf(stderr, "script layout: x=%.1f y=%.1f w=%.1f h=%.1f overflow=%d content_w=%.1f inside_w=%.1f tiled=%d name=%s\n",
+                         p.rect.x, p.rect.y, p.rect.w, p.rect.h, p.overflow ? 1 : 0, p.content_w, p.inside_w, p.tiled ? 1 : 0,
+                         p.name.c_str());
     } else if (c == "quit") {
         s.quit = true;
     }

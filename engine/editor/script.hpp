@@ -14,6 +14,8 @@
 //                     snap_tangent 0|1: G1 tangent continuation at open chain ends
 //   recovery recover|discard|keep   (answers the first offer of an earlier session's unsaved work,
 //                     recovery.hpp; `expect recovery_offers N` counts those waiting)
+//   layout           (one line per part on screen on stderr: "script layout: x= y= w= h= overflow=0|1
+//                     tiled=0|1 name=NAME", the rulers and every visible panel; panels.hpp laid_out)
 //   undo  redo  fit  save PATH  open PATH  screenshot PATH  estop on|off  resize W H (px)
 //   generate block|bumps|arc
 //   wait SECONDS     frames N     wait_contact TIMEOUT_S     wait_state STATE TIMEOUT_S

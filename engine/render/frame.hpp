@@ -13,6 +13,7 @@
 #include "haptics/scene.hpp"
 
 #include <optional>
+#include <string>
 
 namespace contactlab::render {
 
@@ -32,10 +33,18 @@ struct FrameContent {
     bool text = false;
     // The roller's measured position on the pad (m, like l), when a device reports one.
     std::optional<double> roller_l;
-    // px of the top edge covered by something else (the editor's menu bar): the status line
-    // starts below it. 0 for offscreen pictures.
+    // px of each edge covered by something else (the editor's menu bar, status rows and rulers):
+    // the status line and the legend keep clear of them. 0 for offscreen pictures.
     float top_inset_px = 0.0f;
+    float left_inset_px = 0.0f;
+    float bottom_inset_px = 0.0f;
+    // The proxy's state as a line of text at the top left (with `text`). The editor shows it in
+    // a row of its own instead (proxy_status_text).
+    bool status_line = true;
 };
+
+// "x_f (1.0, 2.0) mm  phi 0.0 deg  contacts 1  |F| 0.500 N  l_d +0.00 mm": the status line.
+std::string proxy_status_text(const ProxyOutput& o);
 
 // Tolerance (px) for flattening curves: chord error at most this.
 inline constexpr double kFlattenTolerancePx = 0.2;

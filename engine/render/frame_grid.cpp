@@ -49,8 +49,8 @@ void draw_legend(const FrameContent& c, const View& view, const Theme& theme, co
     if (bar_m * view.px_per_m > 0.3 * view.width) bar_m = 0.001;
     if (bar_m * view.px_per_m < 12.0) bar_m = 0.1;
     const float pad = std::round(m.dot_radius * 2.0f);
-    const float y = static_cast<float>(view.height) - pad;
-    const float x0 = pad, x1 = pad + static_cast<float>(bar_m * view.px_per_m);
+    const float y = static_cast<float>(view.height) - c.bottom_inset_px - pad;
+    const float x0 = c.left_inset_px + pad, x1 = x0 + static_cast<float>(bar_m * view.px_per_m);
     out.line({x0, y}, {x1, y}, m.outline_width, theme.legend);
     out.line({x0, y - 2.0f * m.dot_radius}, {x0, y}, m.outline_width, theme.legend);
     out.line({x1, y - 2.0f * m.dot_radius}, {x1, y}, m.outline_width, theme.legend);
@@ -75,18 +75,25 @@ void draw_legend(const FrameContent& c, const View& view, const Theme& theme, co
         }
     }
     // Status line, top left: the proxy's state in the UI's units (mm, N, degrees).
-    if (c.text && c.finger) {
-        const ProxyOutput& o = *c.finger;
-        char status[160];
-        if (o.contact)
-            std::snprintf(status, sizeof status, "x_f (%.1f, %.1f) mm  phi %.1f deg  contacts %d  |F| %.3f N  l_d %+.2f mm",
-                          o.finger.x * 1e3, o.finger.y * 1e3, o.phi * 180.0 / kPi, o.contact_count,
-                          glm::length(o.force), o.l_d * 1e3);
-        else
-            std::snprintf(status, sizeof status, "x_f (%.1f, %.1f) mm  phi %.1f deg  free  anticipated l_d %+.2f mm",
-                          o.finger.x * 1e3, o.finger.y * 1e3, o.phi * 180.0 / kPi, o.l_d * 1e3);
-        draw_text(out, {pad, pad + c.top_inset_px}, status, theme.legend, m.text_scale);
-    }
+    if (c.text && c.finger && c.status_line)
+        draw_text(out, {c.left_inset_px + pad, pad + c.top_inset_px}, proxy_status_text(*c.finger).c_str(), theme.legend,
+                  m.text_scale);
 }
 
 }  // namespace contactlab::render::parts
+
+namespace contactlab::render {
+
+std::string proxy_status_text(const ProxyOutput& o) {
+    char status[160];
+    if (o.contact)
+        std::snprintf(status, sizeof status, "x_f (%.1f, %.1f) mm  phi %.1f deg  contacts %d  |F| %.3f N  l_d %+.2f mm",
+                      o.finger.x * 1e3, o.finger.y * 1e3, o.phi * 180.0 / kPi, o.contact_count, glm::length(o.force),
+                      o.l_d * 1e3);
+    else
+        std::snprintf(status, sizeof status, "x_f (%.1f, %.1f) mm  phi %.1f deg  free  anticipated l_d %+.2f mm",
+                      o.finger.x * 1e3, o.finger.y * 1e3, o.phi * 180.0 / kPi, o.l_d * 1e3);
+    return status;
+}
+
+}  // namespace contactlab::render

@@ -1,0 +1,122 @@
+// test_layout.cpp — the editor's layout at 1280 x 720 and larger (issue 19 item 3), in the real
+// editor under xvfb-run: the menu bar, the status row, the rulers, the message row and the
+// Tuning, Haptics and Plots panels cover no part of one another, stay inside the window, and
+// cut no label short (no panel's content is wider than its inside). The `layout` script command
+// reports Dear ImGui's own window rectangles as drawn; a snapshot at 1280 x 720 shows the status
+// row clear of the canvas and rulers.
+#include "process.hpp"
+#include "xvfb_editor.hpp"
+
+#include "engine/render/image.hpp"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace cli_test;
+using namespace editor_test;
+using namespace contactlab;
+
+namespace {
+
+struct Part {
+    std::string name;
+    double x = 0, y = 0, w = 0, h = 0;
+    bool overflow = false, tiled = true;
+};
+
+// The `layout` blocks in stderr, in order: each `layout` command's lines begin with the top ruler.
+std::vector<std::vector<Part>> layout_blocks(const std::string& err) {
+    std::vector<std::vector<Part>> blocks;
+    std::istringstream in(err);
+    for (std::string line; std::getline(in, line);) {
+        const std::string tag = "script layout: ";
+        if (line.rfind(tag, 0) != 0) continue;
+        Part p;
+        const auto name_at = line.find(" name=");
+        p.name = line.substr(name_at + 6);
+        std::istringstream kv(line.substr(tag.size(), name_at - tag.size()));
+        for (std::string w; kv >> w;) {
+            const auto eq = w.find('=');
+            const std::string k = w.substr(0, eq);
+            const double v = std::strtod(w.c_str() + eq + 1, nullptr);
+            if (k == "x") p.x = v;
+            else if (k == "y") p.y = v;
+            else if (k == "w") p.w = v;
+            else if (k == "h") p.h = v;
+            else if (k == "overflow") p.overflow = v != 0;
+            else if (k == "tiled") p.tiled = v != 0;
+        }
+        if (p.name == "top ruler") blocks.emplace_back();
+        REQUIRE_FALSE(blocks.empty());
+        blocks.back().push_back(p);
+    }
+    return blocks;
+}
+
+void check_block(const std::vector<Part>& parts, double width, double height) {
+    std::vector<std::string> names;
+    for (const Part& p : parts) names.push_back(p.name);
+    for (const char* want : {"##MainMenuBar", "##proxy status", "top ruler", "left ruler", "##status", "Tuning", "Haptics",
+                             "Plots (last 5 s)"})
+        CHECK_MESSAGE(std::find(names.begin(), names.end(), want) != names.end(), want);
+    const double eps = 0.5;  // px: shared edges are fine
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+        const Part& a = parts[i];
+        CAPTURE(a.name);
+        CHECK_FALSE(a.overflow);
+        CHECK(a.x >= -eps);
+        CHECK(a.y >= -eps);
+        CHECK(a.x + a.w <= width + eps);
+        CHECK(a.y + a.h <= height + eps);
+        if (!a.tiled) continue;
+        for (std::size_t j = i + 1; j < parts.size(); ++j) {
+            const Part& b = parts[j];
+            if (!b.tiled) continue;
+            const bool overlap = a.x + eps < b.x + b.w && b.x + eps < a.x + a.w && a.y + eps < b.y + b.h && b.y + eps < a.y + a.h;
+            CHECK_MESSAGE(!overlap, a.name << " overlaps " << b.name);
+        }
+    }
+}
+
+}  // namespace
+
+TEST_CASE("layout: at 1280x720 and 1600x1000 no part covers another or cuts a label, every section open") {
+    TempDir dir;
+    const std::string shot = dir.file("layout.png"), script = dir.file("layout.txt");
+    // Seed 002's bumps, the finger above them, every Tuning section open, the ellipsoid model
+    // (its extra fields make the Tuning panel its longest) and an error message.
+    write_text(script,
+               "generate bumps\nfinger 0 5\nset model ellipsoid\nset ke 1e9\n"
+               "frames 5\nscreenshot " + shot + "\nlayout\n"
+               "resize 1600 1000\nframes 5\nlayout\n"
+               "resize 1280 720\nframes 5\nlayout\nquit\n");
+    const auto p = run_under_xvfb({"edit", "--software", "--validation", "--width", "1280", "--height", "720",
+                                   "--timeout", "60", "--script", script});
+    INFO("stderr: " << p.err);
+    REQUIRE(p.exit_code == 0);
+    CHECK(contains(p.err, "validation layers on, 0 messages"));
+    const auto blocks = layout_blocks(p.err);
+    REQUIRE(blocks.size() == 3);
+    check_block(blocks[0], 1280, 720);
+    check_block(blocks[1], 1600, 1000);
+    check_block(blocks[2], 1280, 720);
+
+    // The snapshot: the status row (under the 19 px menu bar) is one colour to the right of its
+    // text: no ruler tick, grid line or scene drawn through it.
+    const render::Image img = render::read_png(shot);
+    REQUIRE(img.width == 1280);
+    REQUIRE(img.height == 720);
+    const uint8_t* ref = img.pixel(1270, 28);
+    int differing = 0;
+    for (int x = 700; x < 1280; ++x)
+        for (int y = 21; y < 36; ++y) {
+            const uint8_t* q = img.pixel(x, y);
+            differing += q[0] != ref[0] || q[1] != ref[1] || q[2] != ref[2];
+        }
+    CHECK(differing == 0);
+}
