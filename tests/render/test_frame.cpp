@@ -277,3 +277,74 @@ TEST_CASE("frame: open chains fill straight down from the surface, whatever thei
     }
     CHECK(lavapipe().validation_messages() == 0);
 }
+
+TEST_CASE("frame: an open chain that crosses itself is filled by the nonzero rule, checked against a winding count") {
+    // Left to right overall, with a loop: the fourth segment runs down through the first. The
+    // scene is valid (chains may cross themselves: the proxy touches each segment as it is). The
+    // chord's right normal points down, so the fill polygon is the chain, then straight down from
+    // its end past the view, across, and up to its start (frame_contours.cpp). The reference is
+    // a winding number of that polygon computed here; every probe away from the strokes, the
+    // finger and the anticipation line must be fill exactly where the winding is not zero.
+    const std::vector<Vec2> pts = {{-0.08, 0.0}, {0.04, 0.0}, {0.04, 0.03}, {-0.02, 0.03}, {-0.02, -0.03}, {0.08, -0.03}};
+    Contour chain{false, {}};
+    for (std::size_t i = 0; i + 1 < pts.size(); ++i) chain.segments.push_back(LineSegment{pts[i], pts[i + 1]});
+    RenderRequest req;
+    req.width = 480;
+    req.height = 360;
+    req.finger = FingerPose{{0.0, 0.12}, 0.0};
+    const RenderResult r = render_scene(lavapipe(), scene_of({chain}), req);
+    const Theme& t = dark_theme();
+
+    std::vector<Vec2> poly = pts;
+    const double far = 100.0;  // m below: past any view
+    poly.push_back({pts.back().x, pts.back().y - far});
+    poly.push_back({pts.front().x, pts.back().y - far});
+    auto winding = [&](Vec2 q) {
+        int w = 0;
+        for (std::size_t i = 0; i < poly.size(); ++i) {
+            const Vec2 a = poly[i], b = poly[(i + 1) % poly.size()];
+            const double side = (b.x - a.x) * (q.y - a.y) - (q.x - a.x) * (b.y - a.y);
+            if (a.y <= q.y && b.y > q.y && side > 0) ++w;
+            if (a.y > q.y && b.y <= q.y && side < 0) --w;
+        }
+        return w;
+    };
+    auto px_distance_to_chain = [&](Vec2 q) {
+        double d = 1e30;
+        for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+            const Vec2 a = pts[i], b = pts[i + 1];
+            const double s = std::clamp(glm::dot(q - a, b - a) / glm::dot(b - a, b - a), 0.0, 1.0);
+            d = std::min(d, glm::length(q - (a + s * (b - a))));
+        }
+        return d * r.view.px_per_m;
+    };
+    int filled = 0, empty = 0, positive = 0, negative = 0;
+    for (double x = -0.07; x <= 0.07; x += 0.0025)
+        for (double y = -0.06; y <= 0.05; y += 0.0025) {
+            const Vec2 q{x, y};
+            const P2 at = r.view.to_px(q);
+            if (at.x < 1 || at.y < 1 || at.x >= req.width - 1 || at.y >= req.height - 1) continue;  // outside the view
+            if (px_distance_to_chain(q) < 5.0) continue;
+            if (glm::length(q - r.proxy.finger) < 0.03) continue;  // the finger's body and pad
+            if (r.proxy.anticipating) {
+                const Vec2 a = r.proxy.finger, b = r.proxy.anticipated_point;
+                const double s = std::clamp(glm::dot(q - a, b - a) / glm::dot(b - a, b - a), 0.0, 1.0);
+                if (glm::length(q - (a + s * (b - a))) * r.view.px_per_m < 4.0) continue;
+            }
+            const int w = winding(q);
+            CAPTURE(x);
+            CAPTURE(y);
+            CAPTURE(w);
+            CHECK(rgb_equal(r.image, at, t.solid_fill) == (w != 0));
+            (w != 0 ? filled : empty) += 1;
+            positive += w > 0;
+            negative += w < 0;
+        }
+    // The probes saw all three kinds of region: outside, the body (wound clockwise, -1) and the
+    // loop, wound the other way (+1): filled too, as the nonzero rule says.
+    CHECK(filled > 50);
+    CHECK(empty > 50);
+    CHECK(positive > 5);
+    CHECK(negative > 5);
+    CHECK(lavapipe().validation_messages() == 0);
+}
