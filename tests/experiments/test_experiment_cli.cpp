@@ -54,3 +54,39 @@ TEST_CASE("experiment analyze: a bad results file exits 2 naming the file, line 
     CHECK(q.exit_code == 2);
     CHECK(contains(q.err, "missing.csv: cannot open"));
 }
+
+TEST_CASE("experiment run: seed 003's protocol with two simulated participants, then analyze") {
+    TempDir dir;
+    const std::string out = dir.file("r.csv");
+    const auto p = run_contactlab({"experiment", "run", (source_dir() / "scenes/experiments/003-curvature.json").string(),
+                                   "--participants", "sim:1-2", "--seed", "3", "--jobs", "2", "-o", out});
+    INFO("stderr: " << p.err);
+    REQUIRE(p.exit_code == 0);
+    CHECK(contains(p.err, "2 participant(s), 48 trials"));
+    const std::string csv = read_text(out);
+    CHECK(csv.rfind("participant,condition,trial,stimulus,response,correct,valid,warmup,time_s,failed,contact_breaks,"
+                    "peak_force_n,contact_location,motion\n", 0) == 0);
+    CHECK(contains(csv, "sim2,B,"));
+    // One trace per trial beside the results, at 100 Hz.
+    CHECK(std::filesystem::exists(out + ".traces/sim1-A-1.csv"));
+    CHECK(read_text(out + ".traces/sim1-A-1.csv").rfind("t,x,y,phi,contact,fx,fy,roller_l,l_d\n", 0) == 0);
+    const auto a = run_contactlab({"experiment", "analyze", out, "--json", dir.file("a.json")});
+    REQUIRE(a.exit_code == 0);
+    const auto j = nlohmann::json::parse(read_text(dir.file("a.json")));
+    CHECK(j["conditions"]["A"]["n"] == 24);
+    CHECK(j["conditions"]["A"]["labels"]["stimuli"] == nlohmann::json::array({"10", "20", "30"}));
+    CHECK(j["comparisons"][0]["paired"] == true);
+}
+
+TEST_CASE("experiment run: a person as participant, or a bad protocol, exits 2 and says why") {
+    TempDir dir;
+    const std::string proto = (source_dir() / "scenes/experiments/003-curvature.json").string();
+    const auto person = run_contactlab({"experiment", "run", proto, "--participant", "P07", "-o", dir.file("r.csv")});
+    CHECK(person.exit_code == 2);
+    CHECK(contains(person.err, "editor's experiment mode"));
+    write_text(dir.file("bad.json"), "{\"format\": \"contactlab experiment protocol\", \"version\": 2}");
+    const auto bad = run_contactlab({"experiment", "run", dir.file("bad.json"), "--participant", "sim", "-o", dir.file("r.csv")});
+    CHECK(bad.exit_code == 2);
+    CHECK(contains(bad.err, "bad.json: version: must lie in [1, 1], got 2"));
+    CHECK_FALSE(std::filesystem::exists(dir.file("r.csv")));
+}
