@@ -5,6 +5,7 @@
 // prints the figures per condition and writes them as JSON (schema: scenes/README.md) and as a
 // Markdown page with plots.
 #include "engine/app/experiment_report.hpp"
+#include "engine/app/progress_bar.hpp"
 #include "engine/app/subcommands.hpp"
 #include "engine/experiments/analysis.hpp"
 #include "engine/experiments/experiment_run.hpp"
@@ -15,11 +16,9 @@
 
 #include <chrono>
 #include <cstdio>
-#include <mutex>
 #include <string>
 #include <thread>
 
-#include <unistd.h>
 
 namespace contactlab::app {
 namespace {
@@ -51,14 +50,7 @@ std::vector<std::uint64_t> sim_participants(const std::string& spec, const char*
 }
 
 void print_progress(std::size_t done, std::size_t total) {
-    static std::mutex lock;
-    std::lock_guard<std::mutex> g(lock);
-    if (!isatty(fileno(stderr))) return;  // a bar only for a person watching
-    constexpr int kWidth = 40;
-    const int filled = total ? static_cast<int>(kWidth * done / total) : kWidth;
-    std::fprintf(stderr, "\rexperiment [%-*s] %zu / %zu trials", kWidth, std::string(static_cast<std::size_t>(filled), '#').c_str(),
-                 done, total);
-    if (done >= total) std::fputc('\n', stderr);
+    show_progress("experiment", static_cast<std::int64_t>(done), static_cast<std::int64_t>(total), "trials");
 }
 
 int run_protocol(const RunArgs& a) {
