@@ -52,7 +52,8 @@ ParticipantRun run_participant(const Protocol& p, const RunOptions& o, std::uint
             TrialOutcome r = perform_sim_trial(p, t);
             // At most as many repeats as planned trials: a stimulus that always faults the servo
             // cannot keep the block going for ever.
-            if (!r.valid && p.repeat_invalid && block.size() < 2 * planned) {
+            // A warm-up trial is not analysed, so it is not repeated either.
+            if (!r.valid && !t.warmup && p.repeat_invalid && block.size() < 2 * planned) {
                 PlannedTrial again = t;
                 again.seed = mix64(t.seed);
                 again.trial = static_cast<int>(block.size()) + 1;
