@@ -35,8 +35,8 @@ std::vector<std::uint64_t> sim_participants(const std::string& spec, const char*
     if (spec == "sim") return {1};
     if (spec.rfind("sim:", 0) != 0)
         throw BadInput(std::string(option) + ": \"" + spec +
-                       "\": a person takes part in the editor's experiment mode, which is not built yet; "
-                       "headless runs take simulated participants: sim, sim:N or sim:A-B");
+                       "\": a person takes part in the editor's experiment mode (contactlab edit --experiment PROTOCOL "
+                       "--participant " + spec + "); headless runs take simulated participants: sim, sim:N or sim:A-B");
     const std::string range = spec.substr(4);
     unsigned long long a = 0, b = 0;
     char dash = 0, extra = 0;
