@@ -3,6 +3,7 @@
 
 #include "engine/experiments/statistics.hpp"
 #include "engine/render/chart_image.hpp"
+#include "engine/render/matrix_chart.hpp"
 #include "haptics/atomic_file.hpp"
 
 #include <nlohmann/json.hpp>
@@ -152,18 +153,35 @@ std::string write_experiment_report(const experiments::ResultsTable& table, cons
     if (!tc.series.empty()) charts.emplace_back("time.png", tc);
     Chart phi = phi_chart(table);
     if (!phi.series.empty()) charts.emplace_back("phi_against_e.png", phi);
-    if (!charts.empty()) {
+    // Confusion matrices as pictures too, one per condition.
+    std::vector<std::pair<std::string, render::MatrixChart>> matrices;
+    int index = 0;
+    for (const auto& [name, c] : a["conditions"].items()) {
+        ++index;
+        if (!c.contains("confusion")) continue;
+        render::MatrixChart m;
+        m.title = "Confusion: " + name;
+        m.rows = c["labels"]["stimuli"].get<std::vector<std::string>>();
+        m.columns = c["labels"]["responses"].get<std::vector<std::string>>();
+        m.counts = c["confusion"].get<std::vector<std::vector<long>>>();
+        matrices.emplace_back("confusion_" + std::to_string(index) + ".png", std::move(m));
+    }
+    if (!charts.empty() || !matrices.empty()) {
         md << "\n## Plots\n\n";
         try {
             const render::VulkanContext ctx(render::ContextOptions{});
-            for (const auto& [file, c] : charts) {
+            auto draw = [&](const std::string& file, const std::string& title, auto&& write) {
                 try {
-                    render::write_chart_png(ctx, c, (fs::path(dir) / file).string());
-                    md << "![" << c.title << "](" << file << ")\n\n";
+                    write((fs::path(dir) / file).string());
+                    md << "![" << title << "](" << file << ")\n\n";
                 } catch (const std::exception& e) {
-                    md << "(" << c.title << ": not drawn: " << e.what() << ")\n\n";
+                    md << "(" << title << ": not drawn: " << e.what() << ")\n\n";
                 }
-            }
+            };
+            for (const auto& [file, c] : charts)
+                draw(file, c.title, [&](const std::string& path) { render::write_chart_png(ctx, c, path); });
+            for (const auto& [file, m] : matrices)
+                draw(file, m.title, [&](const std::string& path) { render::write_matrix_chart_png(ctx, m, path); });
         } catch (const std::exception& e) {
             md << "(no plots: no Vulkan device: " << e.what() << ")\n";
         }

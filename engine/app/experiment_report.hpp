@@ -2,7 +2,8 @@
 // page (report.md) with its tables (per condition figures, confusion matrices, t tests) and PNG
 // plots rendered by ContactLab's own chart drawer (engine/render/chart.hpp): proportion correct
 // against the stimulus per condition, time against the stimulus per condition (seed 000: against
-// d), and Cramer's phi against e with one line per k (seed 004, when the results have e and k
+// d), each condition's confusion matrix (render/matrix_chart.hpp), and Cramer's phi against e
+// with one line per k (seed 004, when the results have e and k
 // columns). Without a Vulkan device the page says so and keeps its tables.
 #pragma once
 

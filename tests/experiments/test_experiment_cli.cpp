@@ -42,6 +42,8 @@ TEST_CASE("experiment analyze: seed 004 Table I from a results file, as JSON and
     CHECK(contains(md, "| 45 | 41 | 9 |"));
     CHECK(contains(md, "![Cramer's phi against eccentricity, per stiffness](phi_against_e.png)"));
     CHECK(std::filesystem::file_size(dir.file("report/phi_against_e.png")) > 1000);
+    CHECK(contains(md, "![Confusion: e0.40](confusion_1.png)"));
+    CHECK(std::filesystem::file_size(dir.file("report/confusion_1.png")) > 1000);
 }
 
 TEST_CASE("experiment analyze: a bad results file exits 2 naming the file, line and column") {
