@@ -404,20 +404,24 @@ Vec2 Proxy::walk(Vec2 p, Vec2 goal) {
             const Hit hit = first_entry_line(proxy_, goal, excluded, -1, excluded);
             const int ended = excluded;
             excluded = -1;
-            if (!hit.found) {
-                // Off a piece's end at a concave junction, with the finger in the wedge beyond both
-                // pieces' ends: that wedge is solid, so the piece's own normal still decides
-                // (handed_over). The proxy rests at the junction; before, the straight move
-                // crossed the piece's extension into the solid (fuzz-contact: a terrain valley).
-                const Vec2 v = goal - proxy_;
-                if (ended >= 0 && glm::length(v) > 0.0 && pressing(pieces_[ended], proxy_, goal) &&
-                    !handed_over(ended, proxy_, v / glm::length(v))) {
-                    active_[0] = ended;
-                    active_count_ = 1;
-                    return proxy_;
-                }
-                return goal;  // free motion all the way
+            // Off a piece's end at a concave junction, with the finger in the wedge beyond both
+            // pieces' ends: that wedge is solid, so the piece's own normal still decides
+            // (handed_over). The proxy rests at the junction; before, the straight move crossed
+            // the piece's extension into the solid (fuzz-contact: a terrain valley). That holds
+            // whatever the move would meet further on: the wedge is solid from the junction
+            // itself, so only a piece entered right there (within kOnTolerance, m) comes first.
+            // (A far piece used to win: a pad end in a terrain's valley, the hand 12 cm away
+            // under the terrain, went straight through the solid to a thin wall's inner vertex
+            // piece 7.5 mm off; fuzz-contact, case seed 14920330087293500056.)
+            const Vec2 v = goal - proxy_;
+            const double v_len = glm::length(v);  // m
+            if (ended >= 0 && v_len > 0.0 && !(hit.found && hit.s * v_len <= kOnTolerance) &&
+                pressing(pieces_[ended], proxy_, goal) && !handed_over(ended, proxy_, v / v_len)) {
+                active_[0] = ended;
+                active_count_ = 1;
+                return proxy_;
             }
+            if (!hit.found) return goal;  // free motion all the way
             proxy_ = hit.point;
             active_[0] = hit.piece;
             active_count_ = 1;
