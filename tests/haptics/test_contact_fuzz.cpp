@@ -205,3 +205,25 @@ TEST_CASE("regression: a bowl within a hair of the pad's radius does not claim e
                      "3 star(s), 0 thin wall(s), terrain; R 24.3 mm, L 30.6 mm; curves: quad quad quad quad arc quad cubic quad "
                      "cubic arc cubic quad arc quad ");
 }
+
+TEST_CASE("regression: a pad end in a terrain's valley stays at the junction though a thin wall's inner piece lies beyond") {
+    // The hand 12 cm off under the terrain: the straight move from the valley's junction into the
+    // solid wedge was blocked only when it met no piece at all; a thin wall's inner vertex piece
+    // 7.5 mm on let the pad through. Also a corner release that re-entered the other piece at
+    // once and spun on the spot to the walk's step cap.
+    check_regression(14920330087293500056ull, "0 star(s), 2 thin wall(s), terrain; R 24.3 mm, L 33.2 mm; curves: quad cubic cubic ");
+    // The spinning took every step of ten ticks before the failure, and more after it.
+    const ContactCase c = make_contact_case(14920330087293500056ull);
+    const Environment env = build_environment(c.scene);
+    Proxy proxy(env, proxy_def_of(c.scene));
+    int capped = 0;
+    for (const HandSample& h : c.path) capped += proxy.update(h.finger, h.phi).work.walk_steps >= kProxyMaxWalkSteps;
+    CHECK(capped == 0);
+}
+
+TEST_CASE("regression: the seed whose star crossed itself at a crevice now draws a simple scene, and it passes") {
+    // Case seed 4317594715245305465 (see the generator case above). 568609179976502558, the other,
+    // now draws a scene the hand never presses into, so only its old segments are kept above.
+    check_regression(4317594715245305465ull,
+                     "1 star(s), 1 thin wall(s), terrain; R 14.9 mm, L 23.9 mm; curves: cubic cubic arc arc quad quad arc ");
+}
