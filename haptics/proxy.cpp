@@ -404,20 +404,24 @@ Vec2 Proxy::walk(Vec2 p, Vec2 goal) {
             const Hit hit = first_entry_line(proxy_, goal, excluded, -1, excluded);
             const int ended = excluded;
             excluded = -1;
-            if (!hit.found) {
-                // Off a piece's end at a concave junction, with the finger in the wedge beyond both
-                // pieces' ends: that wedge is solid, so the piece's own normal still decides
-                // (handed_over). The proxy rests at the junction; before, the straight move
-                // crossed the piece's extension into the solid (fuzz-contact: a terrain valley).
-                const Vec2 v = goal - proxy_;
-                if (ended >= 0 && glm::length(v) > 0.0 && pressing(pieces_[ended], proxy_, goal) &&
-                    !handed_over(ended, proxy_, v / glm::length(v))) {
-                    active_[0] = ended;
-                    active_count_ = 1;
-                    return proxy_;
-                }
-                return goal;  // free motion all the way
+            // Off a piece's end at a concave junction, with the finger in the wedge beyond both
+            // pieces' ends: that wedge is solid, so the piece's own normal still decides
+            // (handed_over). The proxy rests at the junction; before, the straight move crossed
+            // the piece's extension into the solid (fuzz-contact: a terrain valley). That holds
+            // whatever the move would meet further on: the wedge is solid from the junction
+            // itself, so only a piece entered right there (within kOnTolerance, m) comes first.
+            // (A far piece used to win: a pad end in a terrain's valley, the hand 12 cm away
+            // under the terrain, went straight through the solid to a thin wall's inner vertex
+            // piece 7.5 mm off; fuzz-contact, case seed 14920330087293500056.)
+            const Vec2 v = goal - proxy_;
+            const double v_len = glm::length(v);  // m
+            if (ended >= 0 && v_len > 0.0 && !(hit.found && hit.s * v_len <= kOnTolerance) &&
+                pressing(pieces_[ended], proxy_, goal) && !handed_over(ended, proxy_, v / v_len)) {
+                active_[0] = ended;
+                active_count_ = 1;
+                return proxy_;
             }
+            if (!hit.found) return goal;  // free motion all the way
             proxy_ = hit.point;
             active_[0] = hit.piece;
             active_count_ = 1;
@@ -436,8 +440,18 @@ Vec2 Proxy::walk(Vec2 p, Vec2 goal) {
         const PieceFoot foot = piece_foot(piece, goal);
         const double hi = piece.kind == CPiece::Kind::line ? piece.len : piece.span.width;
         const double s0 = std::clamp(piece_param(piece, proxy_), 0.0, hi);
+        // A slide of at most kOnTolerance (m) is no motion: it enters nothing. The entry tests
+        // accept hits within kOnTolerance of the start, a slack that then covers the whole slide
+        // and more: at a piece's end with the foot a rounding error away (a circle's |ds| of
+        // 6e-15 rad) the other piece through the junction read as entered at once, and the walk
+        // went corner, release, slide, corner... on the spot until its step cap, every tick
+        // (fuzz-contact, case seed 14920330087293500056).
+        const double slide = piece.kind == CPiece::Kind::line ? glm::length(foot.point - proxy_)
+                                                               : piece.radius * std::abs(foot.param - s0);
         Hit hit;
-        if (piece.kind == CPiece::Kind::line) {
+        if (slide <= kOnTolerance) {
+            // no motion: nothing entered
+        } else if (piece.kind == CPiece::Kind::line) {
             hit = first_entry_line(proxy_, foot.point, current, -1);
         } else {
             hit = first_entry_arc(piece, s0, foot.param, current);
@@ -468,20 +482,39 @@ bool Proxy::try_release_corner(Vec2 goal) {
     const bool p0 = pressing(pieces_[ids[0]], proxy_, goal);
     const bool p1 = pressing(pieces_[ids[1]], proxy_, goal);
     if (!p0 && !p1) { active_count_ = 0; return true; }
-    if (!p0) { active_[0] = ids[1]; active_count_ = 1; return true; }
-    if (!p1) { active_count_ = 1; return true; }
-    for (int k = 0; k < 2; ++k) {
+    // Sliding along piece k toward the goal's foot on it: +1 when that keeps out of the other
+    // piece (or passes its end onto a piece that continues), -1 when it enters the other at once,
+    // 0 when there is no slide (the foot is here).
+    auto slide = [&](int k) {
         const CPiece& along = pieces_[ids[k]];
         const CPiece& other = pieces_[ids[1 - k]];
         const PieceFoot foot = piece_foot(along, goal);
         const double s0 = piece_param(along, proxy_);
         const double ds = foot.param - s0;
-        if (std::abs(ds) <= kTangentTolerance) continue;
+        if (std::abs(ds) <= kTangentTolerance) return 0;
         const Vec2 t = along.kind == CPiece::Kind::line ? (ds > 0 ? along.dir : -along.dir)
                                                         : arc_tangent(along, s0, ds > 0 ? 1.0 : -1.0);
         // Either piece's rounding tilts the comparison: take the looser of the two tolerances.
         const double tol = std::max(graze_tolerance(other), graze_tolerance(along));
-        if (glm::dot(t, piece_normal_at(other, proxy_)) > -tol || handed_over(ids[1 - k], proxy_, t)) {
+        return glm::dot(t, piece_normal_at(other, proxy_)) > -tol || handed_over(ids[1 - k], proxy_, t) ? 1 : -1;
+    };
+    if (!p0 || !p1) {
+        // Only piece k is pressed: slide along it, unless that slide enters the other piece at
+        // once. Then the proxy rests in the corner: with the straight move (direction g) behind
+        // k's boundary only (g.n_k < 0 <= g.n_o) and k's slide direction t behind the other's
+        // (t.n_o < 0), the normals are more than 90 degrees apart, and g points away from both
+        // edges of the free wedge {d : d.n_k >= 0, d.n_o >= 0}: its nearest point in the wedge is
+        // the apex. Releasing anyway re-entered the other piece at once, corner, release... on
+        // the spot until the walk's step cap, every tick (fuzz-contact, case seed
+        // 14920330087293500056: a pad end against a thin wall's foot, the hand 10 cm away).
+        const int k = p0 ? 0 : 1;
+        if (slide(k) < 0) return false;
+        active_[0] = ids[k];
+        active_count_ = 1;
+        return true;
+    }
+    for (int k = 0; k < 2; ++k) {
+        if (slide(k) > 0) {
             active_[0] = ids[k];
             active_count_ = 1;
             return true;

@@ -38,6 +38,12 @@ struct ContactCase {
     std::string summary;           // e.g. "2 stars (quad, cubic, arc), thin wall, terrain; R 12.1 mm L 9.3 mm"
 };
 
+// True when the scene's contours neither cross themselves or each other nor lie one inside
+// another, and it passes validate_scene: what every generated scene satisfies. Neighbouring
+// segments are compared on chords within 1e-10 m, so a contour that turns back at a vertex and
+// crosses itself a few micrometres away is caught.
+bool contours_well_formed(const Scene& scene);
+
 // The seed of case `index` of a soak seeded with `seed`.
 std::uint64_t case_seed(std::uint64_t seed, std::uint64_t index);
 // Rows the case with this seed will have (known before generating it): 300..900.

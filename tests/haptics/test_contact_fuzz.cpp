@@ -4,6 +4,7 @@
 // run over seeded random scenes (haptics/verify/contact_fuzz.hpp: the proxy's pad never inside a
 // solid by more than 1e-7 m; a hand pad more than 10 um inside means contact, at least as deep,
 // with F = Ke (x_fd - x_f)), then every failure the soak has found, as a named regression case.
+#include "haptics/scene_io.hpp"
 #include "haptics/verify/contact_fuzz.hpp"
 #include "haptics/verify/solid_reference.hpp"
 #include "scene_builders.hpp"
@@ -117,6 +118,44 @@ TEST_CASE("contact fuzz: the proxy never lets the pad into a solid nor loses a p
     CHECK(r.total_violations() == 0);
 }
 
+// The generator's scenes are simple: no contour crosses itself. Two neighbouring segments that
+// leave their shared vertex almost along each other can cross again within one of the coarse
+// check's 20 um chords, which also skips neighbouring chords; the soak's 1,000,000 rows found two
+// such scenes, failing not because the proxy erred but because the scene has no consistent solid
+// (case seeds 4317594715245305465 and 568609179976502558, each pair below as the generator drew
+// it). Read by its crossings (the reference) the sliver between the two segments flips sides,
+// and the true tip of the spike is where they cross, not the vertex; read by its tangents (the
+// proxy) the vertex is a concave corner, so the convex tip had no c-space piece at all.
+TEST_CASE("generator: neighbouring segments that cross a hair from their shared vertex make the scene ill-formed") {
+    SUBCASE("a star's last and first arcs, crossing 1.46 mm from their vertex in a sliver 35 um wide") {
+        Contour c;
+        c.segments = {ArcSegment{{0.009204276446599314, 0.011486865140301254}, 0.01744335414020762, -2.954310963962064,
+                                 -1.585884242196617},
+                      ArcSegment{{0.007430126325182917, -0.019622561355791077}, 0.013751321839737849, 1.4606953979259536,
+                                 2.865531697997518}};
+        const Scene scene = scene_of({c});
+        CHECK_NOTHROW(validate_scene(scene));
+        CHECK_FALSE(contours_well_formed(scene));
+    }
+    SUBCASE("a terrain's arc and the cubic after it, crossing 60 um from their vertex in a sliver 20 nm wide") {
+        const ArcSegment up{{-0.11542763998767401, -0.04850755223738909}, 0.013205526213208219, -1.1676273452900827,
+                            0.41313793654991393};
+        const Vec2 tip{-0.10333315413534361, -0.043205728538367294};  // m: where the arc ends
+        Contour c;
+        c.segments = {up, CubicSegment{tip, {-0.10205959359470074, -0.04614945193056501},
+                                       {-0.0998355479084914, -0.0478998049594441},
+                                       {-0.09669177036526189, -0.04849539955207875}}};
+        const Scene crossing = scene_of({c});
+        CHECK_NOTHROW(validate_scene(crossing));
+        CHECK_FALSE(contours_well_formed(crossing));
+        // The same arc and a line leaving the tip 0.1 rad outside the arc's circle: a simple spike.
+        const Vec2 back = -perp_left(unit_at(up.end_angle));  // unit: back down the arc's end tangent
+        c.segments[1] = LineSegment{tip, tip + 0.002 * unit_at(angle_of(back) + 0.1)};
+        const Scene spike = scene_of({c});
+        CHECK(contours_well_formed(spike));
+    }
+}
+
 // Each case the soak (`contactlab fuzz-contact`) found failing, with the seed that generates it
 // and the generator's summary of it: a change to the generator that alters these scenes shows
 // here as a summary mismatch, and the case must then be rebuilt by hand, not dropped.
@@ -165,4 +204,26 @@ TEST_CASE("regression: a bowl within a hair of the pad's radius does not claim e
     check_regression(11419799571873864837ull,
                      "3 star(s), 0 thin wall(s), terrain; R 24.3 mm, L 30.6 mm; curves: quad quad quad quad arc quad cubic quad "
                      "cubic arc cubic quad arc quad ");
+}
+
+TEST_CASE("regression: a pad end in a terrain's valley stays at the junction though a thin wall's inner piece lies beyond") {
+    // The hand 12 cm off under the terrain: the straight move from the valley's junction into the
+    // solid wedge was blocked only when it met no piece at all; a thin wall's inner vertex piece
+    // 7.5 mm on let the pad through. Also a corner release that re-entered the other piece at
+    // once and spun on the spot to the walk's step cap.
+    check_regression(14920330087293500056ull, "0 star(s), 2 thin wall(s), terrain; R 24.3 mm, L 33.2 mm; curves: quad cubic cubic ");
+    // The spinning took every step of ten ticks before the failure, and more after it.
+    const ContactCase c = make_contact_case(14920330087293500056ull);
+    const Environment env = build_environment(c.scene);
+    Proxy proxy(env, proxy_def_of(c.scene));
+    int capped = 0;
+    for (const HandSample& h : c.path) capped += proxy.update(h.finger, h.phi).work.walk_steps >= kProxyMaxWalkSteps;
+    CHECK(capped == 0);
+}
+
+TEST_CASE("regression: the seed whose star crossed itself at a crevice now draws a simple scene, and it passes") {
+    // Case seed 4317594715245305465 (see the generator case above). 568609179976502558, the other,
+    // now draws a scene the hand never presses into, so only its old segments are kept above.
+    check_regression(4317594715245305465ull,
+                     "1 star(s), 1 thin wall(s), terrain; R 14.9 mm, L 23.9 mm; curves: cubic cubic arc arc quad quad arc ");
 }
