@@ -89,6 +89,15 @@ Equilibrium solve_equilibrium(const PlatformDef& platform, const Mat6& k, const 
         double t = 1.0;
         const double slope = grad.dot(step);
         Eval trial;
+        // Near the answer the predicted decrease falls below what U's rounding (~eps U) can
+        // resolve: take the Newton step as it is (it converges quadratically there).
+        if (-slope < 1e-11 * cur.energy) {
+            trial = evaluate(platform, k, lambda, kc, xi + step);
+            if (!trial.ok) break;
+            xi += step;
+            cur = trial;
+            continue;
+        }
         for (int b = 0; b < 40; ++b, t *= 0.5) {
             trial = evaluate(platform, k, lambda, kc, xi + t * step);
             if (trial.ok && trial.energy <= cur.energy + 1e-4 * t * slope) break;
