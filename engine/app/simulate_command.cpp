@@ -1,5 +1,6 @@
 // simulate_command.cpp — wiring for `contactlab simulate` (see simulate_command.hpp).
 #include "engine/app/simulate_command.hpp"
+#include "engine/app/simulate_wearable.hpp"
 #include "engine/app/subcommands.hpp"
 #include "haptics/parameter_limits.hpp"
 
@@ -59,11 +60,13 @@ std::unique_ptr<Device> make_device(const SimulateOptions& o, const Scene& scene
         path_duration = static_cast<double>(dev->size()) / o.rate;
         return dev;
     }
-    if (o.device != "sim-cld") throw BadInput("--device: unknown device \"" + o.device + "\" (sim-cld, replay:FILE, usb:hapio, usb:falcon)");
+    if (o.device != "sim-cld") throw BadInput("--device: unknown device \"" + o.device + "\" (sim-cld, sim-wearable, replay:FILE, usb:hapio, usb:falcon)");
     if (o.hand.empty() == o.task.empty()) throw BadInput("sim-cld needs exactly one of --hand HAND.csv or --task contour-block");
     HandPath path;
     if (!o.task.empty()) {
-        if (o.task != "contour-block") throw BadInput("--task: unknown task \"" + o.task + "\" (contour-block, roller-bandwidth)");
+        if (o.task != "contour-block")
+            throw BadInput("--task: unknown task \"" + o.task + "\" (contour-block, roller-bandwidth, wearable-step, "
+                           "wearable-bandwidth, curvature-arc)");
         if (!(o.task_speed > 0.0 && o.task_speed <= 1.0)) throw BadInput("--task-speed: must be in (0, 1] m/s");
         BlockTaskParams bp;
         bp.finger_radius = scene.finger.radius;
@@ -155,6 +158,10 @@ int run_simulate(const SimulateOptions& o) {
         throw BadInput("--rate: must be between 100 and 20000 Hz");  // haptics/parameter_limits.hpp
     if (o.output.empty()) throw BadInput("--output is required");
     if (o.task == "roller-bandwidth") return run_roller_bandwidth(o);
+    if (is_wearable_task(o.task)) return run_wearable_task(o);
+    if (o.device == "sim-wearable")
+        throw BadInput("--device sim-wearable runs seed 003's tasks: --task wearable-step, wearable-bandwidth or curvature-arc "
+                       "(the servo does not drive the platform yet)");
     Scene scene = load_scene_file(o.scene_path);
     apply_overrides(scene, o.overrides);
 
