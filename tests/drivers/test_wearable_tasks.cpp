@@ -1,6 +1,7 @@
 // test_wearable_tasks.cpp — seed 003's step, bandwidth and curvature experiments on the simulated
 // wearable platform (drivers/sim/wearable_tasks.hpp), against the seed's figures (§3.7: rise about
 // 0.1 s, steady error < 2 %, bandwidth about 3.5 Hz; the issue asks for 20 %) and the model's own.
+#include "drivers/sim/sim_wearable_device.hpp"
 #include "drivers/sim/wearable_tasks.hpp"
 
 #include <doctest/doctest.h>
@@ -71,4 +72,57 @@ TEST_CASE("curvature-arc: the platform tilts with the arc's slope on h = 10, 20,
     CurvatureArcDef bad;
     bad.height = 0.2;  // more than half the 0.30 m chord
     CHECK_THROWS_AS(curvature_arc(def, bad), std::invalid_argument);
+}
+
+TEST_CASE("sim-wearable device: cable forces, a pose, and bad commands as faults with zero output") {
+    using namespace contactlab::drivers;
+    SimWearableDevice dev;
+    CHECK(dev.capabilities().platform);
+    CHECK(dev.capabilities().force_sensors == 3);
+    REQUIRE(dev.open());
+    DeviceCommand cmd;
+    cmd.platform_mode = DeviceCommand::PlatformMode::wrench;
+    cmd.platform = {0.3, 0.3, 0.3};
+    for (int k = 0; k < 500; ++k) {  // 0.5 s at 1 kHz
+        dev.write(cmd);
+        dev.advance(1e-3);
+    }
+    DeviceReading r;
+    REQUIRE(dev.read(r));
+    CHECK(r.valid);
+    const IkResult ik = inverse_kinematics(dev.rig()->def().plant.platform, dev.rig()->plant().pose());
+    for (int i = 0; i < 3; ++i) {
+        // eq. 7 at the true tension, within 4 sigma of the FSR noise and friction's dead band.
+        CHECK(std::abs(r.sensors[i] - 0.3 * ik.cables[i].cos_theta) < 4 * 0.003 + 0.005);
+    }
+    CHECK(dev.state() == DeviceState::ready);
+    // Above the stall force: a fault, zero references, the tension falls away.
+    cmd.platform = {0.3, 2.0, 0.3};
+    dev.write(cmd);
+    CHECK(dev.state() == DeviceState::fault);
+    CHECK(dev.fault().code == DeviceFaultCode::over_limit);
+    dev.advance(0.3);
+    CHECK(dev.rig()->plant().tension().maxCoeff() < 0.01);
+    // NaN: a fault, and a good command clears it.
+    cmd.platform = {0.1, std::nan(""), 0.1};
+    dev.write(cmd);
+    CHECK(dev.fault().code == DeviceFaultCode::non_finite_command);
+    cmd.platform_mode = DeviceCommand::PlatformMode::pose;
+    cmd.platform = {0.0005, 0.05, 0.0};  // 0.5 mm into the pad, 0.05 rad of roll
+    for (int k = 0; k < 600; ++k) {
+        dev.write(cmd);
+        dev.advance(1e-3);
+    }
+    CHECK(dev.state() == DeviceState::ready);
+    CHECK(dev.rig()->plant().pose()(3) == doctest::Approx(0.05).epsilon(0.3));
+    cmd.platform = {-0.02, 0.0, 0.0};  // 2 cm below the pad: no pose
+    dev.write(cmd);
+    CHECK(dev.fault().code == DeviceFaultCode::over_limit);
+    // Silence: the watchdog zeroes the references.
+    cmd.platform_mode = DeviceCommand::PlatformMode::wrench;
+    cmd.platform = {0.2, 0.2, 0.2};
+    dev.write(cmd);
+    dev.advance(0.2);
+    CHECK(dev.fault().code == DeviceFaultCode::watchdog);
+    CHECK(dev.rig()->force_reference().isZero());
 }
