@@ -79,12 +79,19 @@ int run_wearable_task(const SimulateOptions& o) {
     def.force.rate_hz = o.rate;
     def.position.rate_hz = o.rate;
     def.plant.fsr_noise = o.fsr_noise;
+    if (scene.wearable.has_finger_stiffness) {  // the scene's K (scenes/README.md, "wearable")
+        const Mat6 k = Eigen::Map<const Eigen::Matrix<double, 6, 6, Eigen::RowMajor>>(scene.wearable.finger_stiffness.data());
+        const StiffnessCheck sc = check_stiffness(k);
+        if (!sc.ok) throw BadInput(o.scene_path + ": wearable.finger_stiffness: " + sc.why);
+        def.plant.stiffness = k;
+    }
     if (!(std::isfinite(o.fsr_noise) && o.fsr_noise >= 0.0 && o.fsr_noise <= 0.1))
         throw BadInput("--fsr-noise: must be in [0, 0.1] N");
     std::string json = "{\n  \"task\": \"" + o.task + "\",\n  \"device\": \"sim-wearable\",\n";
     json += "  \"rate_hz\": " + fmt("%.6g", o.rate) + ",\n  \"command_rate_hz\": " + fmt("%.6g", def.force.command_rate_hz) + ",\n";
     json += "  \"reference_time_constant_s\": " + fmt("%.6g", def.reference_time_constant) + ",\n";
     json += "  \"fsr_noise_n\": " + fmt("%.6g", o.fsr_noise) + ",\n";
+    json += std::string("  \"finger_stiffness\": \"") + (scene.wearable.has_finger_stiffness ? "scene" : "seed k I (mm)") + "\",\n";
     if (o.task == "wearable-step") {
         const WearableStepResult r = wearable_step(def);
         write_file(o.output, samples_csv(r.samples));
