@@ -19,6 +19,11 @@ SimWearableDevice::SimWearableDevice(const SimWearableParams& p) : p_(p) {
     limits_.roller_max = 0.0;
 }
 
+SimWearableDevice::SimWearableDevice(const SimWearableParams& p, HandPath path) : SimWearableDevice(p) {
+    t0_ = path.start();
+    path_.emplace(std::move(path));
+}
+
 DeviceCapabilities SimWearableDevice::capabilities() const noexcept {
     DeviceCapabilities c;
     c.platform = true;
@@ -62,7 +67,12 @@ void SimWearableDevice::set_fault(DeviceFaultCode code, const char* detail) noex
 bool SimWearableDevice::read(DeviceReading& out) noexcept {
     out = DeviceReading{};
     if (!rig_ || state_ == DeviceState::disconnected || state_ == DeviceState::opening) return false;
-    out.t = rig_->time();
+    out.t = t0_ + rig_->time();
+    if (path_) {
+        const PathPoint pp = path_->at(out.t);
+        out.finger = pp.x;
+        out.phi = pp.phi;
+    }
     for (int i = 0; i < 3; ++i) out.sensors[i] = rig_->fsr()(i);
     out.valid = true;
     return true;

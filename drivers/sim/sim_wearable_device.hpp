@@ -6,8 +6,11 @@
 //   pose    (p_z offset from the rest pose (m, + into the pad), roll alpha, pitch beta (rad)): the
 //           platform's three actuated freedoms; position control, Fig. 6
 //   none    zero tensions
-// Readings: DeviceReading::sensors are the three FSR forces (N); the platform measures no finger
-// position. Bad commands are faults with zero output, cleared by the next good command (as
+// Readings: DeviceReading::sensors are the three FSR forces (N). The platform measures no finger
+// position: with a hand path the finger is where the path says (the wearable renders no force
+// on the hand, so nothing pushes it off its path; seed 003 §1), else at the origin. The servo
+// loop (drivers/servo_loop.cpp) turns its contact force into a pose command
+// (haptics/wearable/contact_display.hpp). Bad commands are faults with zero output, cleared by the next good command (as
 // sim-cld): non-finite values, a tension above the motors' stall force, a pose outside the
 // workspace. An estimate in fault (an FSR reading out of range) is reported as io_error while it
 // lasts. A device-side watchdog zeroes the tensions when no command arrives for
@@ -15,6 +18,7 @@
 #pragma once
 
 #include "drivers/device.hpp"
+#include "drivers/hand_path.hpp"
 #include "haptics/wearable/rig.hpp"
 
 #include <optional>
@@ -29,6 +33,8 @@ struct SimWearableParams {
 class SimWearableDevice final : public Device {
 public:
     explicit SimWearableDevice(const SimWearableParams& p = {});
+    // The finger follows `path` (device time starts at the path's start).
+    SimWearableDevice(const SimWearableParams& p, HandPath path);
 
     const char* name() const noexcept override { return "sim-wearable"; }
     DeviceCapabilities capabilities() const noexcept override;
@@ -48,6 +54,8 @@ public:
 private:
     void set_fault(DeviceFaultCode code, const char* detail) noexcept;
     SimWearableParams p_;
+    std::optional<HandPath> path_;
+    double t0_ = 0.0;  // s, device time at open (the path's start)
     std::optional<wearable::WearableRig> rig_;
     DeviceLimits limits_;
     DeviceState state_ = DeviceState::disconnected;

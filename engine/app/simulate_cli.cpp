@@ -9,7 +9,7 @@ void register_simulate_command(CLI::App& app, int& rc) {
     static bool virtual_time = false, real_time = false;
     CLI::App* cmd = app.add_subcommand("simulate", "Run the servo loop against a simulated or replayed device");
     cmd->add_option("scene", o.scene_path, "Scene file (JSON, scenes/README.md)")->required();
-    cmd->add_option("--device", o.device, "sim-cld (simulated CLD rig + scripted hand), sim-wearable (seed 003's platform: its --task only), replay:FILE, "
+    cmd->add_option("--device", o.device, "sim-cld (simulated CLD rig + scripted hand), sim-wearable (seed 003's platform under a finger that follows --hand, or its --task), replay:FILE, "
                     "usb:hapio or usb:falcon (real devices: real time, need --duration)")
         ->default_val("sim-cld");
     cmd->add_option("--firmware", o.firmware,

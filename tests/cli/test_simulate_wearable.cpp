@@ -101,3 +101,19 @@ TEST_CASE("simulate sim-wearable refuses a scene without an arc, a hand, real ti
     CHECK(contains(none.err, "wearable-step"));
     CHECK_FALSE(fs::exists(out));
 }
+
+TEST_CASE("simulate sim-wearable with a hand path: the servo's contact tilts and presses the platform") {
+    TempDir dir;
+    const std::string hand = dir.file("hand.csv"), out = dir.file("out.csv");
+    // Down 1.5 mm into scenes/flat.json's floor, then the finger tilts by 0.2 rad.
+    write_text(hand, "t,x,y,phi\n0,0,0.036,0\n0.3,0,0.0245,0\n0.8,0,0.0245,0\n1.3,0,0.0245,0.2\n2.0,0,0.0245,0.2\n");
+    const auto p = run_contactlab({"simulate", scene("flat.json"), "--device", "sim-wearable", "--hand", hand, "--output", out});
+    INFO("stderr: " << p.err);
+    REQUIRE(p.exit_code == 0);
+    const std::string key = "roll ";
+    const std::size_t at = p.err.find(key);
+    REQUIRE(at != std::string::npos);
+    const double roll = std::strtod(p.err.c_str() + at + key.size(), nullptr);  // rad
+    CHECK(roll == doctest::Approx(-0.2).epsilon(0.15));
+    CHECK(contains(p.err, "0 fault(s)"));
+}

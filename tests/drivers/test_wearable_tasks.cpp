@@ -1,7 +1,10 @@
 // test_wearable_tasks.cpp — seed 003's step, bandwidth and curvature experiments on the simulated
 // wearable platform (drivers/sim/wearable_tasks.hpp), against the seed's figures (§3.7: rise about
 // 0.1 s, steady error < 2 %, bandwidth about 3.5 Hz; the issue asks for 20 %) and the model's own.
+#include "drivers/servo_loop.hpp"
 #include "drivers/sim/sim_wearable_device.hpp"
+#include "haptics/scene_io.hpp"
+#include "haptics/servo_scene.hpp"
 #include "drivers/sim/wearable_tasks.hpp"
 
 #include <doctest/doctest.h>
@@ -125,4 +128,34 @@ TEST_CASE("sim-wearable device: cable forces, a pose, and bad commands as faults
     dev.advance(0.2);
     CHECK(dev.fault().code == DeviceFaultCode::watchdog);
     CHECK(dev.rig()->force_reference().isZero());
+}
+
+TEST_CASE("sim-wearable under the servo: a tilted finger on a flat floor tilts the platform by -phi and presses") {
+    using namespace contactlab;
+    using namespace contactlab::drivers;
+    // The finger (R 2.6 cm) comes down 1.5 mm into scenes/flat.json's floor, then tilts by 0.2 rad;
+    // the wearable pushes no hand, so the finger stays on its path.
+    const HandPath path({PathSample{0.0, Vec2{0.0, 0.036}, 0.0}, PathSample{0.3, Vec2{0.0, 0.0245}, 0.0},
+                         PathSample{0.8, Vec2{0.0, 0.0245}, 0.0}, PathSample{1.3, Vec2{0.0, 0.0245}, 0.2},
+                         PathSample{2.0, Vec2{0.0, 0.0245}, 0.2}});
+    SimWearableDevice dev(SimWearableParams{}, path);
+    Scene scene = load_scene_file(std::string(CONTACTLAB_SOURCE_DIR) + "/scenes/flat.json");
+    ServoParams params;
+    params.stiffness = scene.force.stiffness;
+    params.max_force = scene.force.max_force;
+    ServoTick tick(servo_config_for(dev, 1000.0), params);
+    tick.scenes().publish(std::make_unique<ServoScene>(scene));
+    ServoLoop loop(dev, tick, 1e-3, nullptr);
+    REQUIRE(loop.start());
+    loop.run_virtual(2000);
+    REQUIRE(dev.rig() != nullptr);
+    const Pose& xi = dev.rig()->plant().pose();
+    const Pose& rest = dev.rig()->def().plant.platform.rest;
+    MESSAGE("roll " << xi(3) << " rad, press " << (xi(2) - rest(2)) << " m, state " << std::string(to_string(dev.state())));
+    CHECK(dev.state() != DeviceState::fault);
+    // The floor seen from the pad slopes down toward the fingertip by phi: roll -0.2 rad, within
+    // the position loop's friction band and the FSR noise (as the curvature task: ~0.01 rad rms).
+    CHECK(xi(3) == doctest::Approx(-0.2).epsilon(0.15));
+    // |F| = 1.5 N (the scene's clamp) pressed as 1.5 N / 2 N/mm = 0.75 mm.
+    CHECK(xi(2) - rest(2) == doctest::Approx(0.00075).epsilon(0.2));
 }
