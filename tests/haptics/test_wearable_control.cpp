@@ -1,6 +1,7 @@
 // test_wearable_control.cpp — seed 003's actuators (Table 1) and its force (Fig. 5) and position
 // (Fig. 6) loops, closed around the simulated plant: steady-state errors against the friction
 // dead band they follow from, saturation without NaN, and the fault states with zero output.
+#include "haptics/wearable/contact_display.hpp"
 #include "haptics/wearable/rig.hpp"
 
 #include <doctest/doctest.h>
@@ -196,4 +197,28 @@ TEST_CASE("wearable rig: references take effect at the 100 Hz link's ticks") {
     CHECK(rig.plant().tension().isZero());
     rig.advance(0.002);   // 19 and 20 ms: the link tick at 20 ms delivers it
     CHECK(rig.force_reference() == Eigen::Vector3d::Constant(0.3));
+}
+
+TEST_CASE("wearable contact display: the surface's slope seen from the pad, the press from the force") {
+    // A floor (force straight up) under a level finger: no tilt; 1 N presses 0.5 mm at 2 N/mm.
+    PlatformPoseCommand p = contact_to_platform(0.0, 1.0, 0.0);
+    CHECK(p.contact);
+    CHECK(std::abs(p.roll) < 1e-15);
+    CHECK(p.press == doctest::Approx(0.0005).epsilon(1e-12));
+    // A surface rising toward the fingertip by 0.3 rad: normal (-sin, cos), roll +0.3.
+    p = contact_to_platform(-std::sin(0.3), std::cos(0.3), 0.0);
+    CHECK(p.roll == doctest::Approx(0.3).epsilon(1e-12));
+    // The finger tilted by phi over a floor: the floor slopes away from the fingertip, roll -phi.
+    p = contact_to_platform(0.0, 1.0, 0.2);
+    CHECK(p.roll == doctest::Approx(-0.2).epsilon(1e-12));
+    // What the platform cannot show is clamped; no force, or NaN, is no contact (rest).
+    const ContactDisplayDef def;
+    p = contact_to_platform(-1.0, 0.1, 0.0);
+    CHECK(p.roll == doctest::Approx(def.max_tilt));
+    CHECK(contact_to_platform(0.0, 100.0, 0.0).press == def.max_press);
+    CHECK_FALSE(contact_to_platform(0.0, 0.0, 0.0).contact);
+    const PlatformPoseCommand nan = contact_to_platform(std::nan(""), 1.0, 0.0);
+    CHECK_FALSE(nan.contact);
+    CHECK(nan.press == 0.0);
+    CHECK(nan.roll == 0.0);
 }
