@@ -18,4 +18,21 @@ PlatformPoseCommand contact_to_platform(double fx, double fy, double phi, const 
     return out;
 }
 
+PlatformDisplayState platform_display_state(double fx, double fy, double phi, const PlatformDef& platform,
+                                            const Mat6& stiffness, const ContactDisplayDef& def) {
+    PlatformDisplayState out;
+    out.command = contact_to_platform(fx, fy, phi, def);
+    out.pose = platform.rest;
+    out.pose(2) += out.command.press;
+    out.pose(3) += out.command.roll;
+    out.pose(4) += out.command.pitch;
+    const IkResult ik = inverse_kinematics(platform, out.pose);
+    out.reachable = ik.status == IkStatus::ok;
+    if (!out.reachable || !out.command.contact) return out;
+    const CableForces cf = cable_forces(jacobian_l(ik), finger_wrench(stiffness, platform.rest, out.pose));  // eqs. 8, 6
+    out.statics = cf.status;
+    out.tension = cf.tension.cwiseMax(0.0);
+    return out;
+}
+
 }  // namespace contactlab::wearable

@@ -11,6 +11,9 @@
 // is sent to rest (no tilt, no press): the cables go slack.
 #pragma once
 
+#include "haptics/wearable/finger_stiffness.hpp"
+#include "haptics/wearable/statics.hpp"
+
 namespace contactlab::wearable {
 
 struct ContactDisplayDef {
@@ -29,5 +32,20 @@ struct PlatformPoseCommand {
 
 // Non-finite inputs give no contact (rest).
 PlatformPoseCommand contact_to_platform(double fx, double fy, double phi, const ContactDisplayDef& def = {}) noexcept;
+
+// The commanded pose as a platform pose xi (rest + press on p_z, roll, pitch) and the cable
+// tensions that hold it against the fingertip: eq. 8 gives the wrench, eq. 6 the tensions (least
+// squares; a tension the geometry wants negative is shown as 0 and the status says so). For
+// drawings and reports, not the servo tick (it allocates nothing but solves a 6x3 COD).
+struct PlatformDisplayState {
+    PlatformPoseCommand command;
+    Pose pose = Pose::Zero();
+    Eigen::Vector3d tension = Eigen::Vector3d::Zero();  // N
+    StaticsStatus statics = StaticsStatus::ok;
+    bool reachable = false;  // inverse kinematics succeeded at the pose
+};
+PlatformDisplayState platform_display_state(double fx, double fy, double phi, const PlatformDef& platform = {},
+                                            const Mat6& stiffness = finger_stiffness(),
+                                            const ContactDisplayDef& def = {});
 
 }  // namespace contactlab::wearable

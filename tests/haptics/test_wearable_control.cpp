@@ -222,3 +222,23 @@ TEST_CASE("wearable contact display: the surface's slope seen from the pad, the 
     CHECK(nan.press == 0.0);
     CHECK(nan.roll == 0.0);
 }
+
+TEST_CASE("wearable contact display state: the tensions that hold the commanded pose balance the fingertip") {
+    const PlatformDef p;
+    const Mat6 k = finger_stiffness();
+    const PlatformDisplayState st = platform_display_state(-std::sin(0.1), std::cos(0.1), 0.0, p, k);
+    REQUIRE(st.reachable);
+    CHECK(st.command.roll == doctest::Approx(0.1).epsilon(1e-12));
+    // Eq. 5 with these tensions reproduces the fingertip's wrench (eq. 8) up to the part outside
+    // the cables' reach, which the statics reports.
+    const IkResult ik = inverse_kinematics(p, st.pose);
+    const CableForces cf = cable_forces(jacobian_l(ik), finger_wrench(k, p.rest, st.pose));
+    CHECK((cf.tension.cwiseMax(0.0) - st.tension).norm() < 1e-15);
+    CHECK(st.tension.minCoeff() >= 0.0);
+    CHECK(st.tension.sum() > 0.0);  // pressed: the cables pull
+    // Free space: rest, nothing pulls.
+    const PlatformDisplayState free = platform_display_state(0.0, 0.0, 0.0, p, k);
+    CHECK_FALSE(free.command.contact);
+    CHECK(free.tension.isZero());
+    CHECK(free.pose == p.rest);
+}
