@@ -115,6 +115,17 @@ void SimWearableDevice::advance(double dt) noexcept {
     if (since_command_ > p_.watchdog_timeout && state_ != DeviceState::fault)
         set_fault(DeviceFaultCode::watchdog, "no command within the watchdog timeout");
     rig_->advance(dt);
+    WearablePlatformView v;
+    v.valid = true;
+    const Pose& xi = rig_->plant().pose();
+    const Pose& rest = p_.rig.plant.platform.rest;
+    v.roll = xi(3) - rest(3);
+    v.press = xi(2) - rest(2);
+    for (int i = 0; i < 3; ++i) {
+        v.tension[i] = rig_->plant().tension()(i);
+        v.fsr[i] = rig_->fsr()(i);
+    }
+    view_.store(v);
     if (rig_->output().status == ControlStatus::fault_estimate && state_ != DeviceState::fault) {
         state_ = DeviceState::fault;  // the rig already outputs zero torque
         fault_ = {DeviceFaultCode::io_error, "an FSR reading is out of range (the estimate is in fault)"};

@@ -19,11 +19,22 @@
 
 #include "drivers/device.hpp"
 #include "drivers/hand_path.hpp"
+#include "haptics/servo_seqlock.hpp"
 #include "haptics/wearable/rig.hpp"
 
 #include <optional>
 
 namespace contactlab::drivers::sim {
+
+// The platform as the UI draws it (render::PlatformDrawing), published by advance() through a
+// seqlock: any thread may read it.
+struct WearablePlatformView {
+    bool valid = false;                 // false before open()
+    double roll = 0.0;                  // rad, from the rest pose
+    double press = 0.0;                 // m, p_z from the rest pose (+ into the pad)
+    std::array<double, 3> tension{};    // N, the plant's
+    std::array<double, 3> fsr{};        // N, the last readings
+};
 
 struct SimWearableParams {
     wearable::RigDef rig = wearable::seed_fit_rig();
@@ -48,8 +59,10 @@ public:
     void write(const DeviceCommand& cmd) noexcept override;
     void advance(double dt) noexcept override;
 
-    // Ground truth for tests and reports (null before open()).
+    // Ground truth for tests and reports (null before open()); servo thread only while it runs.
     const wearable::WearableRig* rig() const noexcept { return rig_ ? &*rig_ : nullptr; }
+    // The platform for drawing, from any thread.
+    WearablePlatformView platform_view() const noexcept { return view_.load(); }
 
 private:
     void set_fault(DeviceFaultCode code, const char* detail) noexcept;
@@ -61,6 +74,7 @@ private:
     DeviceState state_ = DeviceState::disconnected;
     DeviceFault fault_;
     double since_command_ = 0.0;  // s
+    Seqlock<WearablePlatformView> view_;
 };
 
 }  // namespace contactlab::drivers::sim
