@@ -6,8 +6,9 @@
 //
 // Beyond the figure, and why:
 // - tau_ff = Q_r r / (N eta) (motor.hpp's holding_torque), the torque that holds Q_r at rest: a
-//   PD alone leaves the steady error Q_r / (1 + K_p N eta / r), ~6 % of Q_r at the gains the
-//   100 Hz link allows; with tau_ff only friction is left, |e| <= tau_f / (K_p + r / (N eta)).
+//   PD alone leaves the steady error Q_r / (1 + K_p N eta / r), 3.8 % of Q_r at the default K_p
+//   (on top of friction's dead band); with tau_ff only friction is left,
+//   |e| <= tau_f / (K_p + r / (N eta)).
 // - the derivative acts on the estimate, not on the error: a reference step arriving from the
 //   100 Hz link does not kick the motors. It is low-passed (first order, exact discretisation).
 // - the output is clamped to the stall torque (the PWM duty cannot exceed 100 %).
@@ -25,9 +26,9 @@ namespace contactlab::wearable {
 // Default gains. Table 1's friction (0.02 mN m, 8 % of the stall torque) leaves a dead band
 // |e| <= tau_f / (K_p + r / (N eta)); the seed's < 2 % at 0.3 N needs K_p >= 3.2e-3 N m/N, and
 // 4e-3 leaves 1.6 %. K_d = 1e-5 N m s/N (with the 40 Hz low-pass) damps the cable-fingertip
-// mode (~100 rad/s) at the 1 kHz rate; saturation starts at errors of 0.06 N.
+// mode (~100 rad/s) at the 1 kHz rate; at Q_r = 0.3 N the torque saturates beyond 0.05 N of error.
 struct ForceControlDef {
-    double kp = 4.0e-3;        // N m of motor torque per N of tension error (see below)
+    double kp = 4.0e-3;        // N m of motor torque per N of tension error (see above)
     double kd = 1.0e-5;        // N m per N/s of the estimated tension's rate
     double d_cutoff_hz = 40.0; // Hz, the derivative's low-pass
     bool feedforward = true;   // add the holding torque of Q_r
