@@ -17,9 +17,19 @@ ControlOutput PositionController::step(const Pose& reference, const Estimate& es
     };
     if (!(dt > 0.0) || !std::isfinite(def_.kp) || !std::isfinite(def_.kd) || !reference.allFinite())
         return fault(ControlStatus::fault_non_finite, -1);
-    const IkResult ik = inverse_kinematics(platform_, reference);  // block IK of Fig. 6
-    if (ik.status != IkStatus::ok) return fault(ControlStatus::fault_unreachable_pose, ik.cable);
+    if (inverse_kinematics(platform_, reference).status != IkStatus::ok)
+        return fault(ControlStatus::fault_unreachable_pose, inverse_kinematics(platform_, reference).cable);
     if (estimate.status != EstimateStatus::ok) return fault(ControlStatus::fault_estimate, estimate.cable);
+    // Block IK of Fig. 6, on the actuated freedoms: p_x, p_y and gamma are the fingertip's (the
+    // cables do not set them), so they are taken from the estimate, not the reference.
+    Pose target = reference;
+    if (def_.free_from_estimate) {
+        target(0) = estimate.pose(0);
+        target(1) = estimate.pose(1);
+        target(5) = estimate.pose(5);
+    }
+    IkResult ik = inverse_kinematics(platform_, target);
+    if (ik.status != IkStatus::ok) ik = inverse_kinematics(platform_, reference);
     lr_ = ik.l;
     const Eigen::Vector3d err = estimate.length - lr_;  // l-hat - l_r (m)
     if (!primed_) {

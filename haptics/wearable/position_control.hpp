@@ -30,6 +30,11 @@ struct PositionControlDef {
     double kd = 3.0e-3;        // N m per m/s
     double d_cutoff_hz = 40.0; // Hz
     bool hold_tension = true;  // add the holding torque of the estimated tension
+    // Take p_x, p_y and gamma of the IK target from the estimate (the fingertip sets them, the
+    // cables cannot): l_r then puts p_z, roll and pitch where xi_r asks. Off: the seed's Fig. 6
+    // literally, IK of xi_r, and the fingertip's shear under the cables' lateral pull tilts the
+    // platform away from xi_r (0.037 for 0.03 rad of roll in tests/haptics).
+    bool free_from_estimate = true;
     double rate_hz = 1000.0;   // Hz
     double command_rate_hz = 100.0;  // Hz, xi_r updates over the link
 };
