@@ -5,9 +5,13 @@
 
 namespace contactlab {
 
-Vec2 ellipsoid_force(Vec2 p, Vec2 n, double k_tangential, double k_normal) {
+Vec2 ellipsoid_force(Vec2 p, Vec2 n, double k_tangential, double k_normal, double field_angle) {
     const double len = glm::length(p);
     if (!(len > 0.0)) return Vec2{0.0};
+    if (field_angle != 0.0) {  // the k_normal axis turned counter-clockwise from n
+        const double c = std::cos(field_angle), s = std::sin(field_angle);
+        n = Vec2{c * n.x - s * n.y, s * n.x + c * n.y};
+    }
     const Vec2 t = -perp_left(n);  // any unit tangent: only |E p| matters
     const double ep = std::hypot(k_tangential * glm::dot(p, t), k_normal * glm::dot(p, n));
     return -(ep / len) * p;

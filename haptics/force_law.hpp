@@ -31,6 +31,10 @@ struct ForceLaw {
     ForceModel model = ForceModel::spring;
     double k_tangential = 1000.0;  // N/m, ellipsoid only (seed 004's k1)
     double k_normal = 1000.0;      // N/m, ellipsoid only (seed 004's k2)
+    // rad, ellipsoid only: the field's axes turned counter-clockwise from the contact's (tangent,
+    // normal) frame. Seed 004 tilts the most compliant axis a1 to alpha = 45 or 135 deg from the
+    // surface; with e < 1 (k2 < k1) a1 is the k_normal axis, so alpha = 90 deg + field_angle.
+    double field_angle = 0.0;
     double damping = 0.0;          // B, N s/m along the normal; 0: none
     double mu_static = 0.0;        // friction cone; 0: frictionless (the stiction point is the proxy)
     double mu_dynamic = 0.0;       // <= mu_static
@@ -38,8 +42,9 @@ struct ForceLaw {
 };
 
 // The pseudo-ellipsoidal field for penetration p = x_f - x_s (m) at a contact with free-side unit
-// normal n: magnitude |E p| along -p. Zero at p = 0 (no division by zero).
-Vec2 ellipsoid_force(Vec2 p, Vec2 n, double k_tangential, double k_normal);
+// normal n: magnitude |E p| along -p, E's axes turned by `field_angle` (rad) from (tangent, n).
+// Zero at p = 0 (no division by zero).
+Vec2 ellipsoid_force(Vec2 p, Vec2 n, double k_tangential, double k_normal, double field_angle = 0.0);
 
 // Seed 004 eq. 3 characterises the field by eccentricity e = k2 / k1 and total stiffness
 // k = sqrt((k1^2 + 2 k2^2) / 3). Its E = diag(k1, k1, k2) has two tangential axes, which suggests

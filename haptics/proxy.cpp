@@ -686,7 +686,7 @@ void Proxy::apply_force_law(Vec2 finger, double dt) {
         }
         anchor = stiction_;
     }
-    Vec2 force = law.model == ForceModel::ellipsoid ? ellipsoid_force(finger - anchor, n, law.k_tangential, law.k_normal)
+    Vec2 force = law.model == ForceModel::ellipsoid ? ellipsoid_force(finger - anchor, n, law.k_tangential, law.k_normal, law.field_angle)
                                                     : def_.stiffness * (anchor - finger);
     if (law.contacts == ContactForce::sum) {
         // Seed 002 §2.3, the sum over contact pairs: every surface the finger has entered pushes

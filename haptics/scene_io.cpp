@@ -199,7 +199,9 @@ Scene read_scene(const json& root) {
         } else if (model == "ellipsoid") {
             // Either the two stiffnesses, or seed 004's eccentricity and total stiffness.
             reject_unknown_keys(f, "force", {"model", "k_tangential", "k_normal", "eccentricity", "total_stiffness",
-                                             "total_stiffness_formula", "max_force", "damping", "friction", "contacts"});
+                                             "total_stiffness_formula", "field_angle", "max_force", "damping", "friction",
+                                             "contacts"});
+            if (f.contains("field_angle")) s.force.law.field_angle = read_number(f, "force", "field_angle");
             s.force.law.model = ForceModel::ellipsoid;
             if (f.contains("k_tangential") || f.contains("k_normal")) {
                 if (f.contains("eccentricity") || f.contains("total_stiffness"))
@@ -453,6 +455,8 @@ void validate_scene(const Scene& s) {
             if (!std::isfinite(k) || !(k > 0.0) || k > kMaxStiffness)
                 fail(name, "must lie in (0, " + fmt(kMaxStiffness) + "] N/m, got " + fmt(k));
     }
+    if (!std::isfinite(law.field_angle) || std::abs(law.field_angle) > kPi)
+        fail("force.field_angle", "must lie in [-pi, pi] rad, got " + fmt(law.field_angle));
     if (!std::isfinite(law.damping) || law.damping < 0.0 || law.damping > kMaxDamping)
         fail("force.damping", "must lie in [0, " + fmt(kMaxDamping) + "] N s/m, got " + fmt(law.damping));
     if (!std::isfinite(law.mu_static) || law.mu_static < 0.0 || law.mu_static > kMaxFriction)
@@ -563,6 +567,7 @@ std::string scene_to_json_text(const Scene& s) {
                          {"k_tangential", law.k_tangential},
                          {"k_normal", law.k_normal},
                          {"max_force", s.force.max_force}};
+        if (law.field_angle != 0.0) root["force"]["field_angle"] = law.field_angle;
     }
     if (law.damping != 0.0) root["force"]["damping"] = law.damping;
     if (law.contacts == ContactForce::sum) root["force"]["contacts"] = "sum";

@@ -5,6 +5,7 @@
 #include "haptics/parameter_limits.hpp"
 #include "engine/editor/editor.hpp"
 #include "engine/editor/script.hpp"
+#include "engine/experiments/results_table.hpp"
 #include "engine/render/vk_check.hpp"
 
 namespace contactlab::app {
@@ -26,8 +27,12 @@ int run_edit_command() {
     if (o.frames < 0) throw BadInput("--frames: must be at least 1");
     if (!(o.rate >= limits::kMinServoRate && o.rate <= limits::kMaxRealtimeServoRate))
         throw BadInput("--rate: must be between 100 and 20000 Hz");  // haptics/parameter_limits.hpp
+    if (o.experiment.empty() != o.participant.empty())
+        throw BadInput("--experiment and --participant go together (a protocol and the person's id, e.g. P07)");
     try {
         return editor::run_editor(o);
+    } catch (const experiments::ExperimentError& e) {
+        throw BadInput(e.what());
     } catch (const editor::ScriptError& e) {
         throw BadInput(e.what());
     } catch (const render::NoVulkanDevice& e) {
@@ -52,6 +57,10 @@ void register_edit_command(CLI::App& app, int& rc) {
                     "(one that does not open leaves the mouse running and says why)")
         ->default_val("mouse");
     cmd->add_option("--autosave", o.autosave_interval, "Seconds between writes of the recovery file")->default_val(30.0);
+    cmd->add_option("--experiment", o.experiment, "Run this protocol's trials live (scenes/experiments/); needs --participant");
+    cmd->add_option("--participant", o.participant, "The person's id in the results (e.g. P07)");
+    cmd->add_option("--seed", o.experiment_seed, "Seed of the experiment's trial order")->default_val(1);
+    cmd->add_option("--results", o.results, "Results CSV, written row by row (default PROTOCOL-ID.csv); resumed if it exists");
     cmd->add_flag("--software", o.software, "Use the CPU Vulkan device (lavapipe)");
     cmd->add_flag("--validation,!--no-validation", o.validation,
                   "Vulkan validation layers; any validation message makes the exit code 1");

@@ -2,6 +2,7 @@
 // the long soak of the proxy against the brute-force reference (haptics/verify/contact_fuzz.hpp).
 // Prints the counts; exit 1 when any row violated a property. --dump writes the first failure's
 // scene and hand path so `contactlab trace DIR/scene.json --input DIR/hand.csv` replays it.
+#include "engine/app/progress_bar.hpp"
 #include "engine/app/subcommands.hpp"
 #include "haptics/atomic_file.hpp"
 #include "haptics/scene_io.hpp"
@@ -13,7 +14,6 @@
 #include <string>
 #include <thread>
 
-#include <unistd.h>
 
 namespace contactlab::app {
 namespace {
@@ -25,16 +25,7 @@ struct FuzzArgs {
     std::string dump;
 };
 
-void print_progress(std::int64_t done, std::int64_t total) {
-    static std::int64_t shown = -1;
-    if (done == shown || !isatty(fileno(stderr))) return;  // a bar only for a person watching
-    shown = done;
-    constexpr int kWidth = 40;
-    const int filled = total > 0 ? static_cast<int>(kWidth * done / total) : kWidth;
-    std::fprintf(stderr, "\rfuzz-contact [%-*s] %lld / %lld rows", kWidth, std::string(static_cast<std::size_t>(filled), '#').c_str(),
-                 static_cast<long long>(done), static_cast<long long>(total));
-    if (done >= total) std::fputc('\n', stderr);
-}
+void print_progress(std::int64_t done, std::int64_t total) { show_progress("fuzz-contact", done, total, "rows"); }
 
 void dump_failure(const verify::FuzzFailure& f, const std::string& dir) {
     namespace fs = std::filesystem;

@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
     register_edit_command(app, rc);
     register_devices_command(app, rc);
     register_fuzz_contact_command(app, rc);
+    register_experiment_command(app, rc);
 
     try {
         app.parse(argc, argv);

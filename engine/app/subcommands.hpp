@@ -33,5 +33,6 @@ void register_edit_command(CLI::App& app, int& rc);  // edit (edit_cli.cpp)
 int run_edit_command();
 void register_devices_command(CLI::App& app, int& rc);  // devices (devices_cli.cpp)
 void register_fuzz_contact_command(CLI::App& app, int& rc);  // fuzz-contact (fuzz_contact_cli.cpp)
+void register_experiment_command(CLI::App& app, int& rc);  // experiment run|analyze (experiment_cli.cpp)
 
 }  // namespace contactlab::app

@@ -10,6 +10,7 @@
 #include "engine/editor/haptics_commands.hpp"
 #include "engine/editor/imgui_layer.hpp"
 #include "engine/editor/panels.hpp"
+#include "engine/editor/experiment_mode.hpp"
 #include "engine/editor/recovery.hpp"
 #include "engine/editor/rulers.hpp"
 #include "engine/editor/script.hpp"
@@ -102,13 +103,15 @@ void handle_real_input(EditorState& s, GLFWwindow* window) {
             {GLFW_KEY_4, "4", nullptr}, {GLFW_KEY_5, "5", nullptr}, {GLFW_KEY_6, "6", nullptr},
             {GLFW_KEY_7, "7", nullptr},
             {GLFW_KEY_Q, "q", "ctrl+q"}, {GLFW_KEY_E, "e", nullptr},
+            {GLFW_KEY_P, "p", nullptr}, {GLFW_KEY_ENTER, "enter", nullptr}, {GLFW_KEY_8, "8", nullptr},
+            {GLFW_KEY_9, "9", nullptr},
         };
         for (const K& k : keys) {
             if (!ImGui::IsKeyPressed(k.key)) continue;
             const char* name = ctrl ? k.ctrl_name : k.name;
             if (!name) continue;
             if (std::string(name) == "ctrl+q") s.quit = true;
-            else canvas_key(s, name);
+            else if (!experiment_key(s, name, s.now)) canvas_key(s, name);
         }
     }
     (void)window;
@@ -168,6 +171,21 @@ int run_editor(const EditorOptions& o) {
 
     EditorState s;
     open_initial(s, o.scene_path, scripted || o.frames > 0);
+    // Live trials (--experiment): the session reads the protocol and any results written before.
+    ExperimentState experiment;
+    if (!o.experiment.empty()) {
+        const experiments::Protocol protocol = experiments::load_protocol(o.experiment);
+        const std::string results = !o.results.empty() ? o.results
+                                    : std::filesystem::path(o.experiment).stem().string() + "-" + o.participant + ".csv";
+        experiment.session = std::make_unique<experiments::LiveSession>(protocol, o.participant, o.experiment_seed, results);
+        s.experiment = &experiment;
+        char buf[256];
+        std::snprintf(buf, sizeof buf, "experiment: %s, participant %s, %zu of %zu trials done, results in %s",
+                      protocol.name.c_str(), o.participant.c_str(), experiment.session->done(), experiment.session->total(),
+                      results.c_str());
+        std::fprintf(stderr, "contactlab edit: %s\n", buf);
+        s.say(buf);
+    }
 
     // Threads: one core for the servo, the rest (the Vulkan driver's threads included) for the
     // renderer and the UI. Lavapipe starts one rasteriser thread per core unless told otherwise.
@@ -234,6 +252,7 @@ int run_editor(const EditorOptions& o) {
     double window_open_ms = -1.0;
     double last_autosave = 0.0;
     std::optional<ProxyOutput> shown_proxy;  // last frame's, for the status row
+    std::uint64_t published_stimulus = ~0ull, published_to_experiment = ~0ull;  // experiment mode
     int exit_code = 0;
     std::string shown_title;
     const Clock::time_point t_loop = Clock::now();
@@ -258,6 +277,7 @@ int run_editor(const EditorOptions& o) {
 
             // UI: ImGui frame, then the canvas (real input, or the script's actions).
             imgui.new_frame();
+            s.now = since(t_loop);
             if (scripted) {
                 script.step(s, since(t_loop));
                 if (const auto r = script.take_resize_request()) window.set_size(r->first, r->second);
@@ -294,11 +314,26 @@ int run_editor(const EditorOptions& o) {
                 published_revision = s.doc.revision();
                 published = servo_params_for(s.doc.last_valid(), s.roller, host.watchdog_timeout(), s.roller_travel);
             }
-            if (s.doc.valid() && s.doc.revision() != published_revision) {
+            const bool in_experiment = s.experiment != nullptr;
+            if (published_to_experiment != host.generation() && in_experiment) {
+                published_to_experiment = host.generation();
+                published_stimulus = ~0ull;  // a new servo has the document's scene: send the trial's
+            }
+            if (in_experiment) {
+                // The trial's stimulus, felt and not drawn; nothing while paused.
+                if (const std::uint64_t key = experiment_scene_key(s); key != published_stimulus) {
+                    servo.publish_scene(experiment_servo_scene(s));
+                    published_stimulus = key;
+                }
+                experiment_scene_published(s, s.now);
+            } else if (s.doc.valid() && s.doc.revision() != published_revision) {
                 servo.publish_scene(s.doc.scene());
                 published_revision = s.doc.revision();
             }
-            const ServoParams params = servo_params_for(s.doc.last_valid(), s.roller, host.watchdog_timeout(), s.roller_travel);
+            // Force-only conditions hold the contact element at the pad's centre (1 nm of travel).
+            const bool held = in_experiment && experiment.session && !experiment.session->finished() && experiment.session->roller_held();
+            const ServoParams params = servo_params_for(in_experiment ? experiment_servo_scene(s) : s.doc.last_valid(), s.roller,
+                                                        host.watchdog_timeout(), held ? 1e-9 : s.roller_travel);
             if (!same_params(params, published)) {
                 // Refused parameters are said once; the servo keeps the last ones it accepted.
                 if (const std::string problem = servo.publish_params(params); !problem.empty())
@@ -309,6 +344,7 @@ int run_editor(const EditorOptions& o) {
             for (drivers::TickRecord r; servo.pop_record(r);) {
                 s.history.push(r);
                 host.forward(r);
+                experiment_on_record(s, r);
                 if (r.fault != ServoFault::none) {
                     s.last_fault = r.fault;
                     s.last_fault_t = r.t;
@@ -320,11 +356,14 @@ int run_editor(const EditorOptions& o) {
                 env = std::make_unique<Environment>(build_environment(s.doc.scene()));
                 env_revision = s.doc.revision();
             }
-            const Scene& shown = s.doc.last_valid();
+            // In an experiment the stimulus is felt, not seen: only the finger is drawn.
+            static const Scene hidden;
+            static const Environment hidden_env = build_environment(hidden);
+            const Scene& shown = s.experiment ? experiment_servo_scene(s) : s.doc.last_valid();
             const ServoSnapshot snap = s.servo->snapshot();
             render::FrameContent content;
-            content.scene = &shown;
-            content.env = env.get();
+            content.scene = s.experiment ? &hidden : &shown;
+            content.env = s.experiment ? &hidden_env : env.get();
             ServoSnapshot pose_snap = snap;
             if (snap.ticks == 0) {
                 pose_snap.finger = s.pose.finger;
@@ -401,6 +440,9 @@ int run_editor(const EditorOptions& o) {
         const std::string r = s.doc.autosave();
         if (!r.empty()) std::fprintf(stderr, "contactlab edit: unsaved changes kept in %s\n", r.c_str());
     }
+    if (experiment.session)
+        std::fprintf(stderr, "contactlab edit: experiment: %zu of %zu trials recorded in %s\n", experiment.session->done(),
+                     experiment.session->total(), experiment.session->results_path().c_str());
     if (host.recording()) cmd_record_stop(s);
     LiveServo& servo = *s.servo;
     servo.stop();

@@ -19,6 +19,10 @@ struct EditorOptions {
     std::string device = "mouse"; // the device the servo starts on (haptics_host.hpp specs); one
                                   // that does not open leaves the mouse running and says why
     double autosave_interval = 30.0;  // s between recovery-file writes
+    // --experiment PROTOCOL --participant ID [--seed N] [--results FILE]: live trials
+    // (experiment_mode.hpp); results default to PROTOCOL-NAME-ID.csv in the working directory.
+    std::string experiment, participant, results;
+    unsigned long long experiment_seed = 1;
 };
 
 // Runs the editor; returns the process exit code. No display: prints the message naming xvfb-run

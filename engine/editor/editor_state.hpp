@@ -20,6 +20,8 @@ namespace contactlab::editor {
 enum class Tool { finger, select, line, quad, arc, arc_center, cubic };
 const char* to_string(Tool t);
 
+struct ExperimentState;  // experiment_mode.hpp
+
 struct EditorState {
     Document doc;
     Camera camera;
@@ -64,6 +66,10 @@ struct EditorState {
     // The most recent fault the servo reported (kept after it recovers), from the tick records.
     ServoFault last_fault = ServoFault::none;
     double last_fault_t = 0.0;  // s, device time
+
+    // `--experiment`: live trials (experiment_mode.hpp); null otherwise. Owned by run_editor.
+    ExperimentState* experiment = nullptr;
+    double now = 0.0;  // s since the frame loop began, set each frame (trial times)
 
     // Other sessions' recovery files waiting for an answer (recovery.hpp), the front one shown.
     std::vector<std::string> recovery_offers;

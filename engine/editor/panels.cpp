@@ -4,6 +4,7 @@
 #include "engine/editor/canvas.hpp"
 #include "engine/editor/haptics_commands.hpp"
 #include "engine/editor/parameter_edit.hpp"
+#include "engine/editor/experiment_mode.hpp"
 #include "engine/editor/recovery.hpp"
 #include "engine/render/frame.hpp"
 #include "haptics/scene_io.hpp"
@@ -494,6 +495,7 @@ void draw_panels(EditorState& s, const FrameInfo& info, const std::optional<Prox
     tuning_window(s, layout, cond);
     status_window(s, info, layout, cond);
     plots_window(s, layout, cond);
+    experiment_window(s, s.now);
     recovery_window(s);
     // Message row along the bottom edge: the last action's outcome.
     if (begin_row("##status", layout.message_row))

@@ -6,6 +6,7 @@
 #include "engine/editor/haptics_commands.hpp"
 #include "engine/editor/panels.hpp"
 #include "engine/editor/parameter_edit.hpp"
+#include "engine/editor/experiment_mode.hpp"
 #include "engine/editor/recovery.hpp"
 
 #include <cmath>
@@ -25,7 +26,7 @@ const std::map<std::string, std::pair<int, int>>& arity() {
         {"redo", {0, 0}},   {"fit", {0, 0}},         {"save", {1, 1}},       {"open", {1, 1}},
         {"screenshot", {1, 1}}, {"estop", {1, 1}},   {"wait", {1, 1}},       {"frames", {1, 1}},
         {"wait_contact", {1, 1}}, {"resize", {2, 2}}, {"generate", {1, 1}}, {"wait_state", {2, 2}}, {"expect", {2, 3}}, {"quit", {0, 0}},
-        {"device", {1, 2}}, {"rate", {1, 1}}, {"record", {1, 1}}, {"report", {1, 1}}, {"devices", {0, 0}}, {"recovery", {1, 1}}, {"layout", {0, 0}},
+        {"device", {1, 2}}, {"rate", {1, 1}}, {"record", {1, 1}}, {"report", {1, 1}}, {"devices", {0, 0}}, {"recovery", {1, 1}}, {"layout", {0, 0}}, {"answer", {1, 1}}, {"pause", {0, 0}}, {"resume", {0, 0}},
     };
     return a;
 }
@@ -154,7 +155,13 @@ bool Script::run(EditorState& s, const Line& line, double now) {
         px_of(s, number(w[1]), number(w[2]), px, py);
         canvas_move(s, px, py);
     } else if (c == "key") {
-        if (!canvas_key(s, w[1])) throw ScriptError("unknown key \"" + w[1] + "\"");
+        if (!experiment_key(s, w[1], now) && !canvas_key(s, w[1])) throw ScriptError("unknown key \"" + w[1] + "\"");
+    } else if (c == "answer") {
+        if (!s.experiment) throw ScriptError("answer: no experiment (edit --experiment PROTOCOL --participant ID)");
+        cmd_experiment_answer(s, w[1] == "-" ? std::string() : w[1], now);  // `answer -` ends a timed trial
+    } else if (c == "pause" || c == "resume") {
+        if (!s.experiment) throw ScriptError(c + ": no experiment");
+        cmd_experiment_pause(s, c == "pause");
     } else if (c == "set") {
         Scene sc = s.doc.scene();
         const std::string& n = w[1];
@@ -254,6 +261,9 @@ bool Script::run(EditorState& s, const Line& line, double now) {
             else if (n == "undo_depth") v = static_cast<double>(s.doc.undo_depth());
             else if (n == "dirty") v = s.doc.dirty() ? 1 : 0;
             else if (n == "recovery_offers") v = static_cast<double>(s.recovery_offers.size());
+            else if (n == "experiment_done") v = s.experiment && s.experiment->session ? static_cast<double>(s.experiment->session->done()) : 0;
+            else if (n == "experiment_total") v = s.experiment && s.experiment->session ? static_cast<double>(s.experiment->session->total()) : 0;
+            else if (n == "experiment_paused") v = s.experiment && s.experiment->paused ? 1 : 0;
             else if (n == "error") v = s.message_is_error ? 1 : 0;
             else if (n == "force_above" || n == "force_below" || n == "force") v = f;
             else if (n == "rate") v = s.servo ? s.servo->rate() : 0.0;

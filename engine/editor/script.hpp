@@ -12,6 +12,9 @@
 //                   also: curves exact|flatten; model spring|ellipsoid; rule centroid|least_displacement;
 //                     snap_mm MM: grid snapping for the authoring tools, 0 = off;
 //                     snap_tangent 0|1: G1 tangent continuation at open chain ends
+//   answer X         (--experiment: the trial's answer, one of the protocol's; `answer -` ends a
+//                     timed trial)   pause   resume   (`expect experiment_done N`,
+//                     `expect experiment_total N`, `expect experiment_paused 0|1`)
 //   recovery recover|discard|keep   (answers the first offer of an earlier session's unsaved work,
 //                     recovery.hpp; `expect recovery_offers N` counts those waiting)
 //   layout           (one line per part on screen on stderr: "script layout: x= y= w= h= overflow=0|1

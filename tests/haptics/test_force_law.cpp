@@ -1,6 +1,7 @@
 // test_force_law.cpp — seed 004's pseudo-ellipsoidal field, its eccentricity/total stiffness, the
 // friction cone's stiction point, and normal damping, on the proxy.
 #include "scene_builders.hpp"
+#include "haptics/scene_io.hpp"
 
 #include <doctest/doctest.h>
 
@@ -242,4 +243,31 @@ TEST_CASE("switching the force model keeps the stiffness felt pressing straight 
     const ForceDef before = f;
     set_force_model(f, ForceModel::ellipsoid);
     CHECK(f.law.k_tangential == before.law.k_tangential);
+}
+
+TEST_CASE("ellipsoid field: a field angle turns its axes (seed 004's alpha), 90 deg swaps k_t and k_n") {
+    const Vec2 n{0.0, 1.0};
+    const double kt = 1200.0, kn = 480.0;  // e = 0.4: the k_normal axis is the compliant one (a1)
+    for (const Vec2 p : {Vec2{0.001, -0.002}, Vec2{-0.003, -0.0005}, Vec2{0.0015, -0.0015}}) {
+        // A quarter turn puts the k_normal axis along the tangent: the same as swapping them.
+        const Vec2 turned = ellipsoid_force(p, n, kt, kn, 0.5 * kPi), swapped = ellipsoid_force(p, n, kn, kt);
+        CHECK(glm::length(turned - swapped) <= 1e-12 * glm::length(swapped));
+        // Seed 004: a1 at alpha = 45 deg (field angle -45 deg) or 135 deg (+45 deg). Pressing
+        // along a1 meets k_normal alone: |F| = kn |p|; across it, kt |p|.
+        const double a = 0.25 * kPi;
+        const Vec2 along_a1{std::cos(a), std::sin(a)};  // 45 deg from the surface tangent (+x)
+        const Vec2 f45 = ellipsoid_force(-0.002 * along_a1, n, kt, kn, a - 0.5 * kPi);
+        CHECK(glm::length(f45) == doctest::Approx(kn * 0.002).epsilon(1e-12));
+        const Vec2 f135 = ellipsoid_force(-0.002 * along_a1, n, kt, kn, 0.75 * kPi - 0.5 * kPi);
+        CHECK(glm::length(f135) == doctest::Approx(kt * 0.002).epsilon(1e-12));
+    }
+}
+
+TEST_CASE("ellipsoid field: field_angle reads, round-trips and is refused beyond pi") {
+    const std::string base = R"({"version": 1, "contours": [], "force": {"model": "ellipsoid", "k_tangential": 1200,
+        "k_normal": 480, "max_force": 1.5, "field_angle": )";
+    const Scene s = parse_scene(base + "-0.7853981633974483}}");
+    CHECK(s.force.law.field_angle == -0.7853981633974483);
+    CHECK(parse_scene(scene_to_json_text(s)).force.law.field_angle == s.force.law.field_angle);
+    CHECK_THROWS_WITH_AS(parse_scene(base + "4}}"), "scene: force.field_angle: must lie in [-pi, pi] rad, got 4", SceneError);
 }

@@ -5,6 +5,8 @@
 
 #include "engine/render/chart.hpp"
 #include "engine/render/chart_image.hpp"
+#include "engine/render/matrix_chart.hpp"
+#include "engine/render/offscreen.hpp"
 
 #include <doctest/doctest.h>
 
@@ -250,4 +252,35 @@ TEST_CASE("chart: dashed lines end whatever their length and where the dash patt
     DrawList out(c.width, c.height);
     draw_chart(c, out);
     CHECK(out.vertices().size() > 1000);
+}
+
+TEST_CASE("matrix chart: each cell is shaded by its share of the row, counts and labels drawn") {
+    MatrixChart m;
+    m.title = "Confusion: table I";
+    m.rows = {"45", "135"};
+    m.columns = {"A", "B"};
+    m.counts = {{41, 9}, {3, 47}};
+    const Image img = [&] {
+        const P2 size = matrix_chart_size(m);
+        DrawList list(static_cast<int>(size.x), static_cast<int>(size.y));
+        draw_matrix_chart(m, list);
+        OffscreenTarget target(lavapipe(), static_cast<int>(size.x), static_cast<int>(size.y));
+        return target.render(list, Color{255, 255, 255, 255});
+    }();
+    // Darkness (255 - red) near each cell's corner (clear of its number): ordered as the shares
+    // 41/50 > 47/50 ... i.e. cell (1, 1) 0.94 darkest, then (0, 0) 0.82, then (0, 1) 0.18, then (1, 0) 0.06.
+    const P2 size = matrix_chart_size(m);
+    const float cell = static_cast<float>(m.cell);
+    const float x0 = size.x - 16.0f - 2.0f * cell, y0 = size.y - 16.0f - 2.0f * cell;  // the cells' top-left
+    auto dark = [&](int r, int c) { return 255 - img.pixel(static_cast<int>(x0 + cell * c + 4), static_cast<int>(y0 + cell * r + 4))[0]; };
+    CHECK(dark(1, 1) > dark(0, 0));
+    CHECK(dark(0, 0) > dark(0, 1));
+    CHECK(dark(0, 1) > dark(1, 0));
+    CHECK(dark(1, 0) > 0);
+    // Shade share * 225: 0.94 -> 211.5 of 255 - red.
+    CHECK(std::abs(dark(1, 1) - 211) <= 2);
+    m.counts.pop_back();
+    DrawList bad(10, 10);
+    CHECK_THROWS_AS(draw_matrix_chart(m, bad), ChartError);
+    CHECK(lavapipe().validation_messages() == 0);
 }

@@ -1,0 +1,152 @@
+// experiment_cli.cpp — `contactlab experiment run|analyze` (issue 16): the seeds' experiments
+// (engine/experiments/). `run PROTOCOL --participant sim|sim:N | --participants sim:A-B --seed S
+// --output RESULTS.csv [--jobs J] [--no-traces]` performs the protocol's trials with simulated
+// participants through the servo and the simulated rig. `analyze RESULTS.csv [--json OUT.json] [--report DIR] [--confidence C]`
+// prints the figures per condition and writes them as JSON (schema: scenes/README.md) and as a
+// Markdown page with plots.
+#include "engine/app/experiment_report.hpp"
+#include "engine/app/progress_bar.hpp"
+#include "engine/app/subcommands.hpp"
+#include "engine/experiments/analysis.hpp"
+#include "engine/experiments/experiment_run.hpp"
+#include "engine/experiments/protocol.hpp"
+#include "haptics/atomic_file.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <thread>
+
+
+namespace contactlab::app {
+namespace {
+
+struct RunArgs {
+    std::string protocol, participant, participants, output;
+    unsigned long long seed = 1;
+    int jobs = 0;  // 0: every core
+    bool no_traces = false;
+};
+
+// "sim" -> {1}; "sim:3" -> {3}; "sim:1-20" -> {1..20}.
+std::vector<std::uint64_t> sim_participants(const std::string& spec, const char* option) {
+    if (spec == "sim") return {1};
+    if (spec.rfind("sim:", 0) != 0)
+        throw BadInput(std::string(option) + ": \"" + spec +
+                       "\": a person takes part in the editor's experiment mode (contactlab edit --experiment PROTOCOL "
+                       "--participant " + spec + "); headless runs take simulated participants: sim, sim:N or sim:A-B");
+    const std::string range = spec.substr(4);
+    unsigned long long a = 0, b = 0;
+    char dash = 0, extra = 0;
+    const int n = std::sscanf(range.c_str(), "%llu%c%llu%c", &a, &dash, &b, &extra);
+    if (n == 1) b = a;
+    else if (!(n == 3 && dash == '-')) throw BadInput(std::string(option) + ": expected sim:N or sim:A-B, got \"" + spec + "\"");
+    if (a < 1 || b < a || b - a >= 10000) throw BadInput(std::string(option) + ": participants A-B need 1 <= A <= B, at most 10000");
+    std::vector<std::uint64_t> out;
+    for (unsigned long long i = a; i <= b; ++i) out.push_back(i);
+    return out;
+}
+
+void print_progress(std::size_t done, std::size_t total) {
+    show_progress("experiment", static_cast<std::int64_t>(done), static_cast<std::int64_t>(total), "trials");
+}
+
+int run_protocol(const RunArgs& a) {
+    if (a.participant.empty() == a.participants.empty()) throw BadInput("experiment run: give --participant or --participants");
+    experiments::RunOptions o;
+    o.participants = sim_participants(a.participant.empty() ? a.participants : a.participant,
+                                      a.participant.empty() ? "--participants" : "--participant");
+    o.seed = a.seed;
+    o.output = a.output;
+    o.traces = !a.no_traces;
+    o.jobs = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    o.progress = print_progress;
+    try {
+        const experiments::Protocol p = experiments::load_protocol(a.protocol);
+        const auto t0 = std::chrono::steady_clock::now();
+        const experiments::RunSummary s = experiments::run_experiment(p, o);
+        const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        std::fprintf(stderr, "experiment: %s (%s), %zu participant(s), %zu trials (%zu warm-up, %zu invalid) in %.1f s; written to %s%s%s\n",
+                     p.name.c_str(), experiments::to_string(p.task), o.participants.size(), s.rows, s.warmup, s.invalid, secs,
+                     a.output.c_str(), o.traces ? ", traces in " : "", o.traces ? (a.output + ".traces/").c_str() : "");
+    } catch (const experiments::ExperimentError& e) {
+        throw BadInput(e.what());
+    }
+    return 0;
+}
+
+struct AnalyzeArgs {
+    std::string results, json, report;
+    double confidence = 0.95;
+};
+
+std::string figure(const nlohmann::json& c, const char* key, const char* f) {
+    if (!c.contains(key) || !c[key].is_number()) return "-";
+    char buf[48];
+    std::snprintf(buf, sizeof buf, f, c[key].get<double>());
+    return buf;
+}
+
+int run_analyze(const AnalyzeArgs& a) {
+    if (!(a.confidence > 0.0 && a.confidence < 1.0)) throw BadInput("--confidence: must lie in (0, 1), e.g. 0.99");
+    experiments::ResultsTable table;
+    nlohmann::json result;
+    try {
+        table = experiments::read_results_csv(a.results);
+        result = experiments::analyze_results(table, experiments::AnalyzeOptions{a.confidence});
+    } catch (const experiments::ExperimentError& e) {
+        throw BadInput(e.what());
+    }
+    std::printf("%s: %zu rows, %zu left out (warm-up or invalid)\n", a.results.c_str(), result["rows"].get<std::size_t>(),
+                result["excluded"].get<std::size_t>());
+    for (const auto& [name, c] : result["conditions"].items()) {
+        std::printf("  %-24s n %4zu  correct %s  IT %s bits  phi %s", name.c_str(), c["n"].get<std::size_t>(),
+                    figure(c, "proportion_correct", "%.3f").c_str(), figure(c, "it_est_bits", "%.3f").c_str(),
+                    figure(c, "cramers_phi", "%.3f").c_str());
+        if (c.contains("time_s"))
+            std::printf("  time %s s  failures %s", figure(c["time_s"], "mean", "%.3f").c_str(),
+                        figure(c, "failure_proportion", "%.3f").c_str());
+        std::printf("\n");
+    }
+    for (const auto& t : result["comparisons"])
+        std::printf("  %s, %s - %s: difference %s, t(%s) = %s, p = %s, %.0f %% interval %s .. %s (%s)\n",
+                    t["measure"].get<std::string>().c_str(), t["a"].get<std::string>().c_str(), t["b"].get<std::string>().c_str(),
+                    figure(t, "mean_difference", "%.4g").c_str(), figure(t, "df", "%.3g").c_str(), figure(t, "t", "%.3f").c_str(),
+                    figure(t, "p", "%.3g").c_str(), 100.0 * a.confidence, figure(t, "ci_low", "%.4g").c_str(),
+                    figure(t, "ci_high", "%.4g").c_str(), t["paired"].get<bool>() ? "paired" : "Welch");
+    if (!a.json.empty()) write_file_atomically(a.json, result.dump(2) + "\n");
+    if (!a.report.empty()) std::printf("report: %s\n", write_experiment_report(table, result, a.report).c_str());
+    return 0;
+}
+
+}  // namespace
+
+void register_experiment_command(CLI::App& app, int& rc) {
+    CLI::App* exp = app.add_subcommand("experiment", "The seeds' experiments: run a protocol, analyse its results");
+    exp->require_subcommand(1);
+
+    auto run = std::make_shared<RunArgs>();
+    CLI::App* r = exp->add_subcommand("run", "Run a protocol (scenes/experiments/) with simulated participants into a results CSV");
+    r->add_option("protocol", run->protocol, "Protocol file (JSON, scenes/README.md)")->required();
+    r->add_option("--participant", run->participant, "sim (a simulated participant), or sim:N for participant N");
+    r->add_option("--participants", run->participants, "sim:A-B: simulated participants A..B, each its own seed");
+    r->add_option("--seed", run->seed, "Seed of the trial orders and the perceptual noise")->default_val(1);
+    r->add_option("-o,--output", run->output, "Results CSV (one row per trial)")->required();
+    r->add_option("--jobs", run->jobs, "Participants run in parallel (0: every core); the results do not depend on it")
+        ->default_val(0);
+    r->add_flag("--no-traces", run->no_traces, "Skip the per-trial traces (RESULTS.csv.traces/)");
+    r->callback([run, &rc] { rc = run_protocol(*run); });
+
+    auto analyze = std::make_shared<AnalyzeArgs>();
+    CLI::App* an = exp->add_subcommand("analyze", "Figures per condition from a results CSV: proportion correct, IT, phi, times, t tests");
+    an->add_option("results", analyze->results, "Results CSV (one row per trial; scenes/README.md)")->required();
+    an->add_option("--json", analyze->json, "Write the figures as JSON");
+    an->add_option("--report", analyze->report, "Write report.md and PNG plots into this folder");
+    an->add_option("--confidence", analyze->confidence, "Confidence of the t tests' intervals (seed 000: 0.99)")
+        ->default_val(0.95);
+    an->callback([analyze, &rc] { rc = run_analyze(*analyze); });
+}
+
+}  // namespace contactlab::app

@@ -1,0 +1,194 @@
+// experiment_report.cpp — the analysis as Markdown with plots (experiment_report.hpp).
+#include "engine/app/experiment_report.hpp"
+
+#include "engine/experiments/statistics.hpp"
+#include "engine/render/chart_image.hpp"
+#include "engine/render/matrix_chart.hpp"
+#include "haptics/atomic_file.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+namespace contactlab::app {
+namespace {
+
+using nlohmann::json;
+using render::Chart;
+using render::ChartSeries;
+
+std::string fmt(const json& v, const char* f = "%.3g") {
+    if (!v.is_number()) return "-";
+    char buf[64];
+    std::snprintf(buf, sizeof buf, f, v.get<double>());
+    return buf;
+}
+
+bool numeric(const std::string& s) {
+    char* end = nullptr;
+    std::strtod(s.c_str(), &end);
+    return !s.empty() && *end == '\0';
+}
+
+Chart chart(std::string title, std::string x, std::string y) {
+    Chart c;
+    c.title = std::move(title);
+    c.x.title = std::move(x);
+    c.y.title = std::move(y);
+    c.width = 900;
+    c.height = 540;
+    return c;
+}
+
+ChartSeries series(const std::string& name, int colour) {
+    ChartSeries s;
+    s.name = name;
+    s.color = render::chart_color(colour);
+    s.marker = render::Marker::disc;
+    return s;
+}
+
+// One line per condition: `value` of each stimulus (numeric stimuli only).
+Chart per_stimulus_chart(const json& analysis, const char* title, const char* y_title, const char* key, const char* sub) {
+    Chart c = chart(title, "stimulus", y_title);
+    int colour = 0;
+    for (const auto& [name, cond] : analysis["conditions"].items()) {
+        if (!cond.contains("per_stimulus")) continue;
+        ChartSeries s = series(name, colour++);
+        for (const auto& [stim, f] : cond["per_stimulus"].items()) {
+            const json* v = f.contains(key) ? &f[key] : nullptr;
+            if (v && sub) v = v->contains(sub) ? &(*v)[sub] : nullptr;
+            if (!numeric(stim) || !v || !v->is_number()) continue;
+            s.x.push_back(std::stod(stim));
+            s.y.push_back(v->get<double>());
+        }
+        if (!s.x.empty()) c.series.push_back(std::move(s));
+    }
+    return c;
+}
+
+// Seed 004: phi of each (e, k) pair, against e, one line per k.
+Chart phi_chart(const experiments::ResultsTable& t) {
+    Chart c = chart("Cramer's phi against eccentricity, per stiffness", "eccentricity e", "Cramer's phi");
+    c.y.min = 0.0;
+    c.y.max = 1.0;
+    const auto e = t.column("e"), k = t.column("k"), st = t.column("stimulus"), rs = t.column("response");
+    const auto valid = t.column("valid"), warm = t.column("warmup");
+    if (!e || !k || !st || !rs) return c;
+    std::map<double, std::map<double, std::pair<std::vector<std::string>, std::vector<std::string>>>> by_k;
+    for (std::size_t i = 0; i < t.rows.size(); ++i) {
+        if ((valid && t.number(i, *valid) == 0.0) || (warm && t.number(i, *warm) != 0.0)) continue;
+        auto& cell = by_k[t.number(i, *k)][t.number(i, *e)];
+        cell.first.push_back(t.rows[i][*st]);
+        cell.second.push_back(t.rows[i][*rs]);
+    }
+    int colour = 0;
+    for (const auto& [kv, by_e] : by_k) {
+        char name[48];
+        std::snprintf(name, sizeof name, "k = %g", kv);
+        ChartSeries s = series(name, colour++);
+        for (const auto& [ev, sr] : by_e) {
+            s.x.push_back(ev);
+            s.y.push_back(experiments::cramers_phi(experiments::make_confusion(sr.first, sr.second)));
+        }
+        c.series.push_back(std::move(s));
+    }
+    return c;
+}
+
+}  // namespace
+
+std::string write_experiment_report(const experiments::ResultsTable& table, const json& a, const std::string& dir) {
+    namespace fs = std::filesystem;
+    fs::create_directories(dir);
+    std::ostringstream md;
+    md << "# Experiment results\n\nSource: `" << a["source"].get<std::string>() << "`, " << a["rows"] << " rows, "
+       << a["excluded"] << " left out (warm-up or invalid).\n\n";
+    md << "| condition | n | proportion correct | IT_est (bits) | Cramer's phi | time (s, mean +- sd) | failures |\n";
+    md << "| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+    for (const auto& [name, c] : a["conditions"].items()) {
+        md << "| " << name << " | " << c["n"] << " | " << fmt(c.value("proportion_correct", json())) << " | "
+           << fmt(c.value("it_est_bits", json())) << " | " << fmt(c.value("cramers_phi", json())) << " | ";
+        if (c.contains("time_s")) md << fmt(c["time_s"]["mean"]) << " +- " << fmt(c["time_s"]["sd"]);
+        else md << "-";
+        md << " | " << fmt(c.value("failure_proportion", json())) << " |\n";
+    }
+    for (const auto& [name, c] : a["conditions"].items()) {
+        if (!c.contains("confusion")) continue;
+        md << "\n## Confusion matrix: " << name << "\n\nRows: stimulus; columns: response.\n\n| |";
+        for (const auto& r : c["labels"]["responses"]) md << " " << r.get<std::string>() << " |";
+        md << "\n| --- |";
+        for (std::size_t j = 0; j < c["labels"]["responses"].size(); ++j) md << " ---: |";
+        md << "\n";
+        for (std::size_t i = 0; i < c["labels"]["stimuli"].size(); ++i) {
+            md << "| " << c["labels"]["stimuli"][i].get<std::string>() << " |";
+            for (const auto& v : c["confusion"][i]) md << " " << v << " |";
+            md << "\n";
+        }
+    }
+    if (!a["comparisons"].empty()) {
+        md << "\n## Comparisons (t tests)\n\n| measure | a - b | test | t | df | p | interval |\n| --- | --- | --- | ---: | ---: | ---: | --- |\n";
+        for (const auto& t : a["comparisons"]) {
+            char ci[96];
+            std::snprintf(ci, sizeof ci, "%.0f %%: %s .. %s", 100.0 * t["confidence"].get<double>(), fmt(t["ci_low"]).c_str(),
+                          fmt(t["ci_high"]).c_str());
+            md << "| " << t["measure"].get<std::string>() << " | " << t["a"].get<std::string>() << " - " << t["b"].get<std::string>()
+               << " = " << fmt(t["mean_difference"]) << " | " << (t["paired"].get<bool>() ? "paired" : "Welch") << " | "
+               << fmt(t["t"]) << " | " << fmt(t["df"]) << " | " << fmt(t["p"]) << " | " << ci << " |\n";
+        }
+    }
+
+    // Plots: only those with data.
+    std::vector<std::pair<std::string, Chart>> charts;
+    Chart pc = per_stimulus_chart(a, "Proportion correct per stimulus", "proportion correct", "proportion_correct", nullptr);
+    pc.y.min = 0.0;
+    pc.y.max = 1.0;
+    if (!pc.series.empty()) charts.emplace_back("proportion_correct.png", pc);
+    Chart tc = per_stimulus_chart(a, "Completion time per stimulus (successful trials)", "time (s)", "time_s", "mean");
+    tc.y.include_zero = true;
+    if (!tc.series.empty()) charts.emplace_back("time.png", tc);
+    Chart phi = phi_chart(table);
+    if (!phi.series.empty()) charts.emplace_back("phi_against_e.png", phi);
+    // Confusion matrices as pictures too, one per condition.
+    std::vector<std::pair<std::string, render::MatrixChart>> matrices;
+    int index = 0;
+    for (const auto& [name, c] : a["conditions"].items()) {
+        ++index;
+        if (!c.contains("confusion")) continue;
+        render::MatrixChart m;
+        m.title = "Confusion: " + name;
+        m.rows = c["labels"]["stimuli"].get<std::vector<std::string>>();
+        m.columns = c["labels"]["responses"].get<std::vector<std::string>>();
+        m.counts = c["confusion"].get<std::vector<std::vector<long>>>();
+        matrices.emplace_back("confusion_" + std::to_string(index) + ".png", std::move(m));
+    }
+    if (!charts.empty() || !matrices.empty()) {
+        md << "\n## Plots\n\n";
+        try {
+            const render::VulkanContext ctx(render::ContextOptions{});
+            auto draw = [&](const std::string& file, const std::string& title, auto&& write) {
+                try {
+                    write((fs::path(dir) / file).string());
+                    md << "![" << title << "](" << file << ")\n\n";
+                } catch (const std::exception& e) {
+                    md << "(" << title << ": not drawn: " << e.what() << ")\n\n";
+                }
+            };
+            for (const auto& [file, c] : charts)
+                draw(file, c.title, [&](const std::string& path) { render::write_chart_png(ctx, c, path); });
+            for (const auto& [file, m] : matrices)
+                draw(file, m.title, [&](const std::string& path) { render::write_matrix_chart_png(ctx, m, path); });
+        } catch (const std::exception& e) {
+            md << "(no plots: no Vulkan device: " << e.what() << ")\n";
+        }
+    }
+    const std::string page = (fs::path(dir) / "report.md").string();
+    write_file_atomically(page, md.str());
+    return page;
+}
+
+}  // namespace contactlab::app

@@ -1,0 +1,178 @@
+// experiment_mode.cpp — live trials in the editor (experiment_mode.hpp).
+#include "engine/editor/experiment_mode.hpp"
+
+#include "engine/editor/canvas.hpp"
+#include "engine/editor/editor_state.hpp"
+
+#include <imgui.h>
+
+#include <cmath>
+#include <cstdio>
+
+namespace contactlab::editor {
+namespace {
+
+const Scene& nothing() {
+    static const Scene empty;  // no contour: nothing to feel
+    return empty;
+}
+
+void start_trial(ExperimentState& e) {
+    e.trial_start = -1.0;
+    e.touched = e.in_contact = e.faulted = false;
+    e.contact_breaks = 0;
+    e.peak_force = 0.0;
+}
+
+std::string prompt(const experiments::LiveSession& s) {
+    switch (s.protocol().task) {
+        case experiments::Task::contour_following: return "Follow the top to its edge, tip round it and go down the far side; then Enter.";
+        case experiments::Task::bump_counting: return "Trace the contour and count the bumps.";
+        case experiments::Task::curvature: return "Which height was the arc (mm)?";
+        case experiments::Task::surface_orientation: return "Press the surface: which shape, A or B?";
+    }
+    return {};
+}
+
+}  // namespace
+
+const Scene& experiment_servo_scene(const EditorState& s) {
+    const ExperimentState* e = s.experiment;
+    if (!e || !e->session || e->paused || e->session->finished()) return nothing();
+    return e->session->scene();
+}
+
+std::uint64_t experiment_scene_key(const EditorState& s) {
+    const ExperimentState* e = s.experiment;
+    if (!e || !e->session || e->paused || e->session->finished()) return 0;
+    return e->session->scene_version();
+}
+
+void experiment_scene_published(EditorState& s, double now) {
+    ExperimentState* e = s.experiment;
+    if (e && e->session && !e->paused && !e->session->finished() && e->trial_start < 0.0) {
+        e->trial_start = now;
+        // The stimulus's extent and the finger in view (not the arcs' whole circles: seed 003's
+        // arcs are parts of metre-wide circles); the stimulus itself is not drawn.
+        Aabb box;
+        for (const Contour& c : e->session->scene().contours)
+            for (const Segment& seg : c.segments) {
+                box.grow(segment_start(seg));
+                box.grow(segment_end(seg));
+            }
+        const double reach = 3.5 * e->session->scene().finger.radius;  // m
+        box.grow(s.pose.finger - Vec2(reach));
+        box.grow(s.pose.finger + Vec2(reach));
+        s.camera.fit(box);
+    }
+}
+
+void experiment_on_record(EditorState& s, const drivers::TickRecord& r) {
+    ExperimentState* e = s.experiment;
+    if (!e || e->trial_start < 0.0) return;
+    e->peak_force = std::max(e->peak_force, std::hypot(r.force.x, r.force.y));
+    if (e->touched && e->in_contact && !r.contact) ++e->contact_breaks;
+    e->touched |= r.contact;
+    e->in_contact = r.contact;
+    e->faulted |= r.fault != ServoFault::none;
+}
+
+bool cmd_experiment_answer(EditorState& s, const std::string& response, double now) {
+    ExperimentState* e = s.experiment;
+    if (!e || !e->session || e->session->finished()) {
+        s.say("no trial is waiting for an answer", true);
+        return false;
+    }
+    if (e->paused || e->trial_start < 0.0) {
+        s.say("the trial has not started (resume first)", true);
+        return false;
+    }
+    experiments::LiveTrialResult r;
+    r.response = response;
+    r.time_s = now - e->trial_start;
+    r.contact_breaks = e->contact_breaks;
+    r.peak_force = e->peak_force;
+    r.valid = !e->faulted;
+    try {
+        e->session->answer(r);
+    } catch (const std::exception& ex) {
+        s.say(ex.what(), true);
+        return false;
+    }
+    start_trial(*e);
+    char buf[160];
+    if (e->session->finished())
+        std::snprintf(buf, sizeof buf, "experiment finished: %zu trials in %s", e->session->total(), e->session->results_path().c_str());
+    else
+        std::snprintf(buf, sizeof buf, "trial %zu of %zu recorded%s", e->session->done(), e->session->total(),
+                      r.valid ? "" : " (invalid: the servo faulted; it comes again at the end of the block)");
+    s.say(buf);
+    return true;
+}
+
+void cmd_experiment_pause(EditorState& s, bool paused) {
+    ExperimentState* e = s.experiment;
+    if (!e || !e->session) return;
+    if (e->paused == paused) return;
+    e->paused = paused;
+    start_trial(*e);  // a paused trial starts again from the beginning
+    s.say(paused ? "experiment paused: nothing to feel until Resume" : "experiment resumed");
+}
+
+bool experiment_key(EditorState& s, const std::string& key, double now) {
+    ExperimentState* e = s.experiment;
+    if (!e || !e->session) return false;
+    if (key == "p") {
+        cmd_experiment_pause(s, !e->paused);
+        return true;
+    }
+    const auto& answers = e->session->protocol().answers;
+    if (key == "enter" && answers.empty()) return cmd_experiment_answer(s, "", now), true;
+    if (key.size() == 1 && key[0] >= '1' && key[0] <= '9') {
+        const std::size_t i = static_cast<std::size_t>(key[0] - '1');
+        if (i < answers.size()) cmd_experiment_answer(s, answers[i], now);
+        return true;  // the tool keys are off during an experiment
+    }
+    return false;
+}
+
+void experiment_window(EditorState& s, double now) {
+    ExperimentState* e = s.experiment;
+    if (!e || !e->session) return;
+    const experiments::LiveSession& x = *e->session;
+    ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x * 0.5f - 200.0f, 70.0f), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(400.0f, 0.0f), ImGuiCond_FirstUseEver);
+    if (!ImGui::Begin("Experiment")) {
+        ImGui::End();
+        return;
+    }
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextDisabled("%s, participant %s", x.protocol().name.c_str(), x.participant().c_str());
+    char progress[64];
+    std::snprintf(progress, sizeof progress, "%zu / %zu trials", x.done(), x.total());
+    ImGui::ProgressBar(x.total() ? static_cast<float>(x.done()) / static_cast<float>(x.total()) : 1.0f, ImVec2(-1.0f, 0.0f), progress);
+    if (x.finished()) {
+        ImGui::Text("Finished. Results: %s", x.results_path().c_str());
+    } else if (e->paused) {
+        ImGui::TextColored(ImVec4(1, 0.8f, 0.4f, 1), "Paused: nothing to feel.");
+        if (ImGui::Button("Resume (P)")) cmd_experiment_pause(s, false);
+    } else {
+        ImGui::Text("Trial %d (%s)%s", x.trial().trial, x.condition().name.c_str(), x.trial().warmup ? ", warm-up" : "");
+        ImGui::TextUnformatted(prompt(x).c_str());
+        const auto& answers = x.protocol().answers;
+        if (answers.empty()) {
+            if (ImGui::Button("Done (Enter)")) cmd_experiment_answer(s, "", now);
+        }
+        for (std::size_t i = 0; i < answers.size(); ++i) {
+            if (i) ImGui::SameLine();
+            char label[48];
+            std::snprintf(label, sizeof label, "%s (%zu)", answers[i].c_str(), i + 1);
+            if (ImGui::Button(label)) cmd_experiment_answer(s, answers[i], now);
+        }
+        if (ImGui::Button("Pause (P)")) cmd_experiment_pause(s, true);
+    }
+    ImGui::PopTextWrapPos();
+    ImGui::End();
+}
+
+}  // namespace contactlab::editor

@@ -1,0 +1,73 @@
+// live_session.hpp — an experiment run with a person at the device (`contactlab edit
+// --experiment PROTOCOL --participant ID`): the trial order (trial_plan.hpp, from the seed and
+// the participant's id), the current trial's stimulus scene, and the results file written row by
+// row (each write atomic: the whole file to a temporary, then renamed), so a crash loses at most
+// the trial in progress. Started again with the same protocol, participant, seed and file, it
+// resumes after the last row it finds for that participant. An invalid trial (the servo
+// faulted) is presented again at the end of its block, as in `experiment run`.
+//
+// The editor stays thin: it shows the prompt, publishes current_scene() to the servo with the
+// contact element held (roller_held()) in force-only conditions, and calls answer().
+#pragma once
+
+#include "engine/experiments/protocol.hpp"
+#include "engine/experiments/trial_plan.hpp"
+#include "haptics/scene.hpp"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace contactlab::experiments {
+
+struct LiveTrialResult {
+    std::string response;     // one of the protocol's answers ("" for the timed task)
+    double time_s = 0.0;      // s, from the trial's start to the answer
+    int contact_breaks = 0;
+    double peak_force = 0.0;  // N
+    bool valid = true;        // false: the servo faulted during the trial
+};
+
+class LiveSession {
+public:
+    // Throws ExperimentError for a results file it cannot read or that has other columns.
+    LiveSession(Protocol protocol, std::string participant, std::uint64_t seed, std::string results_path);
+
+    const Protocol& protocol() const { return protocol_; }
+    const std::string& participant() const { return participant_; }
+    const std::string& results_path() const { return results_path_; }
+    bool finished() const { return next_ >= queue_.size(); }
+    std::size_t done() const { return next_; }
+    std::size_t total() const { return queue_.size(); }
+    std::size_t resumed() const { return resumed_; }  // rows found in the file at start
+
+    // The trial in progress (finished() must be false).
+    const PlannedTrial& trial() const { return queue_[next_]; }
+    const Condition& condition() const;
+    const Scene& scene() const { return scene_; }
+    // Force-only condition: the contact element is held at the pad's centre.
+    bool roller_held() const { return !condition().contact_location; }
+    // Number of the scene's build: changes with every trial (for "publish when it changed").
+    std::uint64_t scene_version() const { return version_; }
+
+    // Records the trial (one row, written at once) and moves to the next. An answer outside
+    // the protocol's set is refused (ExperimentError; nothing written).
+    void answer(const LiveTrialResult& r);
+
+private:
+    void build_scene();
+    void write();
+    // The current trial, invalid, is presented again at the end of its block.
+    void queue_repeat();
+
+    Protocol protocol_;
+    std::string participant_, results_path_;
+    std::vector<PlannedTrial> queue_;     // every block in order, repeats appended to their block's end
+    std::vector<std::size_t> block_end_;  // index one past each block in queue_
+    std::size_t next_ = 0, resumed_ = 0;
+    std::vector<std::string> lines_;      // the file's lines, header first
+    Scene scene_;
+    std::uint64_t version_ = 0;
+};
+
+}  // namespace contactlab::experiments

@@ -1,0 +1,226 @@
+// protocol.cpp — strict reading of protocol files (protocol.hpp).
+#include "engine/experiments/protocol.hpp"
+
+#include "engine/experiments/results_table.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace contactlab::experiments {
+namespace {
+
+using nlohmann::json;
+
+struct Reader {
+    std::string origin;
+
+    [[noreturn]] void fail(const std::string& path, const std::string& why) const {
+        throw ExperimentError(origin + ": " + (path.empty() ? std::string() : path + ": ") + why);
+    }
+    static std::string join(const std::string& path, const std::string& key) { return path.empty() ? key : path + "." + key; }
+
+    void only(const json& j, const std::string& path, std::set<std::string> keys) const {
+        if (!j.is_object()) fail(path, "expected an object");
+        for (const auto& [k, v] : j.items())
+            if (!keys.count(k)) fail(join(path, k), "unknown key");
+    }
+    const json& need(const json& j, const std::string& path, const char* key) const {
+        if (!j.contains(key)) fail(join(path, key), "missing");
+        return j[key];
+    }
+    double number(const json& j, const std::string& path, double lo, double hi, const char* unit) const {
+        if (!j.is_number()) fail(path, "expected a number");
+        const double v = j.get<double>();
+        if (!std::isfinite(v) || v < lo || v > hi) {
+            std::ostringstream s;
+            s << "must lie in [" << lo << ", " << hi << "]" << (unit[0] ? " " : "") << unit << ", got " << v;
+            fail(path, s.str());
+        }
+        return v;
+    }
+    double number(const json& obj, const std::string& path, const char* key, double lo, double hi, const char* unit,
+                  double fallback) const {
+        return obj.contains(key) ? number(obj[key], join(path, key), lo, hi, unit) : fallback;
+    }
+    int integer(const json& obj, const std::string& path, const char* key, int lo, int hi, int fallback) const {
+        if (!obj.contains(key)) return fallback;
+        const json& j = obj[key];
+        if (!j.is_number_integer()) fail(join(path, key), "expected a whole number");
+        const long long v = j.get<long long>();
+        if (v < lo || v > hi) fail(join(path, key), "must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + std::to_string(v));
+        return static_cast<int>(v);
+    }
+    std::string text(const json& j, const std::string& path) const {
+        if (!j.is_string()) fail(path, "expected a string");
+        return j.get<std::string>();
+    }
+    bool flag(const json& obj, const std::string& path, const char* key, bool fallback) const {
+        if (!obj.contains(key)) return fallback;
+        if (!obj[key].is_boolean()) fail(join(path, key), "expected true or false");
+        return obj[key].get<bool>();
+    }
+};
+
+Task task_of(const Reader& r, const std::string& name) {
+    if (name == "contour-following") return Task::contour_following;
+    if (name == "bump-counting") return Task::bump_counting;
+    if (name == "curvature") return Task::curvature;
+    if (name == "surface-orientation") return Task::surface_orientation;
+    r.fail("task", "unknown task \"" + name + "\" (contour-following, bump-counting, curvature, surface-orientation)");
+}
+
+}  // namespace
+
+const char* to_string(Task t) {
+    switch (t) {
+        case Task::contour_following: return "contour-following";
+        case Task::bump_counting: return "bump-counting";
+        case Task::curvature: return "curvature";
+        case Task::surface_orientation: return "surface-orientation";
+    }
+    return "?";
+}
+
+Protocol parse_protocol(const std::string& text, const std::string& origin) {
+    const Reader r{origin};
+    json root;
+    try {
+        root = json::parse(text);
+    } catch (const json::exception& e) {
+        r.fail("", std::string("invalid JSON: ") + e.what());
+    }
+    r.only(root, "", {"format", "version", "name", "seed", "task", "conditions", "stimuli", "repetitions", "trials", "warmup",
+                      "repeat_invalid", "answers", "hand", "finger", "force", "bumps", "arc", "block", "participant"});
+    if (r.text(r.need(root, "", "format"), "format") != "contactlab experiment protocol")
+        r.fail("format", "expected \"contactlab experiment protocol\"");
+    if (r.integer(root, "", "version", 1, 1, 0) != 1) r.fail("version", "missing (this ContactLab reads version 1)");
+    Protocol p;
+    p.origin = origin;
+    p.name = r.text(r.need(root, "", "name"), "name");
+    p.seed_paper = r.text(r.need(root, "", "seed"), "seed");
+    p.task = task_of(r, r.text(r.need(root, "", "task"), "task"));
+
+    const json& conds = r.need(root, "", "conditions");
+    if (!conds.is_array() || conds.empty()) r.fail("conditions", "expected a non-empty array");
+    std::set<std::string> names;
+    for (std::size_t i = 0; i < conds.size(); ++i) {
+        const std::string path = "conditions[" + std::to_string(i) + "]";
+        r.only(conds[i], path, {"name", "contact_location", "motion", "eccentricity", "total_stiffness"});
+        Condition c;
+        c.name = r.text(r.need(conds[i], path, "name"), path + ".name");
+        if (c.name.empty() || c.name.find_first_of(",\"\n") != std::string::npos)
+            r.fail(path + ".name", "must be non-empty, without commas, quotes or line breaks (it is a CSV field)");
+        if (!names.insert(c.name).second) r.fail(path + ".name", "\"" + c.name + "\" appears twice");
+        c.contact_location = r.flag(conds[i], path, "contact_location", true);
+        if (p.task == Task::curvature) {
+            c.motion = r.text(r.need(conds[i], path, "motion"), path + ".motion");
+            if (c.motion != "A" && c.motion != "B") r.fail(path + ".motion", "expected \"A\" or \"B\" (seed 003's tasks)");
+        } else if (conds[i].contains("motion")) {
+            r.fail(path + ".motion", "only for the curvature task");
+        }
+        if (p.task == Task::surface_orientation) {
+            c.eccentricity = r.number(r.need(conds[i], path, "eccentricity"), path + ".eccentricity", 0.01, 100.0, "");
+            c.total_stiffness = r.number(r.need(conds[i], path, "total_stiffness"), path + ".total_stiffness", 10.0, 1e5, "N/m");
+        } else if (conds[i].contains("eccentricity") || conds[i].contains("total_stiffness")) {
+            r.fail(path, "eccentricity and total_stiffness are only for the surface-orientation task");
+        }
+        p.conditions.push_back(c);
+    }
+
+    const json& stim = r.need(root, "", "stimuli");
+    if (!stim.is_array() || stim.empty()) r.fail("stimuli", "expected a non-empty array of numbers");
+    for (std::size_t i = 0; i < stim.size(); ++i) {
+        const std::string path = "stimuli[" + std::to_string(i) + "]";
+        double lo = 0.0, hi = 0.0;
+        const char* unit = "";
+        switch (p.task) {
+            case Task::contour_following: lo = 0.01, hi = 0.15, unit = "m (d, the start line's distance from the edge)"; break;
+            case Task::bump_counting: lo = 0.0, hi = 4.0, unit = "bumps"; break;
+            case Task::curvature: lo = 0.001, hi = 0.1, unit = "m (the arc's height)"; break;
+            case Task::surface_orientation: lo = 0.0, hi = 180.0, unit = "deg (the compliant axis from the surface)"; break;
+        }
+        const double v = r.number(stim[i], path, lo, hi, unit);
+        if (p.task == Task::bump_counting && v != std::floor(v)) r.fail(path, "a bump count is a whole number");
+        p.stimuli.push_back(v);
+    }
+    p.repetitions = r.integer(root, "", "repetitions", 1, 1000, 1);
+    p.trials = r.integer(root, "", "trials", 0, 100000, 0);
+    p.warmup = r.integer(root, "", "warmup", 0, 1000, 0);
+    p.repeat_invalid = r.flag(root, "", "repeat_invalid", true);
+    const int per_condition = p.trials > 0 ? p.trials : p.repetitions * static_cast<int>(p.stimuli.size());
+    if (p.warmup >= per_condition) r.fail("warmup", "leaves no trial to analyse (" + std::to_string(per_condition) + " per condition)");
+
+    if (root.contains("answers")) {
+        const json& a = root["answers"];
+        if (!a.is_array()) r.fail("answers", "expected an array of strings");
+        for (std::size_t i = 0; i < a.size(); ++i) p.answers.push_back(r.text(a[i], "answers[" + std::to_string(i) + "]"));
+    }
+    if (p.task != Task::contour_following && p.answers.size() < 2) r.fail("answers", "a judgement task needs at least two answers");
+    if (p.task == Task::contour_following && !p.answers.empty()) r.fail("answers", "the contour-following task is timed, not answered");
+
+    if (root.contains("hand")) {
+        r.only(root["hand"], "hand", {"speed", "press"});
+        p.hand_speed = r.number(root["hand"], "hand", "speed", 0.005, 1.0, "m/s", p.hand_speed);
+        p.hand_press = r.number(root["hand"], "hand", "press", 0.0, 0.02, "m", p.hand_press);
+    }
+    if (root.contains("finger")) {
+        r.only(root["finger"], "finger", {"radius", "length"});
+        p.finger_radius = r.number(root["finger"], "finger", "radius", 0.005, 0.1, "m", p.finger_radius);
+        p.pad_length = r.number(root["finger"], "finger", "length", 0.002, 0.1, "m", p.pad_length);
+        if (p.pad_length >= 2.0 * 3.14159265358979 * p.finger_radius) r.fail("finger.length", "longer than the finger's circle");
+    }
+    if (root.contains("force")) {
+        r.only(root["force"], "force", {"stiffness", "max_force"});
+        p.stiffness = r.number(root["force"], "force", "stiffness", 10.0, 1e5, "N/m", p.stiffness);
+        p.max_force = r.number(root["force"], "force", "max_force", 0.01, 100.0, "N", p.max_force);
+    }
+    auto only_for = [&](const char* key, Task t) {
+        if (root.contains(key) && p.task != t) r.fail(key, std::string("only for the ") + to_string(t) + " task");
+    };
+    only_for("bumps", Task::bump_counting);
+    only_for("arc", Task::curvature);
+    only_for("block", Task::contour_following);
+    if (root.contains("bumps")) {
+        r.only(root["bumps"], "bumps", {"small", "large", "length"});
+        p.small_bump = r.number(root["bumps"], "bumps", "small", 0.0005, 0.05, "m", p.small_bump);
+        p.large_bump = r.number(root["bumps"], "bumps", "large", 0.0005, 0.05, "m", p.large_bump);
+        p.traced_length = r.number(root["bumps"], "bumps", "length", 0.05, 1.0, "m", p.traced_length);
+    }
+    if (root.contains("arc")) {
+        r.only(root["arc"], "arc", {"chord"});
+        p.chord = r.number(root["arc"], "arc", "chord", 0.02, 1.0, "m", p.chord);
+    }
+    if (root.contains("block")) {
+        r.only(root["block"], "block", {"finish_depth"});
+        p.finish_depth = r.number(root["block"], "block", "finish_depth", 0.01, 0.09, "m", p.finish_depth);
+    }
+    if (root.contains("participant")) {
+        const json& m = root["participant"];
+        r.only(m, "participant", {"force_angle_threshold_deg", "force_angle_noise_deg", "location_threshold_mm",
+                                  "location_noise_mm", "stiffness_noise", "reaction_time_s"});
+        ParticipantModel& pm = p.participant;
+        pm.force_angle_threshold_deg = r.number(m, "participant", "force_angle_threshold_deg", 0.0, 90.0, "deg", pm.force_angle_threshold_deg);
+        pm.force_angle_noise_deg = r.number(m, "participant", "force_angle_noise_deg", 0.0, 90.0, "deg", pm.force_angle_noise_deg);
+        pm.location_threshold_mm = r.number(m, "participant", "location_threshold_mm", 0.0, 50.0, "mm", pm.location_threshold_mm);
+        pm.location_noise_mm = r.number(m, "participant", "location_noise_mm", 0.0, 50.0, "mm", pm.location_noise_mm);
+        pm.stiffness_noise = r.number(m, "participant", "stiffness_noise", 0.0, 10.0, "", pm.stiffness_noise);
+        pm.reaction_time_s = r.number(m, "participant", "reaction_time_s", 0.0, 5.0, "s", pm.reaction_time_s);
+    }
+    return p;
+}
+
+Protocol load_protocol(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw ExperimentError(path + ": cannot open (" + std::strerror(errno) + ")");
+    std::ostringstream s;
+    s << in.rdbuf();
+    return parse_protocol(s.str(), path);
+}
+
+}  // namespace contactlab::experiments

@@ -1,0 +1,76 @@
+// protocol.hpp — an experiment protocol file (scenes/experiments/*.json; schema in
+// scenes/README.md, "Experiments"): the task, its conditions, stimuli, repetitions and order,
+// warm-up, the answer set, the hand's motion, what makes a trial invalid, and the simulated
+// participant's perception. Read strictly like a scene: an unknown key, a wrong type or a value
+// out of range is an error naming the file, the JSON path and why.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace contactlab::experiments {
+
+// The four seeds' tasks.
+enum class Task {
+    contour_following,    // seed 000: find the block's edge, tip round it, descend; timed
+    bump_counting,        // seed 002: count the bumps (0..4) traced along a curved contour
+    curvature,            // seed 003: which of three arc heights was felt
+    surface_orientation,  // seed 004: the field's compliant axis at 45 or 135 deg: shape A or B
+};
+const char* to_string(Task t);
+
+struct Condition {
+    std::string name;
+    // The contact element displays the contact location; false holds it at the pad's centre
+    // (seed 000's and 002's force-only condition).
+    bool contact_location = true;
+    // Seed 003: the arc's motion under the finger, "A" (the whole chord) or "B" (from its top
+    // to its end). Empty for the other tasks.
+    std::string motion;
+    // Seed 004: the field's eccentricity e and total stiffness k (N/m) in this condition.
+    double eccentricity = 1.0, total_stiffness = 1000.0;
+};
+
+// Perception of the simulated participant (sim_participant.hpp): thresholds of the cues it reads
+// from what the device displayed, and the Gaussian noise on each, in the units given.
+struct ParticipantModel {
+    double force_angle_threshold_deg = 6.0;  // a change of the force's direction it notices
+    double force_angle_noise_deg = 3.0;
+    double location_threshold_mm = 2.0;      // a move of the contact element on the pad
+    double location_noise_mm = 1.0;
+    double stiffness_noise = 0.15;           // seed 004: relative noise on felt stiffness
+    double reaction_time_s = 0.25;           // from noticing a cue to acting on it
+};
+
+struct Protocol {
+    std::string origin;  // the file, for messages
+    std::string name;
+    std::string seed_paper;  // "000", "002", "003", "004"
+    Task task = Task::bump_counting;
+    std::vector<Condition> conditions;
+    // Stimuli: the judged quantity's values (seed 000: d in m; 002: bump counts; 003: heights
+    // in m; 004: field angles in deg).
+    std::vector<double> stimuli;
+    int repetitions = 1;          // presentations of each stimulus per condition
+    int trials = 0;               // seed 002: trials per condition drawn at random (0: repetitions)
+    int warmup = 0;               // first trials of each condition left out of the analysis
+    bool repeat_invalid = true;   // an invalid trial is presented again at the end of its block
+    std::vector<std::string> answers;  // the response set; empty for timed tasks
+    // The hand: speed along the surface (m/s), press depth below it (m).
+    double hand_speed = 0.05, hand_press = 0.003;
+    // Seed 002's stimuli: bump heights (m) and the traced length (m).
+    double small_bump = 0.003, large_bump = 0.018, traced_length = 0.184;
+    double chord = 0.30;           // seed 003: the arc's chord (m)
+    double finish_depth = 0.06;    // seed 000: the finish line below the block's top (m)
+    double finger_radius = 0.026, pad_length = 0.020;  // m
+    double stiffness = 1000.0;     // N/m (seeds 000, 002, 003)
+    double max_force = 1.5;        // N
+    ParticipantModel participant;
+};
+
+// Throws ExperimentError (results_table.hpp) naming the file, path and problem.
+Protocol parse_protocol(const std::string& json_text, const std::string& origin);
+Protocol load_protocol(const std::string& path);
+
+}  // namespace contactlab::experiments

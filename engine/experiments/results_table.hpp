@@ -1,0 +1,36 @@
+// results_table.hpp — an experiment's results file: CSV with a header row, one row per trial
+// (scenes/README.md, "Experiments: results"). Read strictly (a row with the wrong number of
+// fields, an unterminated quote, an empty header name: an error naming the file, line and
+// column), written atomically.
+#pragma once
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace contactlab::experiments {
+
+struct ExperimentError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+struct ResultsTable {
+    std::string origin;  // the file, for messages
+    std::vector<std::string> columns;
+    std::vector<std::vector<std::string>> rows;  // each as long as `columns`
+
+    // Index of a column, if present.
+    std::optional<std::size_t> column(const std::string& name) const;
+    // A cell as a number; throws ExperimentError naming the row (file line) and column if it is
+    // not one. `row` indexes `rows`.
+    double number(std::size_t row, std::size_t col) const;
+};
+
+ResultsTable parse_results_csv(const std::string& text, const std::string& origin);
+ResultsTable read_results_csv(const std::string& path);
+
+// One CSV line (no newline): fields with a comma, quote or line break are quoted.
+std::string csv_line(const std::vector<std::string>& fields);
+
+}  // namespace contactlab::experiments

@@ -1,0 +1,45 @@
+// servo_trial.cpp — a trial through the servo and the simulated rig (servo_trial.hpp).
+#include "engine/experiments/servo_trial.hpp"
+
+#include "drivers/servo_loop.hpp"
+#include "drivers/sim/sim_cld_device.hpp"
+#include "haptics/servo_scene.hpp"
+#include "haptics/servo_tick.hpp"
+#include "haptics/spsc_ring.hpp"
+
+#include <cmath>
+#include <memory>
+
+namespace contactlab::experiments {
+
+TrialTrace run_servo_trial(const Scene& scene, const drivers::HandPath& path, bool contact_location) {
+    drivers::sim::SimCldParams sp;
+    sp.max_force = scene.force.max_force;
+    drivers::sim::SimCldDevice dev(sp, path);
+    ServoParams params;
+    params.stiffness = scene.force.stiffness;
+    params.max_force = scene.force.max_force;
+    if (!contact_location) params.roller_travel = 1e-9;  // m: the element held at the pad's centre
+    const ServoConfig config = drivers::servo_config_for(dev, kTrialRate);
+    ServoTick tick(config, params);
+    tick.scenes().publish(std::make_unique<ServoScene>(scene));
+    SpscRing<drivers::TickRecord> ring(1u << 12);
+    drivers::ServoLoop loop(dev, tick, 1.0 / kTrialRate, &ring);
+    TrialTrace trace;
+    if (!loop.start()) {
+        trace.faulted = true;
+        return trace;
+    }
+    const auto ticks = static_cast<std::uint64_t>(std::llround((path.end() - path.start()) * kTrialRate));
+    trace.ticks.reserve(ticks);
+    for (std::uint64_t k = 0; k < ticks; ++k) {
+        loop.step(1.0 / kTrialRate, true);
+        for (drivers::TickRecord r; ring.try_pop(r);) {
+            trace.faulted |= r.fault != ServoFault::none;
+            trace.ticks.push_back(r);
+        }
+    }
+    return trace;
+}
+
+}  // namespace contactlab::experiments

@@ -1,0 +1,219 @@
+// sim_participant.cpp — the simulated participant's perception and answers (sim_participant.hpp).
+#include "engine/experiments/sim_participant.hpp"
+
+#include "engine/experiments/servo_trial.hpp"
+#include "engine/experiments/stimulus.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace contactlab::experiments {
+namespace {
+
+using drivers::TickRecord;
+
+constexpr double kDeg = 180.0 / kPi;
+
+// The force's direction from the vertical (deg), positive when it pushes back (-x) as on a
+// rising slope under a finger moving +x.
+double force_angle_deg(const TickRecord& r) { return std::atan2(-r.force.x, r.force.y) * kDeg; }
+
+// A threshold with perceptual noise, never below a tenth of itself.
+double noisy(double threshold, double noise, std::uint64_t& rng) {
+    return std::max(0.1 * threshold, threshold + noise * normal01(rng));
+}
+
+void common_measures(const TrialTrace& tr, TrialOutcome& o, double t_end = 1e300) {
+    bool touched = false, prev = false;
+    for (const TickRecord& r : tr.ticks) {
+        if (r.t > t_end) break;
+        o.peak_force = std::max(o.peak_force, std::hypot(r.force.x, r.force.y));
+        if (touched && prev && !r.contact) ++o.contact_breaks;
+        touched |= r.contact;
+        prev = r.contact;
+    }
+    o.valid = !tr.faulted;
+    for (std::size_t i = 0; i < tr.ticks.size(); i += 10) o.shown.push_back(tr.ticks[i]);
+}
+
+// Rise-and-fall excursions of `s` beyond +-h, counted either way round (a bump is + then -
+// for one cue and may be - then + for another).
+int excursions(const std::vector<double>& s, double h) {
+    int pm = 0, mp = 0, state = 0;
+    for (double v : s) {
+        if (v > h && state != 1) {
+            if (state == -1) ++mp;
+            state = 1;
+        } else if (v < -h && state != -1) {
+            if (state == 1) ++pm;
+            state = -1;
+        }
+    }
+    return std::max(pm, mp);
+}
+
+// A band of `s`: its running mean over `narrow` samples each side less that over `wide`: what
+// changes over a bump's width stays, the base shape's slow turn (and its slope) goes.
+std::vector<double> band(const std::vector<double>& s, std::size_t narrow, std::size_t wide) {
+    std::vector<double> prefix(s.size() + 1, 0.0), out(s.size());
+    for (std::size_t i = 0; i < s.size(); ++i) prefix[i + 1] = prefix[i] + s[i];
+    auto mean = [&](std::size_t i, std::size_t half) {
+        const std::size_t a = i > half ? i - half : 0, b = std::min(s.size(), i + half + 1);
+        return (prefix[b] - prefix[a]) / static_cast<double>(b - a);
+    };
+    for (std::size_t i = 0; i < s.size(); ++i) out[i] = mean(i, narrow) - mean(i, wide);
+    return out;
+}
+
+TrialOutcome contour_following(const Protocol& p, const Condition& c, const PlannedTrial& t, std::uint64_t& rng) {
+    const ParticipantModel& m = p.participant;
+    const double loc_threshold = noisy(m.location_threshold_mm, m.location_noise_mm, rng) * 1e-3;  // m
+    const double angle_threshold = noisy(m.force_angle_threshold_deg, m.force_angle_noise_deg, rng);  // deg
+    // Run 1: slide on past the edge; when is the edge noticed?
+    const double far = 0.03;  // m past the edge: the pad is off the top by then
+    const Stimulus first = make_stimulus(p, c, t, far);
+    const TrialTrace probe = run_servo_trial(first.scene, first.path, c.contact_location);
+    double overshoot = far;
+    bool touched = false;
+    for (const TickRecord& r : probe.ticks) {
+        touched |= r.contact;
+        if (!touched || r.finger.x < -t.stimulus) continue;  // before the start line
+        const bool cue = (c.contact_location && std::abs(r.roller_l) >= loc_threshold) ||
+                         (r.contact && std::abs(force_angle_deg(r)) >= angle_threshold) || !r.contact;
+        if (cue) {
+            overshoot = std::clamp(r.finger.x + p.hand_speed * m.reaction_time_s, -0.005, far);
+            break;
+        }
+    }
+    // Run 2: the trial as performed, tipping round the edge `overshoot` past it.
+    const Stimulus st = make_stimulus(p, c, t, overshoot);
+    const TrialTrace tr = run_servo_trial(st.scene, st.path, c.contact_location);
+    TrialOutcome o;
+    double t_start = -1.0, t_finish = -1.0;
+    touched = false;
+    for (const TickRecord& r : tr.ticks) {
+        touched |= r.contact;
+        if (t_start < 0.0 && touched && r.finger.x >= -t.stimulus) t_start = r.t;
+        if (t_start >= 0.0 && r.finger.y <= -p.finish_depth) {
+            t_finish = r.t;
+            break;
+        }
+    }
+    common_measures(tr, o, t_finish >= 0.0 ? t_finish : 1e300);
+    o.time_s = t_start >= 0.0 && t_finish >= 0.0 ? t_finish - t_start : std::nan("");
+    o.failed = o.contact_breaks > 0 || t_finish < 0.0;
+    return o;
+}
+
+TrialOutcome bump_counting(const Protocol& p, const Condition& c, const PlannedTrial& t, std::uint64_t& rng) {
+    const ParticipantModel& m = p.participant;
+    const Stimulus st = make_stimulus(p, c, t);
+    const TrialTrace tr = run_servo_trial(st.scene, st.path, c.contact_location);
+    std::vector<double> angle, location;
+    double last_angle = 0.0, last_loc = 0.0;
+    for (const TickRecord& r : tr.ticks) {
+        if (r.t < st.slide_start || r.t > st.slide_end) continue;
+        if (r.contact) {  // out of contact the finger feels nothing new: the last cue stays
+            last_angle = force_angle_deg(r);
+            last_loc = r.roller_l * 1e3;
+        }
+        angle.push_back(last_angle);
+        location.push_back(last_loc);
+    }
+    // Cues over a bump's width (15-30 mm): means over 4 mm less means over 16 mm of travel.
+    const double per_m = kTrialRate / p.hand_speed;  // samples per m of travel
+    const auto narrow = static_cast<std::size_t>(0.002 * per_m), wide = static_cast<std::size_t>(0.008 * per_m);
+    int count = excursions(band(angle, narrow, wide), noisy(m.force_angle_threshold_deg, m.force_angle_noise_deg, rng));
+    if (c.contact_location)
+        count = std::max(count, excursions(band(location, narrow, wide), noisy(m.location_threshold_mm, m.location_noise_mm, rng)));
+    TrialOutcome o;
+    common_measures(tr, o);
+    o.response = std::to_string(std::clamp(count, 0, 4));
+    o.time_s = st.slide_end - st.slide_start;
+    return o;
+}
+
+TrialOutcome curvature(const Protocol& p, const Condition& c, const PlannedTrial& t, std::uint64_t& rng) {
+    const ParticipantModel& m = p.participant;
+    const Stimulus st = make_stimulus(p, c, t);
+    const TrialTrace tr = run_servo_trial(st.scene, st.path, c.contact_location);
+    double lo = 1e9, hi = -1e9;
+    for (const TickRecord& r : tr.ticks)
+        if (r.t >= st.slide_start && r.t <= st.slide_end && r.contact) {
+            lo = std::min(lo, force_angle_deg(r));
+            hi = std::max(hi, force_angle_deg(r));
+        }
+    const double felt = (hi > lo ? hi - lo : 0.0) + m.force_angle_noise_deg * normal01(rng);
+    double best = 1e300, answer = p.stimuli.front();
+    for (double h : p.stimuli)
+        if (const double d = std::abs(felt - arc_slope_range_deg(p.chord, h)); d < best) {
+            best = d;
+            answer = h;
+        }
+    TrialOutcome o;
+    common_measures(tr, o);
+    o.response = stimulus_label(p, answer);
+    o.time_s = st.slide_end - st.slide_start;
+    return o;
+}
+
+// Force magnitude (N) and finger position at the last tick at or before time `at`.
+const TickRecord* at_time(const TrialTrace& tr, double at) {
+    const TickRecord* best = nullptr;
+    for (const TickRecord& r : tr.ticks)
+        if (r.t <= at) best = &r;
+    return best;
+}
+
+TrialOutcome surface_orientation(const Protocol& p, const Condition& c, const PlannedTrial& t, std::uint64_t& rng) {
+    const ParticipantModel& m = p.participant;
+    const Stimulus st = make_stimulus(p, c, t);
+    const TrialTrace tr = run_servo_trial(st.scene, st.path, c.contact_location);
+    // Stiffness felt along a diagonal: force growth over the finger's displacement (N/m).
+    auto felt = [&](double from, double to) {
+        const TickRecord* a = at_time(tr, from);
+        const TickRecord* b = at_time(tr, to);
+        if (!a || !b) return 0.0;
+        const double dx = glm::length(b->finger - a->finger);
+        const double df = std::hypot(b->force.x, b->force.y) - std::hypot(a->force.x, a->force.y);
+        return (dx > 0.0 ? df / dx : 0.0) * (1.0 + m.stiffness_noise * normal01(rng));
+    };
+    const double down_left = felt(st.probe[0], st.probe[1]), down_right = felt(st.probe[2], st.probe[3]);
+    TrialOutcome o;
+    common_measures(tr, o);
+    // a1 at 45 deg runs up-right/down-left: pressing down-left is the soft way (template A).
+    o.response = down_left < down_right ? p.answers.front() : p.answers.back();
+    o.time_s = st.path.end() - st.path.start();
+    return o;
+}
+
+}  // namespace
+
+std::string stimulus_label(const Protocol& p, double stimulus) {
+    char buf[32];
+    if (p.task == Task::curvature) std::snprintf(buf, sizeof buf, "%g", std::round(stimulus * 1e4) / 10.0);  // mm
+    else std::snprintf(buf, sizeof buf, "%g", stimulus);
+    return buf;
+}
+
+TrialOutcome perform_sim_trial(const Protocol& p, const PlannedTrial& t) {
+    const Condition& c = p.conditions.at(static_cast<std::size_t>(t.condition));
+    std::uint64_t rng = mix64(t.seed ^ 0x5EEDull);
+    TrialOutcome o;
+    switch (p.task) {
+        case Task::contour_following: o = contour_following(p, c, t, rng); break;
+        case Task::bump_counting: o = bump_counting(p, c, t, rng); break;
+        case Task::curvature: o = curvature(p, c, t, rng); break;
+        case Task::surface_orientation: o = surface_orientation(p, c, t, rng); break;
+    }
+    if (p.task == Task::surface_orientation) {
+        // Template A belongs with alpha = 45 deg, B with 135 deg (seed 004 Fig. 9).
+        o.correct = o.response == (t.stimulus < 90.0 ? p.answers.front() : p.answers.back());
+    } else if (!o.response.empty()) {
+        o.correct = o.response == stimulus_label(p, t.stimulus);
+    }
+    return o;
+}
+
+}  // namespace contactlab::experiments

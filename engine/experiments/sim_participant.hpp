@@ -1,0 +1,53 @@
+// sim_participant.hpp — the simulated participant (`--participant sim`): performs a trial
+// through the real servo and the simulated rig (servo_trial.hpp) with a scripted hand, and
+// answers from what the device displayed: the force's direction and size at the finger, and the
+// contact element's position on the pad (held at the centre in force-only conditions). Each cue
+// is read through a threshold with Gaussian perceptual noise (ParticipantModel, protocol.hpp),
+// drawn from the trial's seed, so a participant's answers are reproducible.
+//
+//   contour-following  runs the slide once to find when the edge is noticed: the element moving
+//                      `location_threshold_mm` back on the pad (contact location shown), else the
+//                      force turning `force_angle_threshold_deg` off the vertical, or contact
+//                      lost; after `reaction_time_s` the finger tips round the edge. The trial is
+//                      run again with that overshoot and timed from the start line (d from the
+//                      edge) to the finish line; it fails if contact breaks (seed 000).
+//   bump-counting      counts rise-and-fall excursions of the force's direction (and, with contact
+//                      location, of the element's position; the larger count) over a bump's width
+//                      (means over 4 mm of travel less means over 16 mm, which takes out the base
+//                      shape's slow turn) beyond a noisy threshold; answers 0..4 (seed 002)
+//   curvature          the force direction's range over the slide, with noise, against the range
+//                      each height would give (arc_slope_range_deg): the nearest height (seed 003)
+//   surface-orientation the force's growth per mm along each downward diagonal, each with
+//                      `stiffness_noise` relative noise: the softer diagonal is the compliant
+//                      axis a1, 45 deg (template A) or 135 deg (B) (seed 004)
+#pragma once
+
+#include "engine/experiments/protocol.hpp"
+#include "engine/experiments/trial_plan.hpp"
+
+#include "drivers/tick_record.hpp"
+
+#include <string>
+#include <vector>
+
+namespace contactlab::experiments {
+
+struct TrialOutcome {
+    std::string response;    // one of Protocol::answers; empty for timed tasks
+    bool correct = false;
+    bool valid = true;       // false when the servo faulted (the trial is presented again)
+    double time_s = 0.0;     // seed 000: start line to finish line; others: the slide's duration
+    bool failed = false;     // seed 000: contact broken, or the finish line not reached
+    int contact_breaks = 0;  // contact lost after it was first made
+    double peak_force = 0.0; // N
+    // What the device displayed in the trial as performed, every 10th tick (100 Hz), for the
+    // per-trial trace files.
+    std::vector<drivers::TickRecord> shown;
+};
+
+TrialOutcome perform_sim_trial(const Protocol& p, const PlannedTrial& t);
+
+// The CSV text of a stimulus value: seed 003 in mm ("10"), others as written ("0.06", "2", "45").
+std::string stimulus_label(const Protocol& p, double stimulus);
+
+}  // namespace contactlab::experiments

@@ -1,0 +1,39 @@
+// stimulus.hpp — each task's stimulus for one trial: the scene (made by haptics/stimuli.hpp's
+// generators, as `contactlab generate` writes them) and the scripted hand's path over it.
+//
+//   contour-following  seed 000's block of length d; the hand descends onto the top at d + 1 cm
+//                      from the edge, slides to `overshoot` past it, tips round it and descends
+//                      the far face (drivers/tasks.hpp)
+//   bump-counting      seed 002's bumps: k bumps, each small or large at random; the hand slides
+//                      the traced length left to right at the protocol's speed, `press` below the
+//                      height at which the finger's circle rests on the surface
+//   curvature          seed 003's arc of chord d and height h; motion A slides across it left to
+//                      right, motion B right to left (the seed's S1E1 and S2E2 in a plane)
+//   surface-orientation seed 004's field over a flat floor (friction holds the stiction point);
+//                      the hand presses 1 mm in, then probes 1 mm along each downward diagonal
+#pragma once
+
+#include "drivers/hand_path.hpp"
+#include "engine/experiments/protocol.hpp"
+#include "engine/experiments/trial_plan.hpp"
+#include "haptics/scene.hpp"
+
+namespace contactlab::experiments {
+
+struct Stimulus {
+    Scene scene;
+    drivers::HandPath path;
+    double slide_start = 0.0, slide_end = 0.0;  // s: when the hand slides (bumps, curvature)
+    int small_bumps = 0, large_bumps = 0;       // bump counting
+    // Surface orientation: the probes' times (s): [0] down-left out, [1] down-left extreme,
+    // [2] down-right out, [3] down-right extreme.
+    double probe[4] = {0, 0, 0, 0};
+};
+
+Stimulus make_stimulus(const Protocol& p, const Condition& c, const PlannedTrial& t, double overshoot = 0.0);
+
+// Seed 003: the force direction's range (deg) sliding over a whole arc of chord d and height h,
+// twice the slope at its ends: 2 asin(d / (2 r_a)), r_a = (d^2 / 4 + h^2) / (2 h) (seed 003 §4).
+double arc_slope_range_deg(double chord, double height);
+
+}  // namespace contactlab::experiments

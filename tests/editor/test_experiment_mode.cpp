@@ -1,0 +1,86 @@
+// test_experiment_mode.cpp — live trials in the real editor under xvfb-run (issue 16 part 3):
+// answers by `answer`, by the keys 1..9 and refused ones, pause and resume, the results written
+// row by row, and a second start resuming where the first stopped (the first is killed as a
+// crash would: SIGKILL, no exit handler).
+#include "process.hpp"
+#include "xvfb_editor.hpp"
+
+#include "engine/experiments/results_table.hpp"
+
+#include <doctest/doctest.h>
+
+#include <chrono>
+#include <string>
+#include <thread>
+
+using namespace cli_test;
+using namespace editor_test;
+
+TEST_CASE("experiment mode: answers become rows at once, a killed session resumes after its last row") {
+    TempDir dir;
+    const std::string proto = (source_dir() / "scenes/experiments/003-curvature.json").string();
+    const std::string results = dir.file("p1.csv");
+    const std::vector<std::string> base = {"edit", "--experiment", proto, "--participant", "P1", "--results", results,
+                                           "--software", "--timeout", "90", "--script"};
+    // Session 1: three answers (one refused, one by key, one across a pause), then killed.
+    const std::string s1 = dir.file("s1.txt");
+    write_text(s1,
+               "expect experiment_total 24\nexpect experiment_done 0\nframes 3\n"
+               "answer 20\nexpect error 0\nexpect experiment_done 1\n"
+               "answer 15\nexpect error 1\nexpect experiment_done 1\n"
+               "frames 2\nkey 1\nexpect experiment_done 2\n"
+               "pause\nexpect experiment_paused 1\nanswer 10\nexpect error 1\nexpect experiment_done 2\n"
+               "resume\nframes 2\nanswer 30\nexpect experiment_done 3\nwait 60\nquit\n");
+    std::vector<std::string> a1 = base;
+    a1.push_back(s1);
+    const pid_t xvfb = start_under_xvfb(a1, dir.file("s1.log"));
+    bool three = false;
+    for (int i = 0; i < 1200 && !three; ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        try {
+            three = contactlab::experiments::read_results_csv(results).rows.size() == 3;
+        } catch (const std::exception&) {
+        }
+    }
+    INFO("session 1: " << read_text(dir.file("s1.log")));
+    REQUIRE(three);
+    const pid_t editor = find_contactlab(s1);
+    REQUIRE(editor > 0);
+    REQUIRE(::kill(editor, SIGKILL) == 0);
+    int status = 0;
+    while (::waitpid(xvfb, &status, 0) < 0 && errno == EINTR) {}
+    CHECK_FALSE(contains(read_text(dir.file("s1.log")), "FAILED"));
+
+    const auto t1 = contactlab::experiments::read_results_csv(results);
+    CHECK(t1.rows[0][*t1.column("response")] == "20");
+    CHECK(t1.rows[1][*t1.column("response")] == "10");  // key 1: the first answer
+    CHECK(t1.rows[2][*t1.column("response")] == "30");
+
+    // Session 2: resumes at trial 4 and records one more.
+    const std::string s2 = dir.file("s2.txt");
+    write_text(s2, "expect experiment_done 3\nframes 3\nanswer 10\nexpect experiment_done 4\nquit\n");
+    std::vector<std::string> a2 = base;
+    a2.push_back(s2);
+    const auto p2 = run_under_xvfb(a2);
+    INFO("session 2: " << p2.err);
+    CHECK(p2.exit_code == 0);
+    CHECK_FALSE(contains(p2.err, "FAILED"));
+    CHECK(contains(p2.err, "3 of 24 trials done"));
+    const auto t2 = contactlab::experiments::read_results_csv(results);
+    REQUIRE(t2.rows.size() == 4);
+    for (int i = 0; i < 3; ++i) CHECK(t2.rows[i] == t1.rows[i]);  // nothing rewritten
+    CHECK(t2.rows[3][*t2.column("trial")] == "4");
+}
+
+TEST_CASE("experiment mode: --experiment without --participant, or a bad protocol, exits 2") {
+    TempDir dir;
+    const auto p = run_under_xvfb({"edit", "--experiment", (source_dir() / "scenes/experiments/003-curvature.json").string(),
+                                   "--software", "--frames", "1"});
+    CHECK(p.exit_code == 2);
+    CHECK(contains(p.err, "--experiment and --participant go together"));
+    write_text(dir.file("bad.json"), "{}");
+    const auto q = run_under_xvfb({"edit", "--experiment", dir.file("bad.json"), "--participant", "P1", "--software",
+                                   "--frames", "1"});
+    CHECK(q.exit_code == 2);
+    CHECK(contains(q.err, "bad.json: format: missing"));
+}

@@ -1,0 +1,94 @@
+// test_experiment_cli.cpp — the real `contactlab experiment` commands: analyze's printed figures,
+// JSON and report with plots, and its errors (exit 2, file and line named).
+#include "process.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <string>
+
+using namespace cli_test;
+
+TEST_CASE("experiment analyze: seed 004 Table I from a results file, as JSON and as a report with plots") {
+    TempDir dir;
+    std::string csv = "participant,condition,trial,stimulus,response,correct,valid,warmup,e,k\n";
+    int trial = 0;
+    auto rows = [&](const char* stim, const char* resp, int n, int correct, const char* e) {
+        for (int i = 0; i < n; ++i)
+            csv += "p" + std::to_string(trial % 5) + ",e" + e + "," + std::to_string(trial++) + "," + stim + "," + resp + "," +
+                   std::to_string(correct) + ",1,0," + e + ",0.75\n";
+    };
+    rows("45", "A", 41, 1, "0.40");
+    rows("45", "B", 9, 0, "0.40");
+    rows("135", "A", 3, 0, "0.40");
+    rows("135", "B", 47, 1, "0.40");
+    rows("45", "A", 25, 1, "1.00");  // e = 1: answers at chance, phi 0
+    rows("45", "B", 25, 0, "1.00");
+    rows("135", "A", 25, 0, "1.00");
+    rows("135", "B", 25, 1, "1.00");
+    write_text(dir.file("r.csv"), csv);
+    const auto p = run_contactlab({"experiment", "analyze", dir.file("r.csv"), "--json", dir.file("r.json"), "--report",
+                                   dir.file("report")});
+    INFO("stderr: " << p.err << "\nstdout: " << p.out);
+    REQUIRE(p.exit_code == 0);
+    CHECK(contains(p.out, "phi 0.766"));
+    const auto j = nlohmann::json::parse(read_text(dir.file("r.json")));
+    CHECK(j["conditions"]["e0.40"]["cramers_phi"].get<double>() == doctest::Approx(0.765532).epsilon(1e-6));
+    CHECK(j["conditions"]["e1.00"]["cramers_phi"].get<double>() == doctest::Approx(0.0).epsilon(1e-12));
+    CHECK(j["comparisons"].size() == 2);  // proportion correct and IT, paired over the 5 participants
+    const std::string md = read_text(dir.file("report/report.md"));
+    CHECK(contains(md, "| 45 | 41 | 9 |"));
+    CHECK(contains(md, "![Cramer's phi against eccentricity, per stiffness](phi_against_e.png)"));
+    CHECK(std::filesystem::file_size(dir.file("report/phi_against_e.png")) > 1000);
+    CHECK(contains(md, "![Confusion: e0.40](confusion_1.png)"));
+    CHECK(std::filesystem::file_size(dir.file("report/confusion_1.png")) > 1000);
+}
+
+TEST_CASE("experiment analyze: a bad results file exits 2 naming the file, line and column") {
+    TempDir dir;
+    write_text(dir.file("bad.csv"), "stimulus,response,valid\n1,1,1\n2,2,maybe\n");
+    const auto p = run_contactlab({"experiment", "analyze", dir.file("bad.csv")});
+    CHECK(p.exit_code == 2);
+    CHECK(contains(p.err, "bad.csv: line 3, column valid: expected a number, found \"maybe\""));
+    const auto q = run_contactlab({"experiment", "analyze", dir.file("missing.csv")});
+    CHECK(q.exit_code == 2);
+    CHECK(contains(q.err, "missing.csv: cannot open"));
+}
+
+TEST_CASE("experiment run: seed 003's protocol with two simulated participants, then analyze") {
+    TempDir dir;
+    const std::string out = dir.file("r.csv");
+    const auto p = run_contactlab({"experiment", "run", (source_dir() / "scenes/experiments/003-curvature.json").string(),
+                                   "--participants", "sim:1-2", "--seed", "3", "--jobs", "2", "-o", out});
+    INFO("stderr: " << p.err);
+    REQUIRE(p.exit_code == 0);
+    CHECK(contains(p.err, "2 participant(s), 48 trials"));
+    const std::string csv = read_text(out);
+    CHECK(csv.rfind("participant,condition,trial,stimulus,response,correct,valid,warmup,time_s,failed,contact_breaks,"
+                    "peak_force_n,contact_location,motion\n", 0) == 0);
+    CHECK(contains(csv, "sim2,B,"));
+    // One trace per trial beside the results, at 100 Hz.
+    CHECK(std::filesystem::exists(out + ".traces/sim1-A-1.csv"));
+    CHECK(read_text(out + ".traces/sim1-A-1.csv").rfind("t,x,y,phi,contact,fx,fy,roller_l,l_d\n", 0) == 0);
+    const auto a = run_contactlab({"experiment", "analyze", out, "--json", dir.file("a.json")});
+    REQUIRE(a.exit_code == 0);
+    const auto j = nlohmann::json::parse(read_text(dir.file("a.json")));
+    CHECK(j["conditions"]["A"]["n"] == 24);
+    CHECK(j["conditions"]["A"]["labels"]["stimuli"] == nlohmann::json::array({"10", "20", "30"}));
+    CHECK(j["comparisons"][0]["paired"] == true);
+}
+
+TEST_CASE("experiment run: a person as participant, or a bad protocol, exits 2 and says why") {
+    TempDir dir;
+    const std::string proto = (source_dir() / "scenes/experiments/003-curvature.json").string();
+    const auto person = run_contactlab({"experiment", "run", proto, "--participant", "P07", "-o", dir.file("r.csv")});
+    CHECK(person.exit_code == 2);
+    CHECK(contains(person.err, "editor's experiment mode"));
+    write_text(dir.file("bad.json"), "{\"format\": \"contactlab experiment protocol\", \"version\": 2}");
+    const auto bad = run_contactlab({"experiment", "run", dir.file("bad.json"), "--participant", "sim", "-o", dir.file("r.csv")});
+    CHECK(bad.exit_code == 2);
+    CHECK(contains(bad.err, "bad.json: version: must lie in [1, 1], got 2"));
+    CHECK_FALSE(std::filesystem::exists(dir.file("r.csv")));
+}

@@ -1,0 +1,173 @@
+// test_protocols.cpp — the shipped protocols load; bad protocols are refused naming the file,
+// path and why; trial plans are reproducible, balanced and complete; runs do not depend on the
+// number of jobs; the simulated participant shows what the seeds' cues predict.
+#include "engine/experiments/analysis.hpp"
+#include "engine/experiments/experiment_run.hpp"
+#include "engine/experiments/protocol.hpp"
+#include "engine/experiments/results_table.hpp"
+#include "engine/experiments/sim_participant.hpp"
+#include "engine/experiments/statistics.hpp"
+#include "engine/experiments/trial_plan.hpp"
+#include "process.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <map>
+#include <string>
+
+using namespace contactlab::experiments;
+using cli_test::TempDir;
+
+namespace {
+
+std::string protocol_path(const char* name) { return (cli_test::source_dir() / "scenes" / "experiments" / name).string(); }
+
+const char* kMinimal = R"({"format": "contactlab experiment protocol", "version": 1, "name": "x", "seed": "003",
+  "task": "curvature", "conditions": [{"name": "A", "motion": "A"}], "stimuli": [0.01, 0.02], "answers": ["10", "20"]})";
+
+std::string with(const std::string& from, const std::string& to) {
+    std::string s = kMinimal;
+    const auto at = s.find(from);
+    REQUIRE(at != std::string::npos);
+    return s.replace(at, from.size(), to);
+}
+
+}  // namespace
+
+TEST_CASE("protocols: the four shipped protocols load with the seeds' designs") {
+    const Protocol p0 = load_protocol(protocol_path("000-contour-following.json"));
+    CHECK(p0.task == Task::contour_following);
+    CHECK(p0.stimuli.size() == 7);  // d = 4..10 cm
+    CHECK(p0.repetitions == 5);
+    const Protocol p2 = load_protocol(protocol_path("002-bump-counting.json"));
+    CHECK(p2.trials == 135);
+    CHECK(p2.warmup == 10);
+    CHECK(p2.answers.size() == 5);
+    const Protocol p3 = load_protocol(protocol_path("003-curvature.json"));
+    CHECK(p3.conditions.size() == 2);
+    CHECK(p3.repetitions == 4);
+    const Protocol p4 = load_protocol(protocol_path("004-surface-orientation.json"));
+    CHECK(p4.conditions.size() == 9);  // (e, k) pairs
+    CHECK(p4.repetitions == 10);
+}
+
+TEST_CASE("protocols: a bad protocol names the file, the JSON path and why") {
+    CHECK_NOTHROW(parse_protocol(kMinimal, "p.json"));
+    CHECK_THROWS_WITH_AS(parse_protocol(with("\"name\": \"x\"", "\"name\": \"x\", \"colour\": 1"), "p.json"),
+                         "p.json: colour: unknown key", ExperimentError);
+    CHECK_THROWS_WITH_AS(parse_protocol(with("[0.01, 0.02]", "[0.01, 2]"), "p.json"),
+                         "p.json: stimuli[1]: must lie in [0.001, 0.1] m (the arc's height), got 2", ExperimentError);
+    CHECK_THROWS_WITH_AS(parse_protocol(with("\"motion\": \"A\"", "\"motion\": \"C\""), "p.json"),
+                         "p.json: conditions[0].motion: expected \"A\" or \"B\" (seed 003's tasks)", ExperimentError);
+    CHECK_THROWS_WITH_AS(parse_protocol(with("\"task\": \"curvature\"", "\"task\": \"juggling\""), "p.json"),
+                         "p.json: task: unknown task \"juggling\" (contour-following, bump-counting, curvature, surface-orientation)",
+                         ExperimentError);
+    CHECK_THROWS_WITH_AS(parse_protocol(with("\"stimuli\"", "\"warmup\": 2, \"stimuli\""), "p.json"),
+                         "p.json: warmup: leaves no trial to analyse (2 per condition)", ExperimentError);
+    CHECK_THROWS_WITH_AS(parse_protocol(with("\"name\": \"A\"", "\"name\": \"A,B\""), "p.json"),
+                         "p.json: conditions[0].name: must be non-empty, without commas, quotes or line breaks (it is a CSV field)",
+                         ExperimentError);
+    CHECK_THROWS_AS(parse_protocol("{", "p.json"), ExperimentError);
+    CHECK_THROWS_AS(load_protocol("/nonexistent/p.json"), ExperimentError);
+}
+
+TEST_CASE("protocols: trial plans are reproducible, balanced across participants and complete") {
+    const Protocol p0 = load_protocol(protocol_path("000-contour-following.json"));
+    const auto a = plan_trials(p0, 7, 1), b = plan_trials(p0, 7, 1), c = plan_trials(p0, 8, 1), second = plan_trials(p0, 7, 2);
+    REQUIRE(a.size() == 2);
+    bool same = true, differs = false;
+    for (std::size_t k = 0; k < a.size(); ++k)
+        for (std::size_t i = 0; i < a[k].size(); ++i) {
+            same &= a[k][i].stimulus == b[k][i].stimulus && a[k][i].seed == b[k][i].seed;
+            differs |= a[k][i].stimulus != c[k][i].stimulus;
+        }
+    CHECK(same);
+    CHECK(differs);
+    CHECK(a[0][0].condition == second[1][0].condition);  // the second participant has the other order
+    CHECK(a[0][0].condition != second[0][0].condition);
+    for (const auto& block : a) {
+        CHECK(block.size() == 35);
+        std::map<double, int> count;
+        for (const PlannedTrial& t : block) ++count[t.stimulus];
+        for (const auto& [d, n] : count) CHECK(n == 5);  // each d five times
+    }
+    const Protocol p2 = load_protocol(protocol_path("002-bump-counting.json"));
+    for (const auto& block : plan_trials(p2, 1, 1)) {
+        CHECK(block.size() == 135);
+        int warm = 0;
+        for (const PlannedTrial& t : block) warm += t.warmup;
+        CHECK(warm == 10);
+        CHECK(block[9].warmup);
+        CHECK_FALSE(block[10].warmup);
+    }
+}
+
+TEST_CASE("protocols: the results file does not depend on the number of jobs") {
+    const Protocol p = load_protocol(protocol_path("003-curvature.json"));
+    TempDir dir;
+    RunOptions o;
+    o.participants = {1, 2, 3};
+    o.seed = 5;
+    o.traces = false;
+    o.output = dir.file("one.csv");
+    o.jobs = 1;
+    const RunSummary s1 = run_experiment(p, o);
+    o.output = dir.file("three.csv");
+    o.jobs = 3;
+    run_experiment(p, o);
+    CHECK(s1.rows == 3 * 24);
+    CHECK(cli_test::read_text(dir.file("one.csv")) == cli_test::read_text(dir.file("three.csv")));
+    const ResultsTable t = read_results_csv(dir.file("one.csv"));
+    CHECK(t.columns == results_columns(p));
+}
+
+TEST_CASE("simulated participant: contact location shows the block's edge in time, force alone does not (seed 000)") {
+    // Where the edge is noticed: the element moves 1:1 with the finger once the centre passes the
+    // edge (1.5 mm threshold); the force turns by asin(x / R) (15 deg at x = R sin 15 deg = 6.7 mm).
+    // Then 0.1 s at 5 cm/s (5 mm) before the finger tips; the pad leaves the top when its centre is
+    // more than R sin(L / 2R) = 9.8 mm past the edge. So force alone fails nearly always, with
+    // contact location nearly never.
+    Protocol p = load_protocol(protocol_path("000-contour-following.json"));
+    p.repetitions = 2;
+    TempDir dir;
+    RunOptions o;
+    o.participants = {1};
+    o.traces = false;
+    o.output = dir.file("r.csv");
+    run_experiment(p, o);
+    const auto j = analyze_results(read_results_csv(o.output));
+    CHECK(j["conditions"]["force"]["failure_proportion"].get<double>() >= 0.8);
+    CHECK(j["conditions"]["force+cld"]["failure_proportion"].get<double>() <= 0.2);
+    // A successful trial takes the path's time from the start line to the finish: at least d plus
+    // the 6 cm descent at 5 cm/s.
+    CHECK(j["conditions"]["force+cld"]["time_s"]["mean"].get<double>() > (0.04 + 0.06) / 0.05);
+}
+
+TEST_CASE("simulated participant: seed 004's field is felt when eccentric and not when e = 1") {
+    Protocol p = load_protocol(protocol_path("004-surface-orientation.json"));
+    TempDir dir;
+    RunOptions o;
+    o.participants = {1, 2};
+    o.traces = false;
+    o.output = dir.file("r.csv");
+    run_experiment(p, o);
+    // Pooled over k: e = 0.40 against e = 1.00 (120 trials each).
+    const ResultsTable t = read_results_csv(o.output);
+    std::map<std::string, std::pair<std::vector<std::string>, std::vector<std::string>>> by_e;
+    for (std::size_t i = 0; i < t.rows.size(); ++i) {
+        auto& cell = by_e[t.rows[i][*t.column("e")]];
+        cell.first.push_back(t.rows[i][*t.column("stimulus")]);
+        cell.second.push_back(t.rows[i][*t.column("response")]);
+    }
+    const double phi_eccentric = cramers_phi(make_confusion(by_e["0.4"].first, by_e["0.4"].second));
+    const double phi_round = cramers_phi(make_confusion(by_e["1"].first, by_e["1"].second));
+    CAPTURE(phi_eccentric);
+    CAPTURE(phi_round);
+    CHECK(phi_eccentric > 0.5);
+    // e = 1 is the spring: nothing to feel, answers at chance. Under independence n phi^2 is
+    // chi-square with 1 df: phi < 0.24 with 99 % probability at n = 120.
+    CHECK(phi_round < 0.24);
+}
