@@ -81,7 +81,7 @@ TEST_CASE("simulate curvature-arc: the generated arc's slope is followed by the 
     CHECK(in_contact > 500);  // 0.30 m at 0.05 m/s, a row per 10 ms
 }
 
-TEST_CASE("simulate sim-wearable refuses a scene without an arc, a hand, real time and no task") {
+TEST_CASE("simulate sim-wearable refuses a scene without an arc, real time, absurd FSR noise, and neither hand nor task") {
     TempDir dir;
     const std::string out = dir.file("x.csv");
     auto run = [&](std::vector<std::string> extra) {
