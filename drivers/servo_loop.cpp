@@ -1,6 +1,8 @@
 // servo_loop.cpp — device adapter, virtual-time runner, fixed-length real-time run (see
 // servo_loop.hpp; the deadline loop itself is servo_runner.cpp).
 #include "drivers/servo_loop.hpp"
+
+#include "haptics/wearable/contact_display.hpp"
 #include "drivers/servo_runner.hpp"
 
 #include <algorithm>
@@ -25,6 +27,7 @@ ServoLoop::ServoLoop(Device& dev, ServoTick& tick, double period, SpscRing<TickR
 
 bool ServoLoop::start() {
     if (!dev_.open()) return false;
+    platform_ = dev_.capabilities().platform;  // known after open (a hapio board says its model)
     DeviceReading r;
     dev_.read(r);
     tick_.connect(r.t);
@@ -43,6 +46,13 @@ void ServoLoop::step(double wall_period, bool wait_for_ring) noexcept {
     command_.force = c.force;
     command_.roller_drive = c.roller_drive;
     command_.roller_target = c.roller_target;
+    if (platform_) {
+        // Seed 003's platform renders no force on the finger: it shows the contact under the pad,
+        // tilted to the surface and pressed with the force (haptics/wearable/contact_display.hpp).
+        const wearable::PlatformPoseCommand p = wearable::contact_to_platform(c.force.x, c.force.y, in.phi);
+        command_.platform_mode = p.contact ? DeviceCommand::PlatformMode::pose : DeviceCommand::PlatformMode::none;
+        command_.platform = {p.press, p.roll, p.pitch};
+    }
     dev_.write(command_);
     dev_.set_engaged(tick_.state() == ServoState::engaged || tick_.state() == ServoState::ramping);
     ++ticks_;

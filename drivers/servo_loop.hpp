@@ -51,6 +51,7 @@ private:
     std::atomic<std::uint64_t> dropped_{0};
     DeviceReading reading_;
     DeviceCommand command_;
+    bool platform_ = false;  // the device is seed 003's platform: the force becomes a platform pose
 };
 
 // Period statistics from a fixed histogram (100 ns bins up to 20 ms): no allocation per tick.

@@ -8,6 +8,7 @@
 #include "haptics/force_law.hpp"
 #include "haptics/vec2.hpp"
 
+#include <array>
 #include <string>
 #include <variant>
 #include <vector>
@@ -104,6 +105,15 @@ struct ContactLocationDef {
     ContactRule rule = ContactRule::centroid;
 };
 
+// Seed 003's wearable platform (haptics/wearable/). The fingertip's 6x6 stiffness K of eq. 8, row
+// major, on the pose xi = [p_x p_y p_z alpha beta gamma]: N/m on the translations, N m/rad on the
+// angles, N/rad and N (m/m) in the off-diagonal blocks. Absent (has_finger_stiffness false), the
+// platform uses the seed's K = k I read in millimetres (finger_stiffness.hpp).
+struct WearableDef {
+    bool has_finger_stiffness = false;
+    std::array<double, 36> finger_stiffness{};
+};
+
 inline constexpr int kSceneFormatVersion = 1;
 
 struct Scene {
@@ -113,6 +123,7 @@ struct Scene {
     ForceDef force;
     ContactLocationDef contact_location;
     CurveDef curves;
+    WearableDef wearable;
 };
 
 }  // namespace contactlab

@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -164,7 +165,7 @@ Scene read_scene(const json& root) {
     Scene s;
     expect_object(root, "");
     reject_unknown_keys(root, "", {"version", "description", "finger", "contours", "force",
-                                   "contact_location", "curves"});
+                                   "contact_location", "curves", "wearable"});
     const json& version = require(root, "", "version");
     // Only scalars are echoed back: dump() recurses, and a version nested 100000 arrays deep
     // would overflow the stack.
@@ -272,6 +273,20 @@ Scene read_scene(const json& root) {
             fail("curves.mode", "unknown curve mode \"" + mode + "\" (expected \"exact\" or \"flatten\")");
         }
         if (it->contains("tolerance")) s.curves.tolerance = read_number(*it, "curves", "tolerance");
+    }
+
+    if (auto it = root.find("wearable"); it != root.end()) {
+        expect_object(*it, "wearable");
+        reject_unknown_keys(*it, "wearable", {"finger_stiffness"});
+        const json& k = require(*it, "wearable", "finger_stiffness");
+        const std::string kp = join("wearable", "finger_stiffness");
+        if (!k.is_array() || k.size() != 6) fail(kp, "expected 6 rows of 6 numbers (the 6x6 stiffness of seed 003's eq. 8)");
+        for (std::size_t r = 0; r < 6; ++r) {
+            const std::string rp = index(kp, r);
+            if (!k[r].is_array() || k[r].size() != 6) fail(rp, "expected a row of 6 numbers");
+            for (std::size_t c = 0; c < 6; ++c) s.wearable.finger_stiffness[r * 6 + c] = read_number(k[r][c], index(rp, c));
+        }
+        s.wearable.has_finger_stiffness = true;
     }
     return s;
 }
@@ -454,6 +469,25 @@ void validate_scene(const Scene& s) {
         s.curves.tolerance > kMaxCurveTolerance)
         fail("curves.tolerance", "must lie in [" + fmt(kMinCurveTolerance) + ", " + fmt(kMaxCurveTolerance) +
                                      "] m, got " + fmt(s.curves.tolerance));
+    // The wearable's K: finite, symmetric (a spring's), positive on the diagonal. Positive
+    // definiteness is checked where Eigen is (haptics/wearable/finger_stiffness.hpp, check_stiffness).
+    if (s.wearable.has_finger_stiffness) {
+        const auto& k = s.wearable.finger_stiffness;
+        double scale = 0.0;
+        for (const double v : k) {
+            if (!std::isfinite(v)) fail("wearable.finger_stiffness", "has a non-finite entry");
+            scale = std::max(scale, std::abs(v));
+        }
+        for (int r = 0; r < 6; ++r) {
+            if (!(k[r * 6 + r] > 0.0))
+                fail("wearable.finger_stiffness", "diagonal entry " + std::to_string(r) + " must be > 0, got " + fmt(k[r * 6 + r]));
+            for (int c = r + 1; c < 6; ++c)
+                if (std::abs(k[r * 6 + c] - k[c * 6 + r]) > 1e-9 * scale)
+                    fail("wearable.finger_stiffness", "must be symmetric (a spring's stiffness): entries " + std::to_string(r) +
+                                                          "," + std::to_string(c) + " and " + std::to_string(c) + "," +
+                                                          std::to_string(r) + " differ");
+        }
+    }
 }
 
 namespace {
@@ -543,6 +577,15 @@ std::string scene_to_json_text(const Scene& s) {
         {"rule", s.contact_location.rule == ContactRule::centroid ? "centroid" : "least_displacement"}};
     root["curves"] = {{"mode", s.curves.mode == CurveMode::exact ? "exact" : "flatten"},
                       {"tolerance", s.curves.tolerance}};
+    if (s.wearable.has_finger_stiffness) {
+        json rows = json::array();
+        for (int r = 0; r < 6; ++r) {
+            json row = json::array();
+            for (int c = 0; c < 6; ++c) row.push_back(s.wearable.finger_stiffness[r * 6 + c]);
+            rows.push_back(std::move(row));
+        }
+        root["wearable"] = {{"finger_stiffness", std::move(rows)}};
+    }
     // nlohmann writes doubles with the shortest text that reads back to the same value.
     return root.dump(2) + "\n";
 }

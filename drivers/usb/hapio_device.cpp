@@ -18,7 +18,7 @@ double monotonic() noexcept {
 }  // namespace
 
 HapioDevice::HapioDevice(const HapioOptions& o, std::shared_ptr<usb::UsbContext> ctx)
-    : opt_(o), model_(o.calibration), ctx_(std::move(ctx)), epoch_(monotonic()),
+    : opt_(o), model_(o.calibration), wearable_(o.wearable), ctx_(std::move(ctx)), epoch_(monotonic()),
       counters_(std::make_unique<Counters>()) {}
 
 HapioDevice::~HapioDevice() { close(); }
@@ -27,6 +27,11 @@ double HapioDevice::now() const noexcept { return monotonic() - epoch_; }
 
 DeviceCapabilities HapioDevice::capabilities() const noexcept {
     DeviceCapabilities c;
+    if (is_wearable()) {
+        c.platform = true;
+        c.force_sensors = kWearableAnalog;
+        return c;
+    }
     c.planar_force = true;
     c.finger_angle = true;
     c.roller = true;
@@ -65,7 +70,8 @@ bool HapioDevice::read(DeviceReading& out) noexcept {
     if (st == DeviceState::fault && fault_code_.load(std::memory_order_acquire) == DeviceFaultCode::disconnected) return false;
     const Sample s = latest_.load();
     if (s.count == 0 || out.t - s.rx_time > opt_.stale_after) return false;
-    model_.to_reading(s.state, out);
+    if (is_wearable()) wearable_.to_reading(s.state, out);
+    else model_.to_reading(s.state, out);
     out.t = now();
     return true;
 }

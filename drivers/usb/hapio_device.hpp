@@ -1,5 +1,6 @@
-// hapio_device.hpp — a hapio board (HAPIO.md) driving seed 000's CLD rig, behind the Device
-// interface, over the libusb transport.
+// hapio_device.hpp — a hapio board (HAPIO.md) driving seed 000's CLD rig (model 1) or seed 003's
+// wearable platform (model 2, chosen by the board's GET_INFO), behind the Device interface, over
+// the libusb transport.
 //
 // Threads: the servo thread calls read()/write()/set_engaged() and only loads/stores lock-free
 // seqlocks and atomics. All USB work (bring-up, streaming transfers, hot-plug, teardown) runs on
@@ -12,6 +13,7 @@
 #include "drivers/device.hpp"
 #include "drivers/usb/hapio_cld_model.hpp"
 #include "drivers/usb/hapio_protocol.hpp"
+#include "drivers/usb/hapio_wearable_model.hpp"
 #include "drivers/usb/usb_context.hpp"
 #include "haptics/servo_seqlock.hpp"
 
@@ -30,6 +32,7 @@ struct HapioOptions {
     std::uint16_t product_id = kProductId;
     int bus = -1, address = -1;          // pick one board when several are plugged in (-1: any)
     CldCalibration calibration;
+    WearableCalibration wearable;        // model 2 boards (seed 003's platform)
     double stale_after = 0.005;          // s: a newer frame must have arrived within this
     unsigned transfer_timeout_ms = 100;  // IN/OUT transfer timeout (a silent board is a fault)
     unsigned control_timeout_ms = 200;   // handshake requests
@@ -60,7 +63,7 @@ public:
 
     const char* name() const noexcept override { return "usb:hapio"; }
     DeviceCapabilities capabilities() const noexcept override;
-    DeviceLimits limits() const noexcept override { return model_.limits(); }
+    DeviceLimits limits() const noexcept override { return is_wearable() ? wearable_.limits() : model_.limits(); }
     bool open() override;
     void close() override;
     DeviceState state() const noexcept override { return state_.load(std::memory_order_acquire); }
@@ -74,6 +77,8 @@ public:
     const std::shared_ptr<usb::UsbContext>& context() const noexcept { return ctx_; }
     // The last valid frame (tests, diagnostics).
     State last_state() const noexcept { return latest_.load().state; }
+    // True once a model 2 board (the wearable platform) has been opened.
+    bool is_wearable() const noexcept { return board_model_.load(std::memory_order_acquire) == 2; }
 
 private:
     struct Sample {
@@ -105,6 +110,10 @@ private:
 
     HapioOptions opt_;
     CldModel model_;
+    WearableModel wearable_;               // event thread (send_command); to_reading is const
+    std::atomic<std::uint8_t> board_model_{1};
+    std::uint32_t last_board_us_ = 0;      // event thread: board time of the last frame (us)
+    bool have_board_us_ = false;
     std::shared_ptr<usb::UsbContext> ctx_;
     double epoch_ = 0.0;
 

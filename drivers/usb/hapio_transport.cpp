@@ -103,8 +103,15 @@ DeviceFault HapioDevice::bring_up() {
         return {DeviceFaultCode::open_failed, "hapio handshake: the board speaks another protocol version (update its firmware or ContactLab)"};
     if (fe != FrameError::none)
         return {DeviceFaultCode::open_failed, "hapio handshake: malformed GET_INFO reply (wrong firmware?)"};
-    if (info.encoders < kCldEncoders || info.motors < kCldMotors)
+    if (info.model == 2) {
+        if (info.analog < kWearableAnalog || info.motors < kWearableMotors)
+            return {DeviceFaultCode::open_failed, "hapio handshake: the board has too few channels for the wearable platform (needs 3 analog, 3 motors)"};
+    } else if (info.encoders < kCldEncoders || info.motors < kCldMotors) {
         return {DeviceFaultCode::open_failed, "hapio handshake: the board has too few channels for the CLD rig (needs 4 encoders, 3 motors)"};
+    }
+    board_model_.store(info.model == 2 ? 2 : 1, std::memory_order_release);
+    wearable_.reset();
+    have_board_us_ = false;
     info_.store(info);
     for (std::uint8_t req : {static_cast<std::uint8_t>(Request::clear_fault), static_cast<std::uint8_t>(Request::set_streaming)}) {
         const std::uint16_t value = req == static_cast<std::uint8_t>(Request::set_streaming) ? 1 : 0;
@@ -241,7 +248,9 @@ void HapioDevice::process_frame(const std::uint8_t* data, int length) noexcept {
         case FrameError::bad_counts:
         case FrameError::bad_value: c.bad_counts.fetch_add(1); return;
     }
-    if (s.encoders < kCldEncoders || s.motors < kCldMotors) {
+    const bool wearable = is_wearable();
+    if (wearable ? (s.analog < kWearableAnalog || s.motors < kWearableMotors)
+                 : (s.encoders < kCldEncoders || s.motors < kCldMotors)) {
         c.bad_counts.fetch_add(1);
         return;
     }
@@ -287,11 +296,36 @@ void HapioDevice::process_frame(const std::uint8_t* data, int length) noexcept {
 void HapioDevice::send_command(const State& s) noexcept {
     if (out_active_ || out_ == nullptr) return;  // one command in flight; the next frame sends the newest
     Command cmd;
-    double q1 = 0.0, q2 = 0.0;
-    model_.joints(s, q1, q2);
-    const DeviceState st = state();
-    if (st == DeviceState::engaged) model_.to_command(command_.load(), q1, q2, cmd);
-    else cmd.motors = kCldMotors;  // all zero: not engaged, or faulted
+    DeviceState st = state();
+    if (is_wearable()) {
+        // The platform's loop runs here, once per frame (HAPIO.md, model 2): dt from the board's clock.
+        const Info info = info_.load();
+        double dt = info.frame_rate > 0 ? 1.0 / info.frame_rate : 1e-3;  // s
+        if (have_board_us_) {
+            const std::uint32_t us = s.time_us - last_board_us_;  // wraps
+            if (us > 0 && us < 100000) dt = 1e-6 * us;
+        }
+        last_board_us_ = s.time_us;
+        have_board_us_ = true;
+        if (st == DeviceState::engaged) {
+            const WearableLinkStatus ws = wearable_.to_command(command_.load(), s, dt, cmd);
+            if (ws == WearableLinkStatus::fsr_saturated) {
+                set_fault(DeviceFaultCode::io_error, "hapio wearable: an FSR channel is saturated (force unknown)");
+                st = DeviceState::fault;
+            } else if (ws == WearableLinkStatus::fault) {
+                set_fault(DeviceFaultCode::over_limit, to_string(wearable_.control_status()));
+                st = DeviceState::fault;
+            }
+        } else {
+            wearable_.reset();
+            cmd.motors = kWearableMotors;  // all zero: not engaged, or faulted
+        }
+    } else {
+        double q1 = 0.0, q2 = 0.0;
+        model_.joints(s, q1, q2);
+        if (st == DeviceState::engaged) model_.to_command(command_.load(), q1, q2, cmd);
+        else cmd.motors = kCldMotors;  // all zero: not engaged, or faulted
+    }
     cmd.sequence = ++out_seq_;
     cmd.watchdog_ms = opt_.watchdog_ms;
     if (st == DeviceState::engaged) cmd.flags |= kCommandEnable;

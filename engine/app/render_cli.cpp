@@ -1,7 +1,7 @@
 // render_cli.cpp — the `render` subcommand: a scene drawn offscreen with Vulkan into a PNG.
 //
 //   contactlab render SCENE.json --output OUT.png [--width 1280] [--height 720]
-//       [--finger x,y,phi] [--overlay cspace,zones] [--theme dark|light] [--software]
+//       [--finger x,y,phi] [--overlay cspace,zones] [--theme dark|light] [--wearable] [--software]
 //
 // The finger, proxy, force and contacts are what the haptics Proxy computes for that finger
 // configuration approached from free space (engine/render/finger_state.hpp). Without a Vulkan
@@ -29,6 +29,7 @@ struct RenderArgs {
     std::string theme = "dark";
     bool software = false;
     bool no_text = false;
+    bool wearable = false;
 #ifdef NDEBUG
     bool validation = false;
 #else
@@ -74,6 +75,7 @@ int render_main(const RenderArgs& args) {
     if (!theme) throw BadInput("--theme: unknown theme \"" + args.theme + "\" (known: dark, light)");
     req.theme = *theme;
     req.text = !args.no_text;
+    req.wearable = args.wearable;
 
     render::ContextOptions options;
     options.software = args.software;
@@ -113,6 +115,9 @@ void register_render_command(CLI::App& app, int& rc) {
         ->delimiter(',');
     cmd->add_option("--theme", args.theme, "Colour theme: dark or light")->default_val("dark");
     cmd->add_flag("--no-text", args.no_text, "Leave out the labels (scale and force values, status line)");
+    cmd->add_flag("--wearable", args.wearable,
+                  "Draw seed 003's wearable platform under the pad as the servo would command it for this contact "
+                  "(tilt, press, cables and their tensions)");
     cmd->add_flag("--software", args.software, "Use the CPU Vulkan device (lavapipe): bit-stable output");
     cmd->add_flag("--validation,!--no-validation", args.validation,
                   "Vulkan validation layers (default: on in debug builds); any validation message makes the "

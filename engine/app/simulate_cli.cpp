@@ -9,13 +9,18 @@ void register_simulate_command(CLI::App& app, int& rc) {
     static bool virtual_time = false, real_time = false;
     CLI::App* cmd = app.add_subcommand("simulate", "Run the servo loop against a simulated or replayed device");
     cmd->add_option("scene", o.scene_path, "Scene file (JSON, scenes/README.md)")->required();
-    cmd->add_option("--device", o.device, "sim-cld (simulated CLD rig + scripted hand), replay:FILE, usb:hapio or usb:falcon (real devices: real time, need --duration)")
+    cmd->add_option("--device", o.device, "sim-cld (simulated CLD rig + scripted hand), sim-wearable (seed 003's platform under a finger that follows --hand, or its --task), replay:FILE, "
+                    "usb:hapio or usb:falcon (real devices: real time, need --duration)")
         ->default_val("sim-cld");
     cmd->add_option("--firmware", o.firmware,
                     "usb:falcon: Novint's Falcon firmware file, uploaded when the Falcon has none running (not shipped)");
     cmd->add_option("--hand", o.hand, "Scripted hand path, header t,x,y,phi (s, m, m, rad), linearly interpolated");
     cmd->add_option("--task", o.task, "Built-in task instead of --hand: contour-block (seed 000 Fig. 9), or roller-bandwidth "
-                                        "(the roller alone, 1 cm sine sweep; writes freq,gain,phase_deg,element_gain,max_error)");
+                                        "(the roller alone, 1 cm sine sweep; writes freq,gain,phase_deg,element_gain,max_error); "
+                                        "seed 003 on sim-wearable: wearable-step (0.3 N step), wearable-bandwidth (Q_r sine "
+                                        "sweep; writes the 0.5 Hz run), curvature-arc (the scene's arc moves under the "
+                                        "finger at --task-speed; writes t,contact_x,surface_angle,platform_tilt,"
+                                        "platform_force,Q_1,Q_2,Q_3,contact,fault)");
     cmd->add_option("--task-speed", o.task_speed, "Hand speed on the built-in task (m/s)")->default_val(0.05);
     cmd->add_option("--rate", o.rate, "Servo rate (Hz), 100..20000")->default_val(1000.0);
     cmd->add_option("--roller-travel", o.roller_travel,
@@ -30,6 +35,12 @@ void register_simulate_command(CLI::App& app, int& rc) {
                     "Per-tick CSV: t,x,y,phi,proxy_x,proxy_y,contact,depth,fx,fy,l_d,roller_l,roller_target,period,roller_drive,state")
         ->required();
     cmd->add_option("--record", o.record, "Also record every tick (contactlab recording v1) for --device replay:FILE");
+    cmd->add_option("--json", o.json, "Wearable tasks: write the summary (rise_time_s, steady_error_pct, bandwidth_hz, "
+                                      "tilt_rms_rad, ...) as JSON");
+    cmd->add_option("--wearable-fit", o.wearable_fit, "Wearable tasks: seed (references shaped to the seed's measured "
+                                                      "45 ms response) or none (Table 1's motor alone)")
+        ->default_val("seed");
+    cmd->add_option("--fsr-noise", o.fsr_noise, "Wearable tasks: FSR noise standard deviation (N)")->default_val(0.003);
     add_override_options(cmd, o.overrides);
     cmd->callback([&rc] {
         o.realtime = real_time;

@@ -1,5 +1,6 @@
 // simulate_command.cpp — wiring for `contactlab simulate` (see simulate_command.hpp).
 #include "engine/app/simulate_command.hpp"
+#include "engine/app/simulate_wearable.hpp"
 #include "engine/app/subcommands.hpp"
 #include "haptics/parameter_limits.hpp"
 
@@ -11,6 +12,7 @@
 #include "drivers/servo_loop.hpp"
 #include "drivers/sim/roller_sine.hpp"
 #include "drivers/sim/sim_cld_device.hpp"
+#include "drivers/sim/sim_wearable_device.hpp"
 #include "drivers/tasks.hpp"
 #include "drivers/usb/falcon_device.hpp"
 #include "drivers/usb/hapio_device.hpp"
@@ -59,11 +61,29 @@ std::unique_ptr<Device> make_device(const SimulateOptions& o, const Scene& scene
         path_duration = static_cast<double>(dev->size()) / o.rate;
         return dev;
     }
-    if (o.device != "sim-cld") throw BadInput("--device: unknown device \"" + o.device + "\" (sim-cld, replay:FILE, usb:hapio, usb:falcon)");
+    if (o.device == "sim-wearable") {
+        // Seed 003's platform under a finger that follows --hand (the wearable pushes no hand).
+        if (o.hand.empty() || !o.task.empty())
+            throw BadInput("--device sim-wearable takes --hand HAND.csv, or one of its tasks (--task wearable-step, "
+                           "wearable-bandwidth, curvature-arc)");
+        HandPath path;
+        try {
+            path = read_hand_path_file(o.hand);
+        } catch (const HandPathError& e) {
+            throw BadInput(e.what());
+        }
+        path_duration = path.end() - path.start();
+        sim::SimWearableParams wp;
+        wp.watchdog_timeout = std::max(wp.watchdog_timeout, 3.0 / o.rate);
+        return std::make_unique<sim::SimWearableDevice>(wp, std::move(path));
+    }
+    if (o.device != "sim-cld") throw BadInput("--device: unknown device \"" + o.device + "\" (sim-cld, sim-wearable, replay:FILE, usb:hapio, usb:falcon)");
     if (o.hand.empty() == o.task.empty()) throw BadInput("sim-cld needs exactly one of --hand HAND.csv or --task contour-block");
     HandPath path;
     if (!o.task.empty()) {
-        if (o.task != "contour-block") throw BadInput("--task: unknown task \"" + o.task + "\" (contour-block, roller-bandwidth)");
+        if (o.task != "contour-block")
+            throw BadInput("--task: unknown task \"" + o.task + "\" (contour-block, roller-bandwidth, wearable-step, "
+                           "wearable-bandwidth, curvature-arc)");
         if (!(o.task_speed > 0.0 && o.task_speed <= 1.0)) throw BadInput("--task-speed: must be in (0, 1] m/s");
         BlockTaskParams bp;
         bp.finger_radius = scene.finger.radius;
@@ -155,6 +175,7 @@ int run_simulate(const SimulateOptions& o) {
         throw BadInput("--rate: must be between 100 and 20000 Hz");  // haptics/parameter_limits.hpp
     if (o.output.empty()) throw BadInput("--output is required");
     if (o.task == "roller-bandwidth") return run_roller_bandwidth(o);
+    if (is_wearable_task(o.task)) return run_wearable_task(o);
     Scene scene = load_scene_file(o.scene_path);
     apply_overrides(scene, o.overrides);
 
@@ -216,6 +237,14 @@ int run_simulate(const SimulateOptions& o) {
                      static_cast<unsigned long long>(st.timeouts), static_cast<unsigned long long>(st.stalls),
                      static_cast<unsigned long long>(st.disconnects), static_cast<unsigned long long>(st.reconnects),
                      st.rtt_mean * 1e3, st.rtt_max * 1e3);
+    }
+    if (const auto* w = dynamic_cast<const sim::SimWearableDevice*>(dev.get()); w != nullptr && w->rig() != nullptr) {
+        const wearable::WearableRig& rig = *w->rig();
+        const wearable::Pose& xi = rig.plant().pose();
+        const wearable::Pose& rest = rig.def().plant.platform.rest;
+        std::fprintf(stderr, "simulate: sim-wearable at the end: platform %.3f mm into the pad, roll %.4f rad, pitch %.4f rad; "
+                     "cable tensions %.3f %.3f %.3f N\n", (xi(2) - rest(2)) * 1e3, xi(3), xi(4), rig.plant().tension()(0),
+                     rig.plant().tension()(1), rig.plant().tension()(2));
     }
     if (const auto* f = dynamic_cast<const falcon::FalconDevice*>(dev.get())) {
         const falcon::FalconStats st = f->stats();

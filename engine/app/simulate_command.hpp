@@ -14,7 +14,8 @@ struct SimulateOptions {
     std::string device = "sim-cld";   // "sim-cld", "replay:FILE", "usb:hapio" or "usb:falcon"
     std::string firmware;             // usb:falcon: firmware file to upload (never shipped)
     std::string hand;                 // HAND.csv (t,x,y,phi), or empty with task
-    std::string task;                 // "contour-block"
+    std::string task;                 // "contour-block", "roller-bandwidth", or seed 003's "wearable-step",
+                                      // "wearable-bandwidth", "curvature-arc" (--device sim-wearable)
     double task_speed = 0.05;         // m/s, hand speed on the built-in task
     double rate = 1000.0;             // Hz, 100..20000
     double duration = -1.0;           // s; < 0: the path's (or recording's) length
@@ -25,6 +26,9 @@ struct SimulateOptions {
     bool realtime = false;
     std::string output;               // OUT.csv
     std::string record;               // recording file, optional
+    std::string json;                 // wearable tasks: summary JSON, optional
+    std::string wearable_fit = "seed";  // wearable tasks: "seed" (45 ms reference shaping) or "none"
+    double fsr_noise = 0.003;         // N, wearable tasks: FSR noise standard deviation
     SceneOverrides overrides;
 };
 

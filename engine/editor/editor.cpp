@@ -1,6 +1,7 @@
 // editor.cpp — the editor's frame loop: events -> ImGui + canvas (or script) -> servo publish ->
 // draw list (the shared scene drawer + the editor's marks) -> window target (+ ImGui) -> present.
 #include "engine/editor/editor.hpp"
+#include "engine/editor/cursor_wearable_device.hpp"
 #include "engine/editor/x_server_affinity.hpp"
 
 #include "engine/editor/canvas.hpp"
@@ -374,6 +375,12 @@ int run_editor(const EditorOptions& o) {
             content.overlays = s.overlays;
             content.text = s.labels;
             content.roller_l = snap.roller_l;
+            if (const auto* w = dynamic_cast<const CursorWearableDevice*>(s.device)) {
+                // Seed 003's platform under the pad, as the simulation has it now.
+                const drivers::sim::WearablePlatformView v = w->platform_view();
+                if (v.valid) content.platform = render::PlatformDrawing{v.roll, v.press, v.tension, 1.5};
+                content.roller_l.reset();  // no roller on the wearable
+            }
             content.status_line = false;  // the status row above the rulers shows it (panels.cpp)
             content.top_inset_px = layout.canvas_top * ui_scale;
             content.left_inset_px = layout.canvas_left * ui_scale;

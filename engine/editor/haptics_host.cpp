@@ -6,6 +6,7 @@
 #include "drivers/usb/hapio_device.hpp"
 #include "drivers/usb/usb_devices.hpp"
 #include "engine/editor/cursor_cld_device.hpp"
+#include "engine/editor/cursor_wearable_device.hpp"
 #include "engine/editor/mouse_device.hpp"
 #include "engine/editor/servo_view.hpp"
 
@@ -35,6 +36,7 @@ std::unique_ptr<drivers::Device> HapticsHost::make_device(const std::string& spe
                                                           std::string& error) {
     if (spec == "mouse") return std::make_unique<MouseDevice>();
     if (spec == "sim-cld") return std::make_unique<CursorCldDevice>(CursorCldParams{}, pose);
+    if (spec == "sim-wearable") return std::make_unique<CursorWearableDevice>(pose);
     if (spec.rfind("replay:", 0) == 0) {
         const std::string file = spec.substr(7);
         if (file.empty()) {
@@ -50,7 +52,7 @@ std::unique_ptr<drivers::Device> HapticsHost::make_device(const std::string& spe
     }
     if (spec == "usb:hapio") return std::make_unique<drivers::hapio::HapioDevice>();
     if (spec == "usb:falcon") return std::make_unique<drivers::falcon::FalconDevice>();
-    error = "unknown device \"" + spec + "\" (mouse, sim-cld, replay:FILE, usb:hapio, usb:falcon)";
+    error = "unknown device \"" + spec + "\" (mouse, sim-cld, sim-wearable, replay:FILE, usb:hapio, usb:falcon)";
     return nullptr;
 }
 
@@ -127,6 +129,7 @@ const std::vector<DeviceOption>& HapticsHost::options(bool rescan) {
     options_.clear();
     options_.push_back({"mouse", "mouse (the cursor is the finger)", true, {}});
     options_.push_back({"sim-cld", "sim-cld (simulated CLD, the hand follows the cursor)", true, {}});
+    options_.push_back({"sim-wearable", "sim-wearable (seed 003's platform, the cursor is the finger)", true, {}});
     options_.push_back({"replay:", "replay of a recording", true, {}});
     drivers::usb::UsbContext ctx;
     const drivers::usb::UsbScan scan = drivers::usb::scan_usb_devices(ctx);

@@ -1,5 +1,6 @@
 // script.cpp — the --script runner (see script.hpp).
 #include "engine/editor/script.hpp"
+#include "engine/editor/cursor_wearable_device.hpp"
 
 #include "engine/editor/canvas.hpp"
 #include "engine/editor/haptics_commands.hpp"
@@ -314,13 +315,20 @@ bool Script::run(EditorState& s, const Line& line, double now) {
         std::fprintf(stderr,
                      "script report %s: device=%s device_state=%s rate_hz=%.17g cursor_x_mm=%.17g cursor_y_mm=%.17g "
                      "finger_x_mm=%.17g finger_y_mm=%.17g phi_deg=%.17g contact=%d depth_mm=%.17g force_n=%.17g "
-                     "ke=%.17g servo_state=%s fault=%s ticks=%llu p50_us=%.6g p99_us=%.6g max_us=%.6g late=%zu count=%zu\n",
+                     "ke=%.17g servo_state=%s fault=%s ticks=%llu p50_us=%.6g p99_us=%.6g max_us=%.6g late=%zu count=%zu",
                      w[1].c_str(), s.haptics ? s.haptics->spec().c_str() : "none",
                      s.device ? drivers::to_string(s.device->state()) : "none", s.servo ? s.servo->rate() : 0.0,
                      s.pose.finger.x * 1e3, s.pose.finger.y * 1e3, snap.finger.x * 1e3, snap.finger.y * 1e3,
                      snap.phi * 180.0 / kPi, snap.contact ? 1 : 0, snap.depth * 1e3, std::hypot(snap.force.x, snap.force.y),
                      snap.stiffness, to_string(snap.state), to_string(snap.fault), static_cast<unsigned long long>(snap.ticks), ps.p50 * 1e6,
                      ps.p99 * 1e6, ps.max * 1e6, ps.late, ps.count);
+        // Seed 003's platform, when the device is the simulated wearable.
+        if (const auto* wd = dynamic_cast<const CursorWearableDevice*>(s.device)) {
+            const drivers::sim::WearablePlatformView v = wd->platform_view();
+            std::fprintf(stderr, " platform_roll_rad=%.17g platform_press_mm=%.17g platform_tension_n=%.17g",
+                         v.roll, v.press * 1e3, v.tension[0] + v.tension[1] + v.tension[2]);
+        }
+        std::fprintf(stderr, "\n");
     } else if (c == "layout") {
         // One line per part on screen (panels.hpp, laid_out), for the layout test.
         for (const LaidOut& p : laid_out())

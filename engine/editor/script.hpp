@@ -22,13 +22,14 @@
 //   undo  redo  fit  save PATH  open PATH  screenshot PATH  estop on|off  resize W H (px)
 //   generate block|bumps|arc
 //   wait SECONDS     frames N     wait_contact TIMEOUT_S     wait_state STATE TIMEOUT_S
-//   device mouse|sim-cld|usb:hapio|usb:falcon   device replay FILE   (switch, through the safety path)
+//   device mouse|sim-cld|sim-wearable|usb:hapio|usb:falcon   device replay FILE   (switch, through the safety path)
 //   rate HZ          (servo rate, 100..20000; restarts the servo safely)
 //   record PATH      record stop      (every servo tick to a "contactlab recording v1" file)
 //   devices          (the device menu on stderr: "script device option SPEC: available" or
 //                     "...: unavailable: WHY"; the USB bus is scanned again)
 //   report LABEL     (one line "script report LABEL: key=value ..." on stderr: device, rate, cursor,
-//                     finger, depth, force, servo state, period statistics; for tests to parse)
+//                     finger, depth, force, servo state, period statistics, and with sim-wearable
+//                     platform_roll_rad, platform_press_mm, platform_tension_n; for tests to parse)
 //   expect NAME VALUE [TOL]  (contact 0|1, segments N, contours N, any `set` parameter above (the
 //                       value its field shows), ke_effective N/m (what the servo uses, within 1),
 //                       state NAME, stopped 0|1, valid 0|1, force_above N, force_below N, undo_depth N, dirty 0|1, error 0|1: the last action's message was an error,

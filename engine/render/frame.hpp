@@ -12,6 +12,7 @@
 #include "haptics/proxy.hpp"
 #include "haptics/scene.hpp"
 
+#include <array>
 #include <optional>
 #include <string>
 
@@ -20,6 +21,15 @@ namespace contactlab::render {
 struct Overlays {
     bool cspace = false;  // the c-space obstacle boundary for the finger's phi (seed 000 Fig. 5)
     bool zones = false;   // free space split by the nearest c-space piece's kind (seed 000 Fig. 6)
+};
+
+// Seed 003's wearable platform under the pad, in side view (issue 17): where it is relative to
+// the pad and what pulls it. Drawn when a frame carries one.
+struct PlatformDrawing {
+    double roll = 0.0;    // rad, the platform's tilt from the pad's tangent, + fingertip side toward the finger
+    double press = 0.0;   // m, how far it is pressed into the pad
+    std::array<double, 3> tension{};  // N, cables 1-3 (1 and 2 proximal, 3 distal: Table 2)
+    double full_tension = 1.5;        // N: a cable arrow's full length
 };
 
 struct FrameContent {
@@ -33,6 +43,8 @@ struct FrameContent {
     bool text = false;
     // The roller's measured position on the pad (m, like l), when a device reports one.
     std::optional<double> roller_l;
+    // The wearable platform, when the device is one.
+    std::optional<PlatformDrawing> platform;
     // px of each edge covered by something else (the editor's menu bar, status rows and rulers):
     // the status line and the legend keep clear of them. 0 for offscreen pictures.
     float top_inset_px = 0.0f;

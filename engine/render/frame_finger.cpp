@@ -9,6 +9,7 @@
 #include "haptics/finger.hpp"
 
 #include <cmath>
+#include <tuple>
 
 namespace contactlab::render::parts {
 namespace {
@@ -68,6 +69,36 @@ void draw_proxy_state(const FrameContent& c, const View& view, const Theme& them
     if (o.contact || o.anticipating) out.stroke_circle(target, m.dot_radius * 1.4f, m.outline_width, theme.target);
     // The roller where the device says it is: a filled dot on the pad.
     if (c.roller_l) out.fill_disc(view.to_px(pad_point(o.finger, o.phi, c.shape, *c.roller_l)), m.dot_radius * 0.8f, theme.target);
+
+    // Seed 003's platform under the pad (side view): Table 2's B_i lie 4 mm behind and 8 mm ahead of
+    // its centre along the finger, the A_i on the nail side 11 mm behind and 15 mm ahead of the
+    // pad's middle; the cables run B -> A round the finger (drawn straight across it), each
+    // pulling with an arrow of its tension.
+    if (c.platform) {
+        const PlatformDrawing& pd = *c.platform;
+        const Vec2 t = unit_at(o.phi);
+        const Vec2 p0 = pad_point(o.finger, o.phi, c.shape, 0.0);
+        const Vec2 n_in = (o.finger - p0) / c.shape.radius;  // from the pad into the finger
+        const Vec2 centre = p0 + pd.press * n_in;
+        const Vec2 dir = std::cos(pd.roll) * t + std::sin(pd.roll) * n_in;
+        const Vec2 b_prox = centre - 0.004 * dir, b_dist = centre + 0.008 * dir;
+        const Vec2 top = o.finger + c.shape.radius * n_in;
+        const Vec2 a_prox = top - 0.011 * t, a_dist = top + 0.015 * t;
+        const Color cable = theme.finger_outline.with_alpha(150);
+        out.line(view.to_px(b_prox), view.to_px(a_prox), m.outline_width * 0.75f, cable);
+        out.line(view.to_px(b_dist), view.to_px(a_dist), m.outline_width * 0.75f, cable);
+        out.line(view.to_px(centre - 0.006 * dir), view.to_px(centre + 0.008 * dir), m.pad_width * 1.5f, theme.target);
+        const double prox = pd.tension[0] + pd.tension[1], dist = pd.tension[2];  // N
+        for (const auto& [b, a, q] : {std::tuple{b_prox, a_prox, prox}, std::tuple{b_dist, a_dist, dist}}) {
+            if (!(q > 0.0) || !(pd.full_tension > 0.0)) continue;
+            const P2 from = view.to_px(b), to_a = view.to_px(a);
+            const P2 d = to_a - from;
+            const float dl = glm::length(d);
+            if (dl < 0.5f) continue;
+            const float len = static_cast<float>(std::min(q / pd.full_tension, 1.0)) * m.arrow_full;
+            arrow(from, from + d / dl * len, m.arrow_width * 0.75f, theme.force, out);
+        }
+    }
 
     // Force on the finger, from the target site, full length at max force.
     const double f = glm::length(o.force);

@@ -2,6 +2,7 @@
 #include "engine/render/scene_render.hpp"
 
 #include "engine/render/offscreen.hpp"
+#include "haptics/wearable/contact_display.hpp"
 
 namespace contactlab::render {
 
@@ -18,6 +19,15 @@ RenderResult render_scene(const VulkanContext& ctx, const Scene& scene, const Re
     content.max_force = def.max_force;
     content.overlays = request.overlays;
     content.text = request.text;
+    if (request.wearable) {
+        const ProxyOutput& o = *content.finger;
+        const wearable::PlatformDisplayState st = wearable::platform_display_state(o.force.x, o.force.y, o.phi);
+        PlatformDrawing pd;
+        pd.roll = st.command.roll;
+        pd.press = st.command.press;
+        pd.tension = {st.tension(0), st.tension(1), st.tension(2)};
+        content.platform = pd;
+    }
 
     RenderResult result;
     result.view = default_view(content, request.width, request.height);

@@ -17,6 +17,9 @@ struct RenderRequest {
     Overlays overlays;
     Theme theme = dark_theme();
     bool text = false;  // labels (FrameContent::text); the CLI turns them on, goldens leave them off
+    // Draw seed 003's wearable platform under the pad as the servo would command it for this
+    // contact (haptics/wearable/contact_display.hpp), with the cable tensions that hold it.
+    bool wearable = false;
 };
 
 // What the frame showed besides the pixels (for messages and tests).

@@ -239,3 +239,38 @@ TEST_CASE("edit --device: the servo starts on the device asked for, or says why 
     CHECK(r.exit_code == 0);
     CHECK(contains(r.err, "missing.csv"));
 }
+
+TEST_CASE("sim-wearable in the editor: the cursor is the finger and the platform tilts to the floor under it") {
+    TempDir dir;
+    const std::string script = dir.file("wearable.txt"), shot = dir.file("wearable.png");
+    // The finger 1.5 mm into the floor and tilted by 11.46 deg (0.2 rad): the platform shows the
+    // floor sloping away from the fingertip (roll -0.2 rad) and presses 1.5 N / 2 N/mm = 0.75 mm.
+    write_text(script, std::string(kFloor) +
+                           "finger 0 40 0\n"
+                           "device sim-wearable\n"
+                           "expect device sim-wearable\n"
+                           "wait_state engaged 5\n"
+                           "finger 0 24.5 11.459155902616465\n"
+                           "wait_contact 3\n"
+                           "wait 1.5\n"
+                           "report wearable\n"
+                           "screenshot " + shot + "\n"
+                           "quit\n");
+    setenv("TMPDIR", dir.path().c_str(), 1);
+    const auto p = run_under_xvfb({"edit", "--script", script, "--software", "--validation", "--timeout", "100"});
+    INFO("stderr: " << p.err);
+    CHECK(p.exit_code == 0);
+    CHECK_FALSE(contains(p.err, "FAILED"));
+    CHECK(contains(p.err, "validation layers on, 0 messages"));
+    const auto w = report(p.err, "wearable");
+    CHECK(w.at("device") == "sim-wearable");
+    CHECK(num(w, "contact") == 1);
+    // The cursor is the finger (no kinesthetic feedback moves it).
+    CHECK(num(w, "finger_y_mm") == doctest::Approx(24.5).epsilon(1e-9));
+    MESSAGE("platform roll " << num(w, "platform_roll_rad") << " rad, press " << num(w, "platform_press_mm") << " mm");
+    // Within the position loop's and the FSR noise's ~0.02 rad (tests/drivers, curvature task).
+    CHECK(std::abs(num(w, "platform_roll_rad") + 0.2) < 0.03);
+    CHECK(num(w, "platform_press_mm") == doctest::Approx(0.75).epsilon(0.2));
+    CHECK(num(w, "platform_tension_n") > 0.0);
+    CHECK(fs::exists(shot));
+}

@@ -56,3 +56,17 @@ TEST_CASE("snapshot: light theme, tilted finger pressing the block's edge, both 
     CHECK(s.ok);
     CHECK(lavapipe().validation_messages() == 0);
 }
+
+TEST_CASE("snapshot: seed 003's wearable platform under a finger tilted on the flat floor") {
+    RenderRequest req;
+    req.width = kGoldenWidth;
+    req.height = kGoldenHeight;
+    req.finger = FingerPose{{0.0, 0.0245}, 0.2};  // 1.5 mm into the floor, tilted 0.2 rad
+    req.wearable = true;
+    const RenderResult r = render_scene(lavapipe(), load_scene("flat.json"), req);
+    CHECK(r.proxy.contact);
+    const SnapshotResult s = check_snapshot("flat_wearable", r.image);
+    INFO(s.message);
+    CHECK(s.ok);
+    CHECK(lavapipe().validation_messages() == 0);
+}

@@ -5,6 +5,8 @@
 #include "side_effects.hpp"
 #include "sim_fixture.hpp"
 
+#include "drivers/sim/sim_wearable_device.hpp"
+
 #include <doctest/doctest.h>
 
 #include <pthread.h>
@@ -56,4 +58,44 @@ TEST_CASE("100,000 servo ticks allocate nothing, lock nothing, write nothing") {
     CHECK(e.io == 0);
     CHECK(contact > 50000);  // the ticks measured were mostly in contact
     CHECK(servo.snapshot().fault_count == 0);
+}
+
+TEST_CASE("20,000 servo ticks on the simulated wearable platform allocate nothing, lock nothing, write nothing") {
+    // Seed 003's platform under the servo loop (drivers/servo_loop.cpp turns the contact into a
+    // pose): the finger presses the block's top, tilts, and lifts, twice a second; each tick runs
+    // the FSR estimation (Newton, fixed-size Eigen), the position PD and the plant's equilibrium.
+    std::vector<drivers::PathSample> samples;
+    for (int rep = 0; rep < 25; ++rep) {
+        const double t = rep * 1.0;
+        samples.push_back({t, Vec2{-0.05, 0.030}, 0.0});
+        samples.push_back({t + 0.2, Vec2{-0.05, 0.0248}, 0.0});
+        samples.push_back({t + 0.5, Vec2{-0.05, 0.0248}, 0.15});
+        samples.push_back({t + 0.8, Vec2{-0.05, 0.030}, 0.0});
+    }
+    SpscRing<drivers::TickRecord> ring(1024);
+    Scene scene = load_shipped_scene("block.json");
+    drivers::sim::SimWearableDevice dev({}, drivers::HandPath(std::move(samples)));
+    ServoTick servo(drivers::servo_config_for(dev, 1000.0), ServoParams{});
+    servo.scenes().publish(std::make_unique<ServoScene>(scene));
+    drivers::ServoLoop loop(dev, servo, 1e-3, &ring);
+    REQUIRE(loop.start());
+    drivers::TickRecord r;
+    loop.step(1e-3, false);
+    while (ring.try_pop(r)) {}
+
+    reset_side_effects();
+    long contact = 0;
+    count_all_threads(true);
+    for (int k = 0; k < 20000; ++k) {
+        loop.step(1e-3, false);
+        while (ring.try_pop(r)) contact += r.contact ? 1 : 0;
+    }
+    count_all_threads(false);
+    const SideEffects e = side_effects();
+    CHECK(e.allocs == 0);
+    CHECK(e.frees == 0);
+    CHECK(e.locks == 0);
+    CHECK(e.io == 0);
+    CHECK(contact > 5000);
+    CHECK(dev.state() != drivers::DeviceState::fault);
 }

@@ -69,6 +69,7 @@ struct HapioEmulator::Impl {
     int corrupt_left = 0;
     std::uint16_t seq = 0, ack = 0, faults = 0, rejected = 0;
     std::array<std::int32_t, 4> encoders{};
+    std::array<std::uint16_t, 4> adc{};
     Command last;
     std::uint64_t applied = 0, rejected_total = 0, frames = 0, clear_halts = 0, discards = 0;
     double next_frame = 0.0;
@@ -88,9 +89,10 @@ struct HapioEmulator::Impl {
     void fill_state(Urb u) {
         State s;
         s.sequence = ++seq;
-        s.encoders = 4;
-        s.analog = 0;
-        s.motors = 3;
+        s.encoders = cfg.info.encoders;  // the channels the board said it has (GET_INFO)
+        s.analog = cfg.info.analog;
+        s.motors = cfg.info.motors;
+        s.adc = adc;
         s.time_us = static_cast<std::uint32_t>((seconds() - t0) * 1e6);
         s.encoder = encoders;
         s.status = static_cast<std::uint16_t>((streaming ? kStatusStreaming : 0) | (motors_on ? kStatusMotorsOn : 0));
@@ -433,6 +435,10 @@ void HapioEmulator::deny_permission() {
 void HapioEmulator::set_encoders(const std::array<std::int32_t, 4>& c) {
     std::lock_guard<std::mutex> lock(impl_->mu);
     impl_->encoders = c;
+}
+void HapioEmulator::set_adc(const std::array<std::uint16_t, 4>& counts) {
+    std::lock_guard<std::mutex> lock(impl_->mu);
+    impl_->adc = counts;
 }
 void HapioEmulator::set_faults(std::uint16_t f) {
     std::lock_guard<std::mutex> lock(impl_->mu);

@@ -41,6 +41,7 @@ public:
 
     // Firmware inputs.
     void set_encoders(const std::array<std::int32_t, 4>& counts);
+    void set_adc(const std::array<std::uint16_t, 4>& counts);  // analog channels (model 2: the FSRs)
     void set_faults(std::uint16_t faults);
     void stall_next_in();                  // the next IN transfer ends with a STALL handshake
     void set_silent(bool silent);          // stop answering IN transfers (host sees timeouts)

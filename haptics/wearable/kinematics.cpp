@@ -1,0 +1,122 @@
+// kinematics.cpp — eqs. 1-4 of seed 003 and the 3-DoF forward kinematics (see kinematics.hpp).
+#include "haptics/wearable/kinematics.hpp"
+
+#include <Eigen/LU>
+
+#include <cmath>
+
+namespace contactlab::wearable {
+
+namespace {
+constexpr double min_chord = 1e-9;  // m: shorter and d_i has no direction
+}
+
+const char* to_string(IkStatus s) noexcept {
+    switch (s) {
+        case IkStatus::ok: return "ok";
+        case IkStatus::non_finite_pose: return "the pose is not finite";
+        case IkStatus::cable_cannot_wrap: return "the chord is at least the finger's diameter 2 R_i (eq. 2 undefined)";
+        case IkStatus::zero_chord: return "A_i and B_i coincide (zero chord)";
+    }
+    return "?";
+}
+
+const char* to_string(FkStatus s) noexcept {
+    switch (s) {
+        case FkStatus::ok: return "ok";
+        case FkStatus::ik_failed: return "an iterate left the workspace (inverse kinematics failed)";
+        case FkStatus::singular: return "the Jacobian of the actuated freedoms is singular";
+        case FkStatus::not_converged: return "Newton's method did not converge";
+    }
+    return "?";
+}
+
+IkResult inverse_kinematics(const PlatformDef& def, const Pose& xi) noexcept {
+    IkResult out;
+    if (!xi.allFinite()) return out;
+    const Eigen::Matrix3d rot = rotation(xi);
+    const Vec3 p = xi.head<3>();
+    const Vec3 normal = rot.col(2);  // z of S_1
+    for (int i = 0; i < 3; ++i) {
+        CableGeometry& c = out.cables[i];
+        c.r = rot * def.b[i];
+        c.b = p + c.r;
+        c.d = c.b - def.a[i];
+        c.q = c.d.norm();  // eq. 1
+        if (!(c.q > min_chord)) {
+            out.status = IkStatus::zero_chord;
+            out.cable = i;
+            return out;
+        }
+        const double ratio = c.q / (2.0 * def.finger_radius[i]);
+        if (!(ratio < 1.0)) {
+            out.status = IkStatus::cable_cannot_wrap;
+            out.cable = i;
+            return out;
+        }
+        c.s = c.d / c.q;
+        c.l = 2.0 * def.finger_radius[i] * std::asin(ratio);  // eq. 2
+        c.dl_dq = 1.0 / std::sqrt(1.0 - ratio * ratio);       // d(eq. 2)/dq
+        c.cos_theta = std::abs(c.s.dot(normal));                // eq. 7's cos(theta_i)
+        out.q(i) = c.q;
+        out.l(i) = c.l;
+    }
+    out.status = IkStatus::ok;
+    return out;
+}
+
+Mat36 jacobian_p(const IkResult& ik) noexcept {
+    Mat36 j = Mat36::Zero();
+    if (ik.status != IkStatus::ok) return j;
+    for (int i = 0; i < 3; ++i) {
+        const CableGeometry& c = ik.cables[i];
+        j.block<1, 3>(i, 0) = c.s.transpose();
+        j.block<1, 3>(i, 3) = c.r.cross(c.s).transpose();  // eq. 3: s . (omega x r) = omega . (r x s)
+    }
+    return j;
+}
+
+Mat36 jacobian_l(const IkResult& ik) noexcept {
+    Mat36 j = jacobian_p(ik);
+    for (int i = 0; i < 3; ++i) j.row(i) *= ik.cables[i].dl_dq;  // eq. 4 by the chain rule on eq. 2
+    return j;
+}
+
+FkResult forward_kinematics(const PlatformDef& def, const Eigen::Vector3d& l, const Pose& guess,
+                            const FkDef& fk) noexcept {
+    FkResult out;
+    out.xi = guess;
+    if (!l.allFinite() || !guess.allFinite()) {
+        out.status = FkStatus::ik_failed;
+        return out;
+    }
+    constexpr int actuated[3] = {2, 3, 4};  // p_z, alpha, beta
+    for (out.iterations = 0; out.iterations <= fk.max_iterations; ++out.iterations) {
+        const IkResult ik = inverse_kinematics(def, out.xi);
+        if (ik.status != IkStatus::ok) {
+            out.status = FkStatus::ik_failed;
+            return out;
+        }
+        const Eigen::Vector3d err = ik.l - l;
+        out.residual = err.cwiseAbs().maxCoeff();
+        if (out.residual <= fk.tolerance) {
+            out.status = FkStatus::ok;
+            return out;
+        }
+        if (out.iterations == fk.max_iterations) break;
+        const Mat36 jxi = jacobian_l(ik) * euler_rate_map(out.xi);  // dl / dxi
+        Eigen::Matrix3d a;
+        for (int k = 0; k < 3; ++k) a.col(k) = jxi.col(actuated[k]);
+        const Eigen::FullPivLU<Eigen::Matrix3d> lu(a);
+        if (!lu.isInvertible()) {
+            out.status = FkStatus::singular;
+            return out;
+        }
+        const Eigen::Vector3d step = lu.solve(err);
+        for (int k = 0; k < 3; ++k) out.xi(actuated[k]) -= step(k);
+    }
+    out.status = FkStatus::not_converged;
+    return out;
+}
+
+}  // namespace contactlab::wearable
