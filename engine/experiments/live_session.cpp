@@ -79,7 +79,10 @@ void LiveSession::answer(const LiveTrialResult& r) {
     const bool judged = !protocol_.answers.empty();
     if (judged && std::find(protocol_.answers.begin(), protocol_.answers.end(), r.response) == protocol_.answers.end()) {
         std::string set;
-        for (const std::string& a : protocol_.answers) set += (set.empty() ? "" : ", ") + a;
+        for (const std::string& a : protocol_.answers) {
+            if (!set.empty()) set += ", ";
+            set += a;
+        }
         throw ExperimentError("answer \"" + r.response + "\" is not one of " + set);
     }
     const PlannedTrial t = trial();
@@ -102,7 +105,7 @@ void LiveSession::answer(const LiveTrialResult& r) {
                                     std::to_string(r.contact_breaks),
                                     fmt(r.peak_force, "%.4f"),
                                     c.contact_location ? "1" : "0"};
-    if (protocol_.task == Task::contour_following) row[9] = r.contact_breaks > 0 ? "1" : "0";
+    if (protocol_.task == Task::contour_following && r.contact_breaks > 0) row[9] = std::string("1");  // failed
     if (protocol_.task == Task::surface_orientation) {
         row.push_back(fmt(c.eccentricity, "%g"));
         row.push_back(fmt(c.total_stiffness * 1e-3, "%g"));

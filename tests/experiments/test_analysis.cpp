@@ -23,8 +23,8 @@ std::string table_one_csv() {
     s << "participant,condition,trial,stimulus,response,correct,valid,warmup\n";
     int trial = 0;
     auto rows = [&](const char* stim, const char* resp, int n, int correct, int valid, int warmup) {
-        for (int i = 0; i < n; ++i)
-            s << "p" << (trial % 5) << ",e0.40 k0.75," << trial++ << "," << stim << "," << resp << "," << correct << ","
+        for (int i = 0; i < n; ++i, ++trial)
+            s << "p" << (trial % 5) << ",e0.40 k0.75," << trial << "," << stim << "," << resp << "," << correct << ","
               << valid << "," << warmup << "\n";
     };
     rows("45", "A", 41, 1, 1, 0);

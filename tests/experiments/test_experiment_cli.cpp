@@ -16,8 +16,8 @@ TEST_CASE("experiment analyze: seed 004 Table I from a results file, as JSON and
     std::string csv = "participant,condition,trial,stimulus,response,correct,valid,warmup,e,k\n";
     int trial = 0;
     auto rows = [&](const char* stim, const char* resp, int n, int correct, const char* e) {
-        for (int i = 0; i < n; ++i)
-            csv += "p" + std::to_string(trial % 5) + ",e" + e + "," + std::to_string(trial++) + "," + stim + "," + resp + "," +
+        for (int i = 0; i < n; ++i, ++trial)
+            csv += "p" + std::to_string(trial % 5) + ",e" + e + "," + std::to_string(trial) + "," + stim + "," + resp + "," +
                    std::to_string(correct) + ",1,0," + e + ",0.75\n";
     };
     rows("45", "A", 41, 1, "0.40");
