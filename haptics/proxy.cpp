@@ -51,6 +51,12 @@ constexpr double kMaxCornerPushFactor = 64.0;
 // Free-space anticipation first looks this far (m) beyond the nearest a piece can be: far enough
 // that a flat or gently curved surface's nearest piece is found in the first gather.
 constexpr double kAnticipationReachMargin = 1e-3;
+// Warm start (Proxy::update): the gather about the last proxy reaches at least this far (m), so a
+// finger held still or creeping gathers the pieces within a few tens of micrometres...
+constexpr double kWarmStartFloor = 2e-5;
+// ...and the path must stay this far (m) inside it: far above every tolerance a piece is judged
+// with (kOnTolerance, kBoxSlack), far below the distances the proxy moves.
+constexpr double kWarmStartMargin = 1e-6;
 // Boxes used to reject pieces far from a walk step are grown by this much (m), well beyond every
 // tolerance the entry tests accept (kOnTolerance along a piece, t_slack along the motion).
 constexpr double kBoxSlack = 1e-8;
@@ -143,6 +149,9 @@ void Proxy::reset(Vec2 finger, double phi) {
     phi_ = phi;
     initialised_ = true;
     active_count_ = 0;
+    last_finger_ = finger;
+    last_finger_motion_ = Vec2{0.0};
+    last_motion_ = Vec2{0.0};
 }
 
 void Proxy::place(Vec2 proxy, double phi, double max_push) {
@@ -167,31 +176,35 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
     const double max_push = dphi > 0.0 ? 2.0 * R * std::sin(0.5 * dphi) * (1.0 + 1e-9) + kOnTolerance
                                         : 0.0;
     // Every position the motion can visit lies within |proxy - finger| of the finger, and every
-    // piece lies within R of its segment: those segments are all we need.
+    // piece lies within R of its segment: those segments are all we need (the full gather).
     const double reach = glm::length(proxy_ - finger) + max_push;
-    gather_for_motion(finger, phi, reach + kOnTolerance);
-
-    // Re-project continuously: rotate in sub-steps whose pad-end chord is at most a quarter of
-    // the scene's smallest feature, pushing the proxy out after each. A push is only ever as deep
-    // as one sub-step's chord, so it always exits through the face the pad was touching and never
-    // through the far side of a thin wall (which a single large rotation could reach).
-    if (max_push > 0.0) {
-        const double chord_step = std::clamp(0.25 * env_->min_feature, kMinRotationChord, kMaxRotationChord);
-        const int steps = std::clamp(static_cast<int>(std::ceil(max_push / chord_step)), 1, kMaxRotationSteps);
-        const double sub_push = 2.0 * R * std::sin(0.5 * dphi / steps) * (1.0 + 1e-9) + kOnTolerance;
-        work_.rotation_steps = steps;
-        for (int k = 1; k <= steps; ++k) {
-            build_pieces(k == steps ? phi : phi_ + turn * k / steps);
-            depenetrate(sub_push);
-        }
-    } else {
-        work_.rotation_steps = 0;
-        build_pieces(phi);
+    const Vec2 start = proxy_;
+    work_.warm_start = false;
+    // Warm start (contact tracing): the proxy rarely moves far in a tick, so first gather only the
+    // pieces near where it is, and move it. The motion's result depends only on pieces within a
+    // hair of the path it took (entries along it, pieces through its corners and its end, pushes
+    // of at most max_push): if the whole path stayed well inside the gathered disc, every piece
+    // left out was irrelevant and the result is the full gather's, bit for bit. Otherwise (the
+    // proxy slid further than expected) the tick is done again with the full gather. Under a pad
+    // pressed 1 mm into a densely sampled contour this is the few dozen segments the proxy slides
+    // over instead of the hundreds within a millimetre of the finger (issue 18).
+    // The summed force law looks for every surface the finger has entered (apply_force_law),
+    // anywhere within reach: it keeps the full gather.
+    const bool local_allowed = def_.use_index && def_.law.contacts != ContactForce::sum;
+    const WarmDisc warm = local_allowed ? warm_start_disc(finger, max_push) : WarmDisc{start, reach};
+    if (warm.radius < reach) {
+        gather_near(warm.center, phi_, phi, warm.radius, warm.radius);
+        move_proxy(finger, phi, turn, max_push, start, warm.center);
+        work_.warm_start = path_extent_ + 2.0 * max_push + kWarmStartMargin <= warm.radius;
+        if (!work_.warm_start) proxy_ = start;
     }
-    // Boxes of the final pieces only: the walk is the one user (not the re-projection sub-steps).
-    piece_boxes_.clear();
-    for (const CPiece& piece : pieces_) piece_boxes_.push_back(piece_box(piece).grown(kBoxSlack));
-    proxy_ = walk(proxy_, finger);
+    if (!work_.warm_start) {
+        gather_for_motion(finger, phi, reach + kOnTolerance);
+        move_proxy(finger, phi, turn, max_push, start, start);
+    }
+    last_finger_motion_ = finger - last_finger_;
+    last_finger_ = finger;
+    last_motion_ = proxy_ - start;
     phi_ = phi;
     // A finger within rounding of the boundary is touching, not pressing: call it free, so that
     // contact does not flicker with the frame's rounding (at 1 km from the origin coordinates
@@ -220,6 +233,54 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
     }
     return out_;
 }
+
+// The disc the warm-start gather covers: the proxy is expected to move as it did last tick (it
+// slides about as the finger does), so the disc spans that predicted motion from the last proxy,
+// with slack of half the motion and of what the finger's own motion changed by, a floor for a
+// finger held still, and the pushes of a turn. A guess: a miss costs a second gather, never
+// accuracy (Proxy::update checks the path against the disc).
+Proxy::WarmDisc Proxy::warm_start_disc(Vec2 finger, double max_push) const {
+    const Vec2 finger_motion = finger - last_finger_;  // m, this tick
+    const double predicted = glm::length(last_motion_);
+    const double slack = 0.5 * std::max(predicted, glm::length(finger_motion)) +
+                         glm::length(finger_motion - last_finger_motion_);
+    return {proxy_ + 0.5 * last_motion_,
+            0.5 * predicted + slack + kWarmStartFloor + 2.0 * max_push + kWarmStartMargin};
+}
+
+// Turns the pad from phi_ to phi (re-projecting) and walks the proxy from `start` toward the
+// finger, on the pieces of segment_ids_; path_extent_ is how far from `center` the path went.
+void Proxy::move_proxy(Vec2 finger, double phi, double turn, double max_push, Vec2 start, Vec2 center) {
+    const double R = def_.finger.radius;
+    const double dphi = std::abs(turn);
+    path_center_ = center;
+    path_extent_ = 0.0;
+    proxy_ = start;
+    // Re-project continuously: rotate in sub-steps whose pad-end chord is at most a quarter of
+    // the scene's smallest feature, pushing the proxy out after each. A push is only ever as deep
+    // as one sub-step's chord, so it always exits through the face the pad was touching and never
+    // through the far side of a thin wall (which a single large rotation could reach).
+    if (max_push > 0.0) {
+        const double chord_step = std::clamp(0.25 * env_->min_feature, kMinRotationChord, kMaxRotationChord);
+        const int steps = std::clamp(static_cast<int>(std::ceil(max_push / chord_step)), 1, kMaxRotationSteps);
+        const double sub_push = 2.0 * R * std::sin(0.5 * dphi / steps) * (1.0 + 1e-9) + kOnTolerance;
+        work_.rotation_steps = steps;
+        for (int k = 1; k <= steps; ++k) {
+            build_pieces(k == steps ? phi : phi_ + turn * k / steps);
+            depenetrate(sub_push);
+        }
+    } else {
+        work_.rotation_steps = 0;
+        build_pieces(phi);
+    }
+    // Boxes of the final pieces only: the walk is the one user (not the re-projection sub-steps).
+    piece_boxes_.clear();
+    for (const CPiece& piece : pieces_) piece_boxes_.push_back(piece_box(piece).grown(kBoxSlack));
+    proxy_ = walk(proxy_, finger);
+}
+
+void Proxy::note_path(Vec2 p) { path_extent_ = std::max(path_extent_, glm::length(p - path_center_)); }
+void Proxy::note_path_box(const Aabb& box) { path_extent_ = std::max(path_extent_, box.max_distance_to(path_center_)); }
 
 // The segments whose c-space pieces can come within `reach` (m) of the finger while the pad turns
 // from phi_ to phi: every piece the walk and the re-projection can meet. Pad-interior and vertex
@@ -303,6 +364,7 @@ void Proxy::depenetrate(double max_push) {
         if (a < 0) return;
         const CPiece& pa = pieces_[a];
         const Vec2 pushed = proxy_ + depth * piece_normal_at(pa, proxy_);
+        note_path(pushed);
         double depth_b = 0.0;
         const int b = deepest_behind(pushed, a, depth_b);
         if (b < 0) {
@@ -324,6 +386,7 @@ void Proxy::depenetrate(double max_push) {
         }
         // A corner far beyond what the pieces moved belongs to another branch of the circles.
         if (converged && glm::length(x - proxy_) <= kMaxCornerPushFactor * max_push) {
+            note_path(x);
             proxy_ = x;
         } else {
             proxy_ = pushed;
@@ -421,7 +484,11 @@ Vec2 Proxy::walk(Vec2 p, Vec2 goal) {
                 active_count_ = 1;
                 return proxy_;
             }
-            if (!hit.found) return goal;  // free motion all the way
+            if (!hit.found) {  // free motion all the way
+                note_path(goal);
+                return goal;
+            }
+            note_path(hit.point);
             proxy_ = hit.point;
             active_[0] = hit.piece;
             active_count_ = 1;
@@ -455,14 +522,19 @@ Vec2 Proxy::walk(Vec2 p, Vec2 goal) {
             hit = first_entry_line(proxy_, foot.point, current, -1);
         } else {
             hit = first_entry_arc(piece, s0, foot.param, current);
+            // The slide follows the circle, which may bulge beyond both its ends.
+            note_path_box(arc_bounds(piece.center, piece.radius, piece.span.start + std::min(s0, foot.param),
+                                     std::abs(foot.param - s0)));
         }
         if (hit.found) {  // slid into another piece: a corner
+            note_path(hit.point);
             proxy_ = hit.point;
             active_[1] = hit.piece;
             active_count_ = 2;
             continue;
         }
         const double step = glm::length(foot.point - proxy_);
+        note_path(foot.point);
         proxy_ = foot.point;
         if (!foot.clamped) return proxy_;  // resting on this piece: one contact
         // Reached the piece's end: the boundary continues on a neighbouring piece, which a

@@ -55,6 +55,9 @@ struct ProxyWork {
     int rotation_steps = 0;  // re-projection sub-steps for a change of phi (<= kProxyMaxRotationSteps)
     int segments = 0;        // scene segments gathered near the motion
     int pieces = 0;          // c-space pieces built from them at the final angle
+    // The warm-start gather about the last proxy sufficed (Proxy::update); false when the full
+    // gather about the finger was used (the proxy went further than guessed, or summed forces).
+    bool warm_start = false;
 };
 
 struct ProxyOutput {
@@ -108,6 +111,14 @@ private:
     // within `end_reach` of the pad's ends between the two angles.
     void gather_near(Vec2 finger, double phi_from, double phi_to, double reach, double end_reach);
     void build_pieces(double phi);                         // pieces_ of segment_ids_ at phi
+    struct WarmDisc {
+        Vec2 center{0.0};    // m
+        double radius = 0.0; // m
+    };
+    WarmDisc warm_start_disc(Vec2 finger, double max_push) const;
+    void move_proxy(Vec2 finger, double phi, double turn, double max_push, Vec2 start, Vec2 center);
+    void note_path(Vec2 p);               // the motion visited p: widen path_extent_
+    void note_path_box(const Aabb& box);  // ... every point of box
     void depenetrate(double max_push);
     bool handed_over(int i, Vec2 at, Vec2 t, int ended = -1) const;
     bool inside_or_past_concave_end(const CPiece& piece, double param, double reach) const;
@@ -140,6 +151,12 @@ private:
     Vec2 stiction_{0.0};          // m
     double previous_depth_ = 0.0; // m, for damping
     ProxyWork work_;              // this tick's, copied into out_
+    // Warm start (Proxy::update): the centre of the gathered disc, and how far from it the path went (m).
+    Vec2 path_center_{0.0};
+    double path_extent_ = 0.0;
+    Vec2 last_finger_{0.0};         // m, the finger at the last tick
+    Vec2 last_finger_motion_{0.0};  // m, how the finger moved in the last tick
+    Vec2 last_motion_{0.0};         // m, how the proxy moved in the last tick
 };
 
 }  // namespace contactlab

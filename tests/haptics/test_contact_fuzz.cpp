@@ -4,8 +4,10 @@
 // run over seeded random scenes (haptics/verify/contact_fuzz.hpp: the proxy's pad never inside a
 // solid by more than 1e-7 m; a hand pad more than 10 um inside means contact, at least as deep,
 // with F = Ke (x_fd - x_f)), then every failure the soak has found, as a named regression case.
+#include "haptics/proxy.hpp"
 #include "haptics/scene_io.hpp"
 #include "haptics/verify/contact_fuzz.hpp"
+#include "haptics/verify/random_contact_scenes.hpp"
 #include "haptics/verify/solid_reference.hpp"
 #include "scene_builders.hpp"
 
@@ -116,6 +118,43 @@ TEST_CASE("contact fuzz: the proxy never lets the pad into a solid nor loses a p
     CHECK(r.max_hand_depth > 0.01);
     CHECK(r.max_proxy_penetration <= kMaxProxyPenetration);
     CHECK(r.total_violations() == 0);
+}
+
+TEST_CASE("warm start: on seeded random scenes the proxy is bit for bit the one a search of every segment gives") {
+    // Proxy::update first gathers only the pieces near the last proxy (issue 18) and keeps that
+    // answer only if the whole path stayed inside; else it redoes the tick with the full gather.
+    // Checked against a proxy with use_index = false (every segment's pieces, every tick) on the
+    // soak's own scenes: stars of lines, arcs and curves, thin walls, terrains, hands pushed
+    // centimetres in, sliding and turning.
+    int rows = 0, contact_rows = 0, warm_rows = 0, cold_rows = 0;
+    for (std::uint64_t index = 0; index < 6; ++index) {
+        const ContactCase c = make_contact_case(case_seed(3, index));
+        const Environment env = build_environment(c.scene);
+        ProxyDef def = proxy_def_of(c.scene);
+        Proxy warm(env, def);
+        def.use_index = false;
+        Proxy brute(env, def);
+        CAPTURE(c.seed);
+        CAPTURE(c.summary);
+        warm.reset(c.path.front().finger, c.path.front().phi);
+        brute.reset(c.path.front().finger, c.path.front().phi);
+        for (const HandSample& h : c.path) {
+            const ProxyOutput a = warm.update(h.finger, h.phi);
+            const ProxyOutput& b = brute.update(h.finger, h.phi);
+            ++rows;
+            REQUIRE(a.proxy == b.proxy);
+            REQUIRE(a.force == b.force);
+            REQUIRE(a.l_d == b.l_d);
+            REQUIRE(a.contact_count == b.contact_count);
+            if (!a.contact) continue;
+            ++contact_rows;
+            (a.work.warm_start ? warm_rows : cold_rows) += 1;
+        }
+    }
+    MESSAGE(rows, " rows, ", contact_rows, " in contact: ", warm_rows, " by the warm start, ", cold_rows, " again in full");
+    CHECK(contact_rows > rows / 3);
+    CHECK(warm_rows > contact_rows / 2);
+    CHECK(cold_rows > 0);
 }
 
 // The generator's scenes are simple: no contour crosses itself. Two neighbouring segments that

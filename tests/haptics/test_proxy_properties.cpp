@@ -262,8 +262,8 @@ TEST_CASE("anticipation through the index finds exactly the piece a search of ev
 
 TEST_CASE("in contact the index gathers every piece that matters: the same proxy as a search of every segment") {
     // The motion gathers segments whose R-offset can come within reach of the finger, and those
-    // near the pad's ends (Proxy::gather_for_motion). A proxy with use_index = false builds every
-    // segment's pieces. Strokes back and forth pressed in at random depths, the finger rocking and
+    // near the pad's ends (Proxy::gather_for_motion), first only near the last proxy (the warm
+    // start). A proxy with use_index = false builds every segment's pieces. Strokes back and forth pressed in at random depths, the finger rocking and
     // sometimes jumping, over a dense sinusoid, the block and the mixed scene: same proxy, force, l_d.
     int scene_index = 0;
     std::mt19937_64 rng(11);
@@ -276,7 +276,7 @@ TEST_CASE("in contact the index gathers every piece that matters: the same proxy
         brute.reset({-0.17, 0.1}, 0.0);
         Vec2 x{-0.17, 0.1};
         double phi = 0.0;
-        int contacts = 0;
+        int contacts = 0, warm = 0, cold = 0;
         for (int k = 0; k < 4000; ++k) {
             // Mostly small steps along and into the surface; every 50th tick a jump.
             const bool jump = k % 50 == 49;
@@ -288,12 +288,18 @@ TEST_CASE("in contact the index gathers every piece that matters: the same proxy
             const ProxyOutput& b = brute.update(x, phi);
             REQUIRE(a.contact == b.contact);
             contacts += a.contact ? 1 : 0;
-            CHECK(glm::length(a.proxy - b.proxy) <= 1e-12);
-            CHECK(glm::length(a.force - b.force) <= 1e-9);
-            CHECK(std::abs(a.l_d - b.l_d) <= 1e-12);
+            // The warm start (pieces near the last proxy only) either gives the full gather's
+            // answer bit for bit or is done again with the full gather (Proxy::update).
+            if (a.contact) (a.work.warm_start ? warm : cold) += 1;
+            CHECK(a.proxy == b.proxy);
+            CHECK(a.force == b.force);
+            CHECK(a.l_d == b.l_d);
         }
         CAPTURE(scene_index++);
         CHECK(contacts > 1000);
+        // Both paths are exercised: most ticks in contact keep to the warm start, the jumps miss it.
+        CHECK(warm > contacts / 2);
+        CHECK(cold > 20);
     }
 }
 
