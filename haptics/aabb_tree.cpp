@@ -48,6 +48,12 @@ int AabbTree::build(const std::vector<Aabb>& boxes, const std::vector<NormalCone
     }
     nodes_[index].box = box;
     nodes_[index].normals = cone;
+    if (cone.width >= 0.0 && cone.width < kPi) {
+        nodes_[index].cone_from = unit_at(cone.start);
+        nodes_[index].cone_to = unit_at(cone.start + cone.width);
+        for (int k = 0; k < 4; ++k)
+            if (wrap_2pi(0.5 * kPi * k - cone.start) <= cone.width) nodes_[index].cone_axes |= std::uint8_t(1u << k);
+    }
     if (count <= kLeafSize) {
         nodes_[index].first = first;
         nodes_[index].count = count;
@@ -107,9 +113,17 @@ void AabbTree::query_offset_reach(Vec2 p, double r, double reach, std::vector<in
         if (n.box.distance_to(p) > r + reach) continue;
         if (n.normals.width < kPi) {
             // q + r n within reach of p  <=>  q within reach of p - r n: the node's box must come
-            // within reach of the arc of points p - r n, n in the cone (p + r n for side -1).
-            const double turn = side > 0.0 ? kPi : 0.0;
-            if (arc_bounds(p, r, n.normals.start + turn, n.normals.width).gap_to(n.box) > reach) continue;
+            // within reach of the arc of points p - r n, n in the cone (p + r n for side -1). The
+            // arc's box holds its ends and the axis extremes it passes (arc_bounds, without trig).
+            const double s = side > 0.0 ? -r : r;  // m: p + s n
+            Aabb arc;
+            arc.grow(p + s * n.cone_from);
+            arc.grow(p + s * n.cone_to);
+            if (n.cone_axes & 1u) arc.grow(p + Vec2{s, 0.0});
+            if (n.cone_axes & 2u) arc.grow(p + Vec2{0.0, s});
+            if (n.cone_axes & 4u) arc.grow(p - Vec2{s, 0.0});
+            if (n.cone_axes & 8u) arc.grow(p - Vec2{0.0, s});
+            if (arc.gap_to(n.box) > reach) continue;
         } else if (n.box.max_distance_to(p) < r - reach) {
             continue;  // every q within r - reach of p: |q + r n - p| >= r - |q - p| > reach
         }

@@ -85,6 +85,11 @@ private:
     struct Node {
         Aabb box;
         NormalCone normals;  // of every item below; full when the tree has no cones
+        // The cone's end directions and which axis directions (bit k: angle k pi/2) it holds,
+        // computed once at build: query_offset_reach bounds the cone's arc with no sine, cosine
+        // or fmod per node visited (they were a quarter of a dense contour's tick).
+        Vec2 cone_from{1.0, 0.0}, cone_to{1.0, 0.0};
+        std::uint8_t cone_axes = 0;
         int left = -1;   // child node index; -1 for a leaf
         int right = -1;
         int first = 0;   // leaf: items_[first, first + count)

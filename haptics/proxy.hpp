@@ -146,6 +146,7 @@ private:
     std::vector<int> segment_ids_;
     std::vector<CPiece> pieces_;
     std::vector<Aabb> piece_boxes_;  // each piece's box grown by kBoxSlack: cheap rejection per walk step
+    std::vector<Aabb> group_boxes_;  // the box of each run of kPieceGroup consecutive piece_boxes_
     int contact_pieces_[4] = {-1, -1, -1, -1};  // the piece behind each reported contact
     bool has_stiction_ = false;   // friction: a stiction point is held
     Vec2 stiction_{0.0};          // m
