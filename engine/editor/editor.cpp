@@ -211,6 +211,8 @@ int run_editor(const EditorOptions& o) {
     render::VulkanContext ctx(copt, wsup);
     Surface surface(ctx.instance(), window);
     WindowTarget target(ctx, surface.handle(), o.vsync);
+    // --frames measures: rasterising is timed apart from presenting (window_target.hpp).
+    target.set_stage_timing(o.frames > 0 && !scripted);
     int fbw = 0, fbh = 0;
     window.framebuffer_size(fbw, fbh);
     target.prepare(fbw, fbh);
@@ -246,7 +248,10 @@ int run_editor(const EditorOptions& o) {
     // Drawing: the environment of the last valid scene, rebuilt when it changes.
     std::unique_ptr<Environment> env = std::make_unique<Environment>(build_environment(s.doc.last_valid()));
     std::uint64_t env_revision = s.doc.revision();
-    render::DrawList list(o.width, o.height);
+    // The frame's two draw lists (frame.hpp's layers): the scene under everything, the rest over it.
+    render::DrawList scene_list(o.width, o.height), overlay_list(o.width, o.height);
+    FrameStages stages;
+    s.stages = &stages;
     const render::Theme& theme = render::dark_theme();
     FrameTimer timer;
     double window_open_ms = -1.0;
@@ -261,8 +266,10 @@ int run_editor(const EditorOptions& o) {
     // written to the recovery file before the error is reported.
     const auto frame_loop = [&] {
         while (!s.quit && !window.should_close()) {
-            glfwPollEvents();
             const Clock::time_point t_frame = Clock::now();
+            StageTimer events_timer(&stages, Stage::events);
+            glfwPollEvents();
+            events_timer.stop();
             window.framebuffer_size(fbw, fbh);
             if (!target.prepare(fbw, fbh)) {  // minimised: nothing to draw into
                 glfwWaitEventsTimeout(0.05);
@@ -276,6 +283,7 @@ int run_editor(const EditorOptions& o) {
             s.camera.resize(static_cast<int>(ext.width), static_cast<int>(ext.height));
 
             // UI: ImGui frame, then the canvas (real input, or the script's actions).
+            StageTimer ui_timer(&stages, Stage::ui);
             imgui.new_frame();
             s.now = since(t_loop);
             if (scripted) {
@@ -295,7 +303,10 @@ int run_editor(const EditorOptions& o) {
             // The fixed parts' px (ImGui units times the framebuffer scale).
             const float ui_scale = ImGui::GetIO().DisplayFramebufferScale.y;
             const EditorLayout layout = current_layout();
+            ui_timer.stop();
+            StageTimer imgui_timer(&stages, Stage::imgui);
             imgui.render();
+            imgui_timer.stop();
 
             // Title: the file and whether it has unsaved changes.
             const std::string title = "ContactLab editor - " +
@@ -308,6 +319,7 @@ int run_editor(const EditorOptions& o) {
 
             // Servo: a changed valid scene is published (built here, off the servo thread); Ke, max
             // force and roller gains go as parameters (slew-limited by the servo).
+            StageTimer servo_timer(&stages, Stage::servo_sync);
             LiveServo& servo = *s.servo;
             if (published_to != host.generation()) {
                 published_to = host.generation();
@@ -351,7 +363,10 @@ int run_editor(const EditorOptions& o) {
                 }
             }
 
+            servo_timer.stop();
+
             // Frame: the shared scene drawer, then the editor's marks.
+            StageTimer scene_timer(&stages, Stage::scene_geometry);
             if (s.doc.valid() && env_revision != s.doc.revision()) {
                 env = std::make_unique<Environment>(build_environment(s.doc.scene()));
                 env_revision = s.doc.revision();
@@ -386,20 +401,31 @@ int run_editor(const EditorOptions& o) {
             content.left_inset_px = layout.canvas_left * ui_scale;
             content.bottom_inset_px = layout.canvas_bottom * ui_scale;
             shown_proxy = content.finger;
-            if (list.width() != static_cast<int>(ext.width) || list.height() != static_cast<int>(ext.height))
-                list = render::DrawList(static_cast<int>(ext.width), static_cast<int>(ext.height));
-            render::build_frame(content, s.camera.view(), theme, list);
-            draw_canvas_marks(s, theme, list);
-            draw_rulers(s.camera.view(), layout.top_ruler.y * ui_scale, theme, list);
+            const int w = static_cast<int>(ext.width), h = static_cast<int>(ext.height);
+            if (scene_list.width() != w || scene_list.height() != h) {
+                scene_list = render::DrawList(w, h);
+                overlay_list = render::DrawList(w, h);
+            }
+            scene_list.clear();
+            render::build_scene_layer(content, s.camera.view(), theme, scene_list);
+            scene_timer.stop();
+            StageTimer overlay_timer(&stages, Stage::overlays);
+            overlay_list.clear();
+            render::build_overlay_layer(content, s.camera.view(), theme, overlay_list);
+            draw_canvas_marks(s, theme, overlay_list);
+            draw_rulers(s.camera.view(), layout.top_ruler.y * ui_scale, theme, overlay_list);
+            overlay_timer.stop();
 
             // Screenshot: the last of --frames N, or when the script asks.
             std::optional<std::string> shot;
             if (scripted) shot = script.take_screenshot_request();
             else if (o.frames > 0 && timer.frames + 1 == o.frames && !o.screenshot.empty()) shot = o.screenshot;
             render::Image image;
-            const FrameOutcome out =
-                target.render(list, theme.background, [&](VkCommandBuffer cmd) { imgui.record(cmd); }, shot ? &image : nullptr);
+            const WindowTarget::Layer layers[] = {{&scene_list, 0}, {&overlay_list, 0}};
+            const FrameOutcome out = target.render(layers, theme.background, [&](VkCommandBuffer cmd) { imgui.record(cmd); },
+                                                   shot ? &image : nullptr, &stages);
             if (out == FrameOutcome::skipped) continue;
+            stages.frame_drawn();
             if (shot) {
                 render::write_png(*shot, image);
                 std::fprintf(stderr, "contactlab edit: screenshot %dx%d written to %s\n", image.width, image.height, shot->c_str());
@@ -456,6 +482,7 @@ int run_editor(const EditorOptions& o) {
                  host.spec().c_str(), host.rate(),
                  ps.p50 * 1e6, ps.p99 * 1e6, ps.max * 1e6, ps.count,
                  static_cast<unsigned long long>(servo.overruns()), servo.scheduling().c_str());
+    std::fprintf(stderr, "contactlab edit: frame stages (ms, mean per drawn frame): %s\n", stages.summary().c_str());
     std::fprintf(stderr, "contactlab edit: swapchain recreated %d time(s) (resize, out-of-date, suboptimal)\n",
                  target.recreations());
     if (scripted && script.failures() > 0) {

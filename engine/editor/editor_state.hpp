@@ -4,6 +4,7 @@
 
 #include "engine/editor/camera.hpp"
 #include "engine/editor/document.hpp"
+#include "engine/editor/frame_stages.hpp"
 #include "engine/editor/haptics_host.hpp"
 #include "engine/editor/live_servo.hpp"
 #include "engine/editor/pose_input.hpp"
@@ -73,6 +74,9 @@ struct EditorState {
 
     // Other sessions' recovery files waiting for an answer (recovery.hpp), the front one shown.
     std::vector<std::string> recovery_offers;
+
+    // Where the drawn frames' time goes (frame_stages.hpp); the panels time their plots into it.
+    FrameStages* stages = nullptr;
 
     // View options.
     render::Overlays overlays;

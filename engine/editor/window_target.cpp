@@ -132,14 +132,18 @@ void WindowTarget::record_readback(VkCommandBuffer cmd, VkImage image) {
                          0, 0, nullptr, 1, &to_host, 1, &to_present);
 }
 
-FrameOutcome WindowTarget::render(const render::DrawList& list, render::Color background,
-                                  const std::function<void(VkCommandBuffer)>& overlay, render::Image* screenshot) {
+FrameOutcome WindowTarget::render(std::span<const Layer> layers, render::Color background,
+                                  const std::function<void(VkCommandBuffer)>& overlay, render::Image* screenshot,
+                                  FrameStages* stages) {
     const VkDevice dev = ctx_.device();
     if (!swapchain_.valid() || rendered_.empty()) return FrameOutcome::skipped;
     Frame& f = frames_[frame_index_];
 
     // Wait for this slot's previous frame: its command buffer, geometry and semaphore are free.
+    StageTimer waiting(stages, Stage::frame_wait);
     vk_check(vkWaitForFences(dev, 1, &f.done, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+    waiting.stop();
+    StageTimer recording(stages, Stage::record);
 
     // Acquire: out-of-date means recreate and skip; suboptimal still signalled the semaphore.
     uint32_t image_index = 0;
@@ -154,7 +158,16 @@ FrameOutcome WindowTarget::render(const render::DrawList& list, render::Color ba
 
     const SwapchainImage& target = swapchain_.images()[image_index];
     const VkExtent2D e = swapchain_.extent();
-    render::upload_draw_list(ctx_, list, f.geometry);
+    // Geometry: each layer copied into this slot's buffers unless they already hold its revision.
+    if (f.geometry.size() < layers.size()) {
+        f.geometry.resize(layers.size());
+        f.uploaded.resize(layers.size(), 0);
+    }
+    for (std::size_t i = 0; i < layers.size(); ++i) {
+        if (layers[i].revision != 0 && f.uploaded[i] == layers[i].revision) continue;
+        render::upload_draw_list(ctx_, *layers[i].list, f.geometry[i]);
+        f.uploaded[i] = layers[i].revision;
+    }
     if (screenshot)
         render::ensure_buffer(ctx_, readback_, static_cast<VkDeviceSize>(e.width) * e.height * 4,
                               VK_BUFFER_USAGE_TRANSFER_DST_BIT);
@@ -178,13 +191,14 @@ FrameOutcome WindowTarget::render(const render::DrawList& list, render::Color ba
     rp.clearValueCount = 2;
     rp.pClearValues = clear;
     vkCmdBeginRenderPass(f.cmd, &rp, VK_SUBPASS_CONTENTS_INLINE);
-    render::record_draw_list(f.cmd, *pipelines_, list, f.geometry);
+    for (std::size_t i = 0; i < layers.size(); ++i) render::record_draw_list(f.cmd, *pipelines_, *layers[i].list, f.geometry[i]);
     if (overlay) overlay(f.cmd);
     vkCmdEndRenderPass(f.cmd);  // the image is now in PRESENT_SRC_KHR
 
     // Screenshot: copy the very image that is presented.
     if (screenshot) record_readback(f.cmd, target.image);
     vk_check(vkEndCommandBuffer(f.cmd), "vkEndCommandBuffer");
+    recording.stop();
 
     // Submit: wait for the acquisition before writing colour; signal the image's semaphore.
     const VkPipelineStageFlags wait_stage = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
@@ -197,7 +211,14 @@ FrameOutcome WindowTarget::render(const render::DrawList& list, render::Color ba
     submit.pCommandBuffers = &f.cmd;
     submit.signalSemaphoreCount = 1;
     submit.pSignalSemaphores = &rendered_[image_index];
+    StageTimer submitting(stages, Stage::submit);
     vk_check(vkQueueSubmit(ctx_.queue(), 1, &submit, f.done), "vkQueueSubmit");
+    submitting.stop();
+    if (stage_timing_ && stages) {
+        // Measuring: wait for the queue here, so the rasteriser's work is not counted as present.
+        StageTimer rasterising(stages, Stage::rasterise);
+        vk_check(vkWaitForFences(dev, 1, &f.done, VK_TRUE, UINT64_MAX), "vkWaitForFences (timed)");
+    }
 
     // Present: out-of-date or suboptimal marks the swapchain for recreation before the next frame.
     VkSwapchainKHR sc = swapchain_.handle();
@@ -208,7 +229,9 @@ FrameOutcome WindowTarget::render(const render::DrawList& list, render::Color ba
     present.swapchainCount = 1;
     present.pSwapchains = &sc;
     present.pImageIndices = &image_index;
+    StageTimer presenting(stages, Stage::present);
     r = vkQueuePresentKHR(ctx_.queue(), &present);
+    presenting.stop();
     if (r == VK_ERROR_OUT_OF_DATE_KHR || r == VK_SUBOPTIMAL_KHR) out_of_date_ = true;
     else vk_check(r, "vkQueuePresentKHR");
     frame_index_ = (frame_index_ + 1) % kFramesInFlight;
