@@ -13,6 +13,7 @@
 #include "engine/editor/experiment_mode.hpp"
 #include "engine/editor/recovery.hpp"
 #include "engine/editor/rulers.hpp"
+#include "engine/editor/scene_layer_key.hpp"
 #include "engine/editor/script.hpp"
 #include "engine/editor/servo_view.hpp"
 #include "engine/editor/window.hpp"
@@ -252,6 +253,10 @@ int run_editor(const EditorOptions& o) {
     render::DrawList scene_list(o.width, o.height), overlay_list(o.width, o.height);
     FrameStages stages;
     s.stages = &stages;
+    // The scene layer is rebuilt only when what it shows changes (scene_layer_key.hpp); each new
+    // build gets a new cache key, so the window target redraws its kept picture once.
+    SceneLayerKey scene_key;
+    std::uint64_t scene_cache_key = 0;
     const render::Theme& theme = render::dark_theme();
     FrameTimer timer;
     double window_open_ms = -1.0;
@@ -405,9 +410,17 @@ int run_editor(const EditorOptions& o) {
             if (scene_list.width() != w || scene_list.height() != h) {
                 scene_list = render::DrawList(w, h);
                 overlay_list = render::DrawList(w, h);
+                scene_key = SceneLayerKey{};
             }
-            scene_list.clear();
-            render::build_scene_layer(content, s.camera.view(), theme, scene_list);
+            const render::View view = s.camera.view();
+            const SceneLayerKey key = SceneLayerKey::of(s.doc.revision(), s.experiment != nullptr, view, theme);
+            const bool follows_finger = render::scene_layer_follows_finger(content);
+            if (follows_finger || !(key == scene_key)) {
+                scene_list.clear();
+                render::build_scene_layer(content, view, theme, scene_list);
+                if (!(key == scene_key)) ++scene_cache_key;
+                scene_key = key;
+            }
             scene_timer.stop();
             StageTimer overlay_timer(&stages, Stage::overlays);
             overlay_list.clear();
@@ -421,8 +434,9 @@ int run_editor(const EditorOptions& o) {
             if (scripted) shot = script.take_screenshot_request();
             else if (o.frames > 0 && timer.frames + 1 == o.frames && !o.screenshot.empty()) shot = o.screenshot;
             render::Image image;
-            const WindowTarget::Layer layers[] = {{&scene_list, 0}, {&overlay_list, 0}};
-            const FrameOutcome out = target.render(layers, theme.background, [&](VkCommandBuffer cmd) { imgui.record(cmd); },
+            const WindowTarget::BaseLayer base{&scene_list, follows_finger ? 0 : scene_cache_key};
+            const WindowTarget::Layer layers[] = {{&overlay_list, 0}};
+            const FrameOutcome out = target.render(base, layers, theme.background, [&](VkCommandBuffer cmd) { imgui.record(cmd); },
                                                    shot ? &image : nullptr, &stages);
             if (out == FrameOutcome::skipped) continue;
             stages.frame_drawn();

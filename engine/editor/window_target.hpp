@@ -5,6 +5,7 @@
 #pragma once
 
 #include "engine/editor/frame_stages.hpp"
+#include "engine/editor/scene_layer_cache.hpp"
 #include "engine/editor/swapchain.hpp"
 #include "engine/render/draw_list.hpp"
 #include "engine/render/image.hpp"
@@ -44,6 +45,8 @@ public:
     // hiding in the next present or fence wait. Off for interactive use: it would stop a GPU's
     // work overlapping the next frame's CPU work.
     void set_stage_timing(bool on) { stage_timing_ = on; }
+    // Pictures of the base layer drawn so far (scene_layer_cache.hpp).
+    long base_layer_updates() const { return cache_ ? cache_->updates() : 0; }
     // Swapchain recreations so far (resize, out-of-date, suboptimal).
     int recreations() const { return recreations_; }
 
@@ -53,10 +56,18 @@ public:
         const render::DrawList* list = nullptr;
         std::uint64_t revision = 0;
     };
-    // Records the layers in order (their size should be extent()), then `overlay` inside the same
-    // render pass, and presents. With `screenshot`, the presented image is copied out and returned
-    // there (RGBA). With `stages`, the time of each step is added there (frame_stages.hpp).
-    FrameOutcome render(std::span<const Layer> layers, render::Color background,
+    // The bottom of the frame. With a `cache_key` (not 0) it is kept as a picture between frames
+    // (scene_layer_cache.hpp) and drawn again only when the key changes; with 0, or where the
+    // swapchain's images cannot be copied into, it is drawn in the render pass like a Layer.
+    struct BaseLayer {
+        const render::DrawList* list = nullptr;
+        std::uint64_t cache_key = 0;
+    };
+    // Records the base, then the layers in order (their size should be extent()), then `overlay`
+    // inside the same render pass, and presents. With `screenshot`, the presented image is copied
+    // out and returned there (RGBA). With `stages`, the time of each step is added there
+    // (frame_stages.hpp).
+    FrameOutcome render(const BaseLayer& base, std::span<const Layer> layers, render::Color background,
                         const std::function<void(VkCommandBuffer)>& overlay, render::Image* screenshot,
                         FrameStages* stages = nullptr);
 
@@ -76,6 +87,8 @@ private:
     bool vsync_;
     VkFormat stencil_format_;
     VkRenderPass render_pass_ = VK_NULL_HANDLE;
+    VkRenderPass load_pass_ = VK_NULL_HANDLE;  // render_pass_, loading the copied base layer
+    std::unique_ptr<SceneLayerCache> cache_;
     std::unique_ptr<render::Pipelines> pipelines_;
     Swapchain swapchain_;
     std::array<Frame, kFramesInFlight> frames_{};
