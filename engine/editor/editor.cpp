@@ -10,6 +10,7 @@
 #include "engine/editor/haptics_commands.hpp"
 #include "engine/editor/imgui_layer.hpp"
 #include "engine/editor/panels.hpp"
+#include "engine/editor/redraw_policy.hpp"
 #include "engine/editor/experiment_mode.hpp"
 #include "engine/editor/recovery.hpp"
 #include "engine/editor/rulers.hpp"
@@ -87,6 +88,16 @@ MousePose initial_pose(const Scene& scene) {
         p.finger = Vec2(0.0, 0.03);
     }
     return p;
+}
+
+// Pixels whose colour differs between two pictures of one size (all of them if the sizes differ).
+long count_differing_pixels(const render::Image& a, const render::Image& b) {
+    if (a.width != b.width || a.height != b.height || a.rgba.size() != b.rgba.size())
+        return static_cast<long>(std::max(a.rgba.size(), b.rgba.size()) / 4);
+    long n = 0;
+    for (std::size_t i = 0; i < a.rgba.size(); i += 4)
+        if (a.rgba[i] != b.rgba[i] || a.rgba[i + 1] != b.rgba[i + 1] || a.rgba[i + 2] != b.rgba[i + 2]) ++n;
+    return n;
 }
 
 void handle_real_input(EditorState& s, GLFWwindow* window) {
@@ -267,13 +278,58 @@ int run_editor(const EditorOptions& o) {
     std::string shown_title;
     const Clock::time_point t_loop = Clock::now();
 
+    // The servo's tick records, drained every wake whether or not a frame is drawn: the plots'
+    // history, the recording's ring (which must not fill while the editor idles), faults, trials.
+    const auto drain_servo = [&] {
+        LiveServo& servo = *s.servo;
+        servo.reclaim();
+        for (drivers::TickRecord r; servo.pop_record(r);) {
+            s.history.push(r);
+            host.forward(r);
+            experiment_on_record(s, r);
+            if (r.fault != ServoFault::none) {
+                s.last_fault = r.fault;
+                s.last_fault_t = r.t;
+            }
+        }
+    };
+    // Autosave (recovery file) now and then, drawn or not.
+    const auto autosave_now_and_then = [&] {
+        if (since(t_loop) - last_autosave > o.autosave_interval) {
+            last_autosave = since(t_loop);
+            const std::string r = s.doc.autosave();
+            if (r.rfind("error: ", 0) == 0) s.say("autosave failed: " + r.substr(7), true);
+        }
+    };
+    RedrawPolicy redraw;
+    const auto redraw_inputs = [&](const ServoSnapshot& snap) {
+        RedrawInputs in;
+        in.events = window.events();
+        in.doc_revision = s.doc.revision();
+        in.servo_generation = host.generation();
+        in.snapshot = &snap;
+        in.message = &s.message;
+        return in;
+    };
+
     // The frame loop. Should anything throw (a Vulkan error, a full disk), the user's work is
     // written to the recovery file before the error is reported.
     const auto frame_loop = [&] {
         while (!s.quit && !window.should_close()) {
+            // Every frame is drawn when measuring (--frames), under a script (but for its `idle`)
+            // and in experiments; otherwise only when something changed (redraw_policy.hpp): the
+            // loop sleeps until input or kPoll, keeps the servo side drained, and draws if asked.
+            const bool on_demand = o.frames <= 0 && !s.experiment && (!scripted || script.idling(since(t_loop)));
+            if (on_demand) {
+                glfwWaitEventsTimeout(RedrawPolicy::kPoll);
+                drain_servo();
+                autosave_now_and_then();
+                const ServoSnapshot snap = s.servo->snapshot();
+                if (!redraw.should_draw(redraw_inputs(snap), since(t_loop))) continue;
+            }
             const Clock::time_point t_frame = Clock::now();
             StageTimer events_timer(&stages, Stage::events);
-            glfwPollEvents();
+            if (!on_demand) glfwPollEvents();
             events_timer.stop();
             window.framebuffer_size(fbw, fbh);
             if (!target.prepare(fbw, fbh)) {  // minimised: nothing to draw into
@@ -357,16 +413,7 @@ int run_editor(const EditorOptions& o) {
                     s.say("servo kept its parameters: " + problem, true);
                 published = params;
             }
-            servo.reclaim();
-            for (drivers::TickRecord r; servo.pop_record(r);) {
-                s.history.push(r);
-                host.forward(r);
-                experiment_on_record(s, r);
-                if (r.fault != ServoFault::none) {
-                    s.last_fault = r.fault;
-                    s.last_fault_t = r.t;
-                }
-            }
+            drain_servo();
 
             servo_timer.stop();
 
@@ -436,10 +483,21 @@ int run_editor(const EditorOptions& o) {
             render::Image image;
             const WindowTarget::BaseLayer base{&scene_list, follows_finger ? 0 : scene_cache_key};
             const WindowTarget::Layer layers[] = {{&overlay_list, 0}};
-            const FrameOutcome out = target.render(base, layers, theme.background, [&](VkCommandBuffer cmd) { imgui.record(cmd); },
-                                                   shot ? &image : nullptr, &stages);
+            const auto record_imgui = [&](VkCommandBuffer cmd) { imgui.record(cmd); };
+            const bool check_layer = scripted && script.take_layer_check_request();
+            render::Image kept, fresh;
+            FrameOutcome out = target.render(base, layers, theme.background, record_imgui,
+                                             shot ? &image : check_layer ? &kept : nullptr, &stages);
+            if (out == FrameOutcome::presented && check_layer) {
+                // The same frame again with the scene layer drawn in the pass, pixel for pixel.
+                out = target.render(WindowTarget::BaseLayer{&scene_list, 0}, layers, theme.background, record_imgui, &fresh);
+                if (shot) kept = image;
+                s.layer_mismatch = count_differing_pixels(kept, fresh);
+            }
             if (out == FrameOutcome::skipped) continue;
             stages.frame_drawn();
+            s.scene_layer_updates = target.base_layer_updates();
+            redraw.drawn(redraw_inputs(snap), since(t_loop));
             if (shot) {
                 render::write_png(*shot, image);
                 std::fprintf(stderr, "contactlab edit: screenshot %dx%d written to %s\n", image.width, image.height, shot->c_str());
@@ -451,12 +509,7 @@ int run_editor(const EditorOptions& o) {
             }
             timer.add(since(t_frame));
 
-            // Autosave (recovery file) now and then.
-            if (since(t_loop) - last_autosave > o.autosave_interval) {
-                last_autosave = since(t_loop);
-                const std::string r = s.doc.autosave();
-                if (r.rfind("error: ", 0) == 0) s.say("autosave failed: " + r.substr(7), true);
-            }
+            autosave_now_and_then();
 
             if (o.frames > 0 && timer.frames >= o.frames && !scripted) break;
             if (scripted && script.finished()) break;
