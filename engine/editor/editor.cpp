@@ -10,9 +10,11 @@
 #include "engine/editor/haptics_commands.hpp"
 #include "engine/editor/imgui_layer.hpp"
 #include "engine/editor/panels.hpp"
+#include "engine/editor/redraw_policy.hpp"
 #include "engine/editor/experiment_mode.hpp"
 #include "engine/editor/recovery.hpp"
 #include "engine/editor/rulers.hpp"
+#include "engine/editor/scene_layer_key.hpp"
 #include "engine/editor/script.hpp"
 #include "engine/editor/servo_view.hpp"
 #include "engine/editor/window.hpp"
@@ -86,6 +88,16 @@ MousePose initial_pose(const Scene& scene) {
         p.finger = Vec2(0.0, 0.03);
     }
     return p;
+}
+
+// Pixels whose colour differs between two pictures of one size (all of them if the sizes differ).
+long count_differing_pixels(const render::Image& a, const render::Image& b) {
+    if (a.width != b.width || a.height != b.height || a.rgba.size() != b.rgba.size())
+        return static_cast<long>(std::max(a.rgba.size(), b.rgba.size()) / 4);
+    long n = 0;
+    for (std::size_t i = 0; i < a.rgba.size(); i += 4)
+        if (a.rgba[i] != b.rgba[i] || a.rgba[i + 1] != b.rgba[i + 1] || a.rgba[i + 2] != b.rgba[i + 2]) ++n;
+    return n;
 }
 
 void handle_real_input(EditorState& s, GLFWwindow* window) {
@@ -211,6 +223,8 @@ int run_editor(const EditorOptions& o) {
     render::VulkanContext ctx(copt, wsup);
     Surface surface(ctx.instance(), window);
     WindowTarget target(ctx, surface.handle(), o.vsync);
+    // --frames measures: rasterising is timed apart from presenting (window_target.hpp).
+    target.set_stage_timing(o.frames > 0 && !scripted);
     int fbw = 0, fbh = 0;
     window.framebuffer_size(fbw, fbh);
     target.prepare(fbw, fbh);
@@ -246,7 +260,14 @@ int run_editor(const EditorOptions& o) {
     // Drawing: the environment of the last valid scene, rebuilt when it changes.
     std::unique_ptr<Environment> env = std::make_unique<Environment>(build_environment(s.doc.last_valid()));
     std::uint64_t env_revision = s.doc.revision();
-    render::DrawList list(o.width, o.height);
+    // The frame's two draw lists (frame.hpp's layers): the scene under everything, the rest over it.
+    render::DrawList scene_list(o.width, o.height), overlay_list(o.width, o.height);
+    FrameStages stages;
+    s.stages = &stages;
+    // The scene layer is rebuilt only when what it shows changes (scene_layer_key.hpp); each new
+    // build gets a new cache key, so the window target redraws its kept picture once.
+    SceneLayerKey scene_key;
+    std::uint64_t scene_cache_key = 0;
     const render::Theme& theme = render::dark_theme();
     FrameTimer timer;
     double window_open_ms = -1.0;
@@ -257,12 +278,59 @@ int run_editor(const EditorOptions& o) {
     std::string shown_title;
     const Clock::time_point t_loop = Clock::now();
 
+    // The servo's tick records, drained every wake whether or not a frame is drawn: the plots'
+    // history, the recording's ring (which must not fill while the editor idles), faults, trials.
+    const auto drain_servo = [&] {
+        LiveServo& servo = *s.servo;
+        servo.reclaim();
+        for (drivers::TickRecord r; servo.pop_record(r);) {
+            s.history.push(r);
+            host.forward(r);
+            experiment_on_record(s, r);
+            if (r.fault != ServoFault::none) {
+                s.last_fault = r.fault;
+                s.last_fault_t = r.t;
+            }
+        }
+    };
+    // Autosave (recovery file) now and then, drawn or not.
+    const auto autosave_now_and_then = [&] {
+        if (since(t_loop) - last_autosave > o.autosave_interval) {
+            last_autosave = since(t_loop);
+            const std::string r = s.doc.autosave();
+            if (r.rfind("error: ", 0) == 0) s.say("autosave failed: " + r.substr(7), true);
+        }
+    };
+    RedrawPolicy redraw;
+    const auto redraw_inputs = [&](const ServoSnapshot& snap) {
+        RedrawInputs in;
+        in.events = window.events();
+        in.doc_revision = s.doc.revision();
+        in.servo_generation = host.generation();
+        in.snapshot = &snap;
+        in.message = &s.message;
+        return in;
+    };
+
     // The frame loop. Should anything throw (a Vulkan error, a full disk), the user's work is
     // written to the recovery file before the error is reported.
     const auto frame_loop = [&] {
         while (!s.quit && !window.should_close()) {
-            glfwPollEvents();
+            // Every frame is drawn when measuring (--frames), under a script (but for its `idle`)
+            // and in experiments; otherwise only when something changed (redraw_policy.hpp): the
+            // loop sleeps until input or kPoll, keeps the servo side drained, and draws if asked.
+            const bool on_demand = o.frames <= 0 && !s.experiment && (!scripted || script.idling(since(t_loop)));
+            if (on_demand) {
+                glfwWaitEventsTimeout(RedrawPolicy::kPoll);
+                drain_servo();
+                autosave_now_and_then();
+                const ServoSnapshot snap = s.servo->snapshot();
+                if (!redraw.should_draw(redraw_inputs(snap), since(t_loop))) continue;
+            }
             const Clock::time_point t_frame = Clock::now();
+            StageTimer events_timer(&stages, Stage::events);
+            if (!on_demand) glfwPollEvents();
+            events_timer.stop();
             window.framebuffer_size(fbw, fbh);
             if (!target.prepare(fbw, fbh)) {  // minimised: nothing to draw into
                 glfwWaitEventsTimeout(0.05);
@@ -276,6 +344,7 @@ int run_editor(const EditorOptions& o) {
             s.camera.resize(static_cast<int>(ext.width), static_cast<int>(ext.height));
 
             // UI: ImGui frame, then the canvas (real input, or the script's actions).
+            StageTimer ui_timer(&stages, Stage::ui);
             imgui.new_frame();
             s.now = since(t_loop);
             if (scripted) {
@@ -295,7 +364,10 @@ int run_editor(const EditorOptions& o) {
             // The fixed parts' px (ImGui units times the framebuffer scale).
             const float ui_scale = ImGui::GetIO().DisplayFramebufferScale.y;
             const EditorLayout layout = current_layout();
+            ui_timer.stop();
+            StageTimer imgui_timer(&stages, Stage::imgui);
             imgui.render();
+            imgui_timer.stop();
 
             // Title: the file and whether it has unsaved changes.
             const std::string title = "ContactLab editor - " +
@@ -308,6 +380,7 @@ int run_editor(const EditorOptions& o) {
 
             // Servo: a changed valid scene is published (built here, off the servo thread); Ke, max
             // force and roller gains go as parameters (slew-limited by the servo).
+            StageTimer servo_timer(&stages, Stage::servo_sync);
             LiveServo& servo = *s.servo;
             if (published_to != host.generation()) {
                 published_to = host.generation();
@@ -340,18 +413,12 @@ int run_editor(const EditorOptions& o) {
                     s.say("servo kept its parameters: " + problem, true);
                 published = params;
             }
-            servo.reclaim();
-            for (drivers::TickRecord r; servo.pop_record(r);) {
-                s.history.push(r);
-                host.forward(r);
-                experiment_on_record(s, r);
-                if (r.fault != ServoFault::none) {
-                    s.last_fault = r.fault;
-                    s.last_fault_t = r.t;
-                }
-            }
+            drain_servo();
+
+            servo_timer.stop();
 
             // Frame: the shared scene drawer, then the editor's marks.
+            StageTimer scene_timer(&stages, Stage::scene_geometry);
             if (s.doc.valid() && env_revision != s.doc.revision()) {
                 env = std::make_unique<Environment>(build_environment(s.doc.scene()));
                 env_revision = s.doc.revision();
@@ -386,20 +453,51 @@ int run_editor(const EditorOptions& o) {
             content.left_inset_px = layout.canvas_left * ui_scale;
             content.bottom_inset_px = layout.canvas_bottom * ui_scale;
             shown_proxy = content.finger;
-            if (list.width() != static_cast<int>(ext.width) || list.height() != static_cast<int>(ext.height))
-                list = render::DrawList(static_cast<int>(ext.width), static_cast<int>(ext.height));
-            render::build_frame(content, s.camera.view(), theme, list);
-            draw_canvas_marks(s, theme, list);
-            draw_rulers(s.camera.view(), layout.top_ruler.y * ui_scale, theme, list);
+            const int w = static_cast<int>(ext.width), h = static_cast<int>(ext.height);
+            if (scene_list.width() != w || scene_list.height() != h) {
+                scene_list = render::DrawList(w, h);
+                overlay_list = render::DrawList(w, h);
+                scene_key = SceneLayerKey{};
+            }
+            const render::View view = s.camera.view();
+            const SceneLayerKey key = SceneLayerKey::of(s.doc.revision(), s.experiment != nullptr, view, theme);
+            const bool follows_finger = render::scene_layer_follows_finger(content);
+            if (follows_finger || !(key == scene_key)) {
+                scene_list.clear();
+                render::build_scene_layer(content, view, theme, scene_list);
+                if (!(key == scene_key)) ++scene_cache_key;
+                scene_key = key;
+            }
+            scene_timer.stop();
+            StageTimer overlay_timer(&stages, Stage::overlays);
+            overlay_list.clear();
+            render::build_overlay_layer(content, s.camera.view(), theme, overlay_list);
+            draw_canvas_marks(s, theme, overlay_list);
+            draw_rulers(s.camera.view(), layout.top_ruler.y * ui_scale, theme, overlay_list);
+            overlay_timer.stop();
 
             // Screenshot: the last of --frames N, or when the script asks.
             std::optional<std::string> shot;
             if (scripted) shot = script.take_screenshot_request();
             else if (o.frames > 0 && timer.frames + 1 == o.frames && !o.screenshot.empty()) shot = o.screenshot;
             render::Image image;
-            const FrameOutcome out =
-                target.render(list, theme.background, [&](VkCommandBuffer cmd) { imgui.record(cmd); }, shot ? &image : nullptr);
+            const WindowTarget::BaseLayer base{&scene_list, follows_finger ? 0 : scene_cache_key};
+            const WindowTarget::Layer layers[] = {{&overlay_list, 0}};
+            const auto record_imgui = [&](VkCommandBuffer cmd) { imgui.record(cmd); };
+            const bool check_layer = scripted && script.take_layer_check_request();
+            render::Image kept, fresh;
+            FrameOutcome out = target.render(base, layers, theme.background, record_imgui,
+                                             shot ? &image : check_layer ? &kept : nullptr, &stages);
+            if (out == FrameOutcome::presented && check_layer) {
+                // The same frame again with the scene layer drawn in the pass, pixel for pixel.
+                out = target.render(WindowTarget::BaseLayer{&scene_list, 0}, layers, theme.background, record_imgui, &fresh);
+                if (shot) kept = image;
+                s.layer_mismatch = count_differing_pixels(kept, fresh);
+            }
             if (out == FrameOutcome::skipped) continue;
+            stages.frame_drawn();
+            s.scene_layer_updates = target.base_layer_updates();
+            redraw.drawn(redraw_inputs(snap), since(t_loop));
             if (shot) {
                 render::write_png(*shot, image);
                 std::fprintf(stderr, "contactlab edit: screenshot %dx%d written to %s\n", image.width, image.height, shot->c_str());
@@ -411,12 +509,7 @@ int run_editor(const EditorOptions& o) {
             }
             timer.add(since(t_frame));
 
-            // Autosave (recovery file) now and then.
-            if (since(t_loop) - last_autosave > o.autosave_interval) {
-                last_autosave = since(t_loop);
-                const std::string r = s.doc.autosave();
-                if (r.rfind("error: ", 0) == 0) s.say("autosave failed: " + r.substr(7), true);
-            }
+            autosave_now_and_then();
 
             if (o.frames > 0 && timer.frames >= o.frames && !scripted) break;
             if (scripted && script.finished()) break;
@@ -456,6 +549,7 @@ int run_editor(const EditorOptions& o) {
                  host.spec().c_str(), host.rate(),
                  ps.p50 * 1e6, ps.p99 * 1e6, ps.max * 1e6, ps.count,
                  static_cast<unsigned long long>(servo.overruns()), servo.scheduling().c_str());
+    std::fprintf(stderr, "contactlab edit: frame stages (ms, mean per drawn frame): %s\n", stages.summary().c_str());
     std::fprintf(stderr, "contactlab edit: swapchain recreated %d time(s) (resize, out-of-date, suboptimal)\n",
                  target.recreations());
     if (scripted && script.failures() > 0) {

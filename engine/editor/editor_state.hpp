@@ -4,6 +4,7 @@
 
 #include "engine/editor/camera.hpp"
 #include "engine/editor/document.hpp"
+#include "engine/editor/frame_stages.hpp"
 #include "engine/editor/haptics_host.hpp"
 #include "engine/editor/live_servo.hpp"
 #include "engine/editor/pose_input.hpp"
@@ -73,6 +74,15 @@ struct EditorState {
 
     // Other sessions' recovery files waiting for an answer (recovery.hpp), the front one shown.
     std::vector<std::string> recovery_offers;
+
+    // Where the drawn frames' time goes (frame_stages.hpp); the panels time their plots into it.
+    // Its frames() counts the frames drawn (a script's `idle` reads it).
+    FrameStages* stages = nullptr;
+    // The kept scene layer (scene_layer_cache.hpp), for scripts: pictures drawn so far, and the
+    // pixels that differed between a frame drawn with it and the same frame drawn fresh at the
+    // last `check_layer` (-1: none yet).
+    long scene_layer_updates = 0;
+    long layer_mismatch = -1;
 
     // View options.
     render::Overlays overlays;

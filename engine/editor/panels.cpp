@@ -494,7 +494,10 @@ void draw_panels(EditorState& s, const FrameInfo& info, const std::optional<Prox
     ImGui::End();
     tuning_window(s, layout, cond);
     status_window(s, info, layout, cond);
-    plots_window(s, layout, cond);
+    {
+        StageTimer timing(s.stages, Stage::plots);
+        plots_window(s, layout, cond);
+    }
     experiment_window(s, s.now);
     recovery_window(s);
     // Message row along the bottom edge: the last action's outcome.

@@ -27,6 +27,7 @@ const std::map<std::string, std::pair<int, int>>& arity() {
         {"screenshot", {1, 1}}, {"estop", {1, 1}},   {"wait", {1, 1}},       {"frames", {1, 1}},
         {"wait_contact", {1, 1}}, {"resize", {2, 2}}, {"generate", {1, 1}}, {"wait_state", {2, 2}}, {"expect", {2, 3}}, {"quit", {0, 0}},
         {"device", {1, 2}}, {"rate", {1, 1}}, {"record", {1, 1}}, {"report", {1, 1}}, {"devices", {0, 0}}, {"recovery", {1, 1}}, {"layout", {0, 0}}, {"answer", {1, 1}}, {"pause", {0, 0}}, {"resume", {0, 0}},
+        {"idle", {1, 1}}, {"check_layer", {0, 0}},
     };
     return a;
 }
@@ -224,6 +225,29 @@ bool Script::run(EditorState& s, const Line& line, double now) {
     } else if (c == "wait") {
         if (wait_until_ < 0.0) wait_until_ = now + number(w[1]);
         return now >= wait_until_;
+    } else if (c == "idle") {
+        // Drawing on demand for a while; the frames drawn meanwhile are counted.
+        const long drawn = s.stages ? s.stages->frames() : 0;
+        if (idle_until_ < 0.0) {
+            const double seconds = number(w[1]);
+            if (seconds < 0.0) throw ScriptError("idle: the time must not be negative");
+            idle_until_ = now + seconds;
+            idle_frames_at_ = drawn;
+            return false;
+        }
+        if (now < idle_until_) return false;
+        idle_frames_ = drawn - idle_frames_at_;
+        idle_until_ = -1.0;
+        std::fprintf(stderr, "script idle: %ld frame(s) drawn in %s s\n", idle_frames_, w[1].c_str());
+    } else if (c == "check_layer") {
+        // Asked this frame, answered (s.layer_mismatch) by the editor before the next one.
+        if (!layer_check_sent_) {
+            layer_check_ = layer_check_sent_ = true;
+            return false;
+        }
+        layer_check_sent_ = false;
+        std::fprintf(stderr, "script check_layer: %ld pixel(s) differ between the kept scene layer and a fresh draw\n",
+                     s.layer_mismatch);
     } else if (c == "frames") {
         if (frames_left_ < 0) frames_left_ = static_cast<long>(number(w[1]));
         return frames_left_-- <= 0;
@@ -265,6 +289,8 @@ bool Script::run(EditorState& s, const Line& line, double now) {
             else if (n == "experiment_total") v = s.experiment && s.experiment->session ? static_cast<double>(s.experiment->session->total()) : 0;
             else if (n == "experiment_paused") v = s.experiment && s.experiment->paused ? 1 : 0;
             else if (n == "error") v = s.message_is_error ? 1 : 0;
+            else if (n == "idle_frames") v = static_cast<double>(idle_frames_);
+            else if (n == "layer_mismatch") v = static_cast<double>(s.layer_mismatch);
             else if (n == "force_above" || n == "force_below" || n == "force") v = f;
             else if (n == "rate") v = s.servo ? s.servo->rate() : 0.0;
             else if (n == "recording") v = s.haptics && s.haptics->recording() ? 1 : 0;
@@ -315,13 +341,15 @@ bool Script::run(EditorState& s, const Line& line, double now) {
         std::fprintf(stderr,
                      "script report %s: device=%s device_state=%s rate_hz=%.17g cursor_x_mm=%.17g cursor_y_mm=%.17g "
                      "finger_x_mm=%.17g finger_y_mm=%.17g phi_deg=%.17g contact=%d depth_mm=%.17g force_n=%.17g "
-                     "ke=%.17g servo_state=%s fault=%s ticks=%llu p50_us=%.6g p99_us=%.6g max_us=%.6g late=%zu count=%zu",
+                     "ke=%.17g servo_state=%s fault=%s ticks=%llu p50_us=%.6g p99_us=%.6g max_us=%.6g late=%zu count=%zu "
+                     "scene_layer_updates=%ld frames_drawn=%ld",
                      w[1].c_str(), s.haptics ? s.haptics->spec().c_str() : "none",
                      s.device ? drivers::to_string(s.device->state()) : "none", s.servo ? s.servo->rate() : 0.0,
                      s.pose.finger.x * 1e3, s.pose.finger.y * 1e3, snap.finger.x * 1e3, snap.finger.y * 1e3,
                      snap.phi * 180.0 / kPi, snap.contact ? 1 : 0, snap.depth * 1e3, std::hypot(snap.force.x, snap.force.y),
                      snap.stiffness, to_string(snap.state), to_string(snap.fault), static_cast<unsigned long long>(snap.ticks), ps.p50 * 1e6,
-                     ps.p99 * 1e6, ps.max * 1e6, ps.late, ps.count);
+                     ps.p99 * 1e6, ps.max * 1e6, ps.late, ps.count, s.scene_layer_updates,
+                     s.stages ? s.stages->frames() : 0L);
         // Seed 003's platform, when the device is the simulated wearable.
         if (const auto* wd = dynamic_cast<const CursorWearableDevice*>(s.device)) {
             const drivers::sim::WearablePlatformView v = wd->platform_view();

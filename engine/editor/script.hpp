@@ -22,6 +22,11 @@
 //   undo  redo  fit  save PATH  open PATH  screenshot PATH  estop on|off  resize W H (px)
 //   generate block|bumps|arc
 //   wait SECONDS     frames N     wait_contact TIMEOUT_S     wait_state STATE TIMEOUT_S
+//   idle SECONDS     (the editor draws on demand as it does interactively, redraw_policy.hpp, for
+//                     that long; then "script idle: N frame(s) drawn in S s" on stderr and
+//                     `expect idle_frames N [TOL]`)
+//   check_layer      (the next frame is drawn twice, with the kept scene layer and fresh, and the
+//                     pixels compared: `expect layer_mismatch 0`; `report` has scene_layer_updates)
 //   device mouse|sim-cld|sim-wearable|usb:hapio|usb:falcon   device replay FILE   (switch, through the safety path)
 //   rate HZ          (servo rate, 100..20000; restarts the servo safely)
 //   record PATH      record stop      (every servo tick to a "contactlab recording v1" file)
@@ -46,6 +51,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace contactlab::editor {
@@ -68,6 +74,10 @@ public:
     std::optional<std::string> take_screenshot_request();
     // A window size (px) the script asked for this frame.
     std::optional<std::pair<int, int>> take_resize_request();
+    // Whether an `idle` is under way at `now`: the editor then draws on demand.
+    bool idling(double now) const { return idle_until_ >= 0.0 && now < idle_until_; }
+    // A `check_layer` asked for this frame (the editor compares and sets layer_mismatch).
+    bool take_layer_check_request() { return std::exchange(layer_check_, false); }
 
 private:
     struct Line {
@@ -86,6 +96,9 @@ private:
     long frames_left_ = -1;
     std::optional<std::string> screenshot_;
     std::optional<std::pair<int, int>> resize_;
+    double idle_until_ = -1.0;
+    long idle_frames_at_ = 0, idle_frames_ = -1;
+    bool layer_check_ = false, layer_check_sent_ = false;
 };
 
 }  // namespace contactlab::editor

@@ -37,6 +37,8 @@ public:
     uint32_t min_image_count() const { return min_images_; }
     const std::vector<SwapchainImage>& images() const { return images_; }
     VkPresentModeKHR present_mode() const { return present_mode_; }
+    // Whether images may be a copy's destination (the cached scene layer goes in that way).
+    bool copy_target() const { return copy_target_; }
 
 private:
     void destroy_images();
@@ -47,6 +49,7 @@ private:
     VkExtent2D extent_{0, 0};
     uint32_t min_images_ = 2;
     VkPresentModeKHR present_mode_ = VK_PRESENT_MODE_FIFO_KHR;
+    bool copy_target_ = false;
     std::vector<SwapchainImage> images_;
     // Stencil attachment (one: frames are recorded one after another on one queue).
     VkImage stencil_ = VK_NULL_HANDLE;

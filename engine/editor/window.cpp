@@ -9,6 +9,13 @@
 #include <stdexcept>
 
 namespace contactlab::editor {
+namespace {
+
+void count_event(GLFWwindow* w) {
+    if (auto* self = static_cast<Window*>(glfwGetWindowUserPointer(w))) self->note_event();
+}
+
+}  // namespace
 
 std::vector<std::string> window_instance_extensions() {
     uint32_t n = 0;
@@ -23,6 +30,19 @@ Window::Window(int width, int height, const std::string& title) {
     glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
     window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
     if (!window_) throw std::runtime_error("could not create a " + std::to_string(width) + "x" + std::to_string(height) + " window");
+    // Event callbacks: each only counts (Window::events); ImGui's backend, installed later, keeps
+    // them as its "previous" callbacks and calls them after its own.
+    glfwSetWindowUserPointer(window_, this);
+    glfwSetCursorPosCallback(window_, [](GLFWwindow* w, double, double) { count_event(w); });
+    glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int, int, int) { count_event(w); });
+    glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double) { count_event(w); });
+    glfwSetKeyCallback(window_, [](GLFWwindow* w, int, int, int, int) { count_event(w); });
+    glfwSetCharCallback(window_, [](GLFWwindow* w, unsigned int) { count_event(w); });
+    glfwSetWindowFocusCallback(window_, [](GLFWwindow* w, int) { count_event(w); });
+    glfwSetCursorEnterCallback(window_, [](GLFWwindow* w, int) { count_event(w); });
+    glfwSetFramebufferSizeCallback(window_, [](GLFWwindow* w, int, int) { count_event(w); });
+    glfwSetWindowRefreshCallback(window_, [](GLFWwindow* w) { count_event(w); });
+    glfwSetWindowIconifyCallback(window_, [](GLFWwindow* w, int) { count_event(w); });
 }
 
 Window::~Window() {

@@ -3,6 +3,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -26,9 +27,15 @@ public:
     void framebuffer_size(int& width, int& height) const;  // px; 0x0 while minimised
     void set_title(const std::string& title);
     void set_size(int width, int height);  // screen coordinates (px without scaling)
+    // Input and window events so far (cursor, buttons, wheel, keys, text, focus, resize, expose):
+    // the editor draws on demand and compares this with the count at its last frame. Counted by
+    // GLFW callbacks installed here, before Dear ImGui's backend, which chains to them.
+    std::uint64_t events() const { return events_; }
+    void note_event() { ++events_; }  // the callbacks' (window.cpp)
 
 private:
     GLFWwindow* window_ = nullptr;
+    std::uint64_t events_ = 0;
 };
 
 // A VkSurfaceKHR for the window, destroyed before the instance.

@@ -17,8 +17,12 @@ WindowTarget::WindowTarget(const render::VulkanContext& ctx, VkSurfaceKHR surfac
         // ready for presentation.
         render_pass_ = render::create_render_pass(dev, render::kColorFormat, stencil_format_,
                                                   VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
+        // The same render pass loading its colour: frames whose base layer was copied in.
+        load_pass_ = render::create_render_pass(dev, render::kColorFormat, stencil_format_,
+                                                VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, true);
         // Pipelines: the same three the offscreen target builds, for this render pass.
         pipelines_ = std::make_unique<render::Pipelines>(ctx_, render_pass_);
+        cache_ = std::make_unique<SceneLayerCache>(ctx_, stencil_format_);
 
         // Per frame in flight: a command buffer, a fence (created signalled: the first wait passes)
         // and the image-acquired semaphore.
@@ -57,9 +61,12 @@ void WindowTarget::destroy() {
         f = Frame{};
     }
     readback_.reset();
+    cache_.reset();
     swapchain_.destroy();
     pipelines_.reset();
+    if (load_pass_) vkDestroyRenderPass(dev, load_pass_, nullptr);
     if (render_pass_) vkDestroyRenderPass(dev, render_pass_, nullptr);
+    load_pass_ = VK_NULL_HANDLE;
     render_pass_ = VK_NULL_HANDLE;
 }
 
@@ -72,6 +79,8 @@ void WindowTarget::recreate(int width, int height) {
     const bool had = swapchain_.valid();
     if (!swapchain_.create(render_pass_, stencil_format_, width, height, vsync_)) return;
     if (had) ++recreations_;
+    // The kept base layer: the new size, drawn again at the next frame.
+    cache_->resize(swapchain_.extent());
     // Render-finished semaphores: one per swapchain image (presentation has no fence to tell
     // when a semaphore may be reused, the image's next acquisition does).
     rendered_.resize(swapchain_.images().size(), VK_NULL_HANDLE);
@@ -132,14 +141,23 @@ void WindowTarget::record_readback(VkCommandBuffer cmd, VkImage image) {
                          0, 0, nullptr, 1, &to_host, 1, &to_present);
 }
 
-FrameOutcome WindowTarget::render(const render::DrawList& list, render::Color background,
-                                  const std::function<void(VkCommandBuffer)>& overlay, render::Image* screenshot) {
+FrameOutcome WindowTarget::render(const BaseLayer& base, std::span<const Layer> layers, render::Color background,
+                                  const std::function<void(VkCommandBuffer)>& overlay, render::Image* screenshot,
+                                  FrameStages* stages) {
     const VkDevice dev = ctx_.device();
     if (!swapchain_.valid() || rendered_.empty()) return FrameOutcome::skipped;
     Frame& f = frames_[frame_index_];
 
     // Wait for this slot's previous frame: its command buffer, geometry and semaphore are free.
+    StageTimer waiting(stages, Stage::frame_wait);
     vk_check(vkWaitForFences(dev, 1, &f.done, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+    // A new picture of the base layer: the other frame in flight may still copy the old one.
+    const bool keep_base = base.cache_key != 0 && swapchain_.copy_target();
+    const bool redraw_base = keep_base && !cache_->holds(base.cache_key);
+    if (redraw_base)
+        for (Frame& other : frames_) vk_check(vkWaitForFences(dev, 1, &other.done, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+    waiting.stop();
+    StageTimer recording(stages, Stage::record);
 
     // Acquire: out-of-date means recreate and skip; suboptimal still signalled the semaphore.
     uint32_t image_index = 0;
@@ -154,7 +172,18 @@ FrameOutcome WindowTarget::render(const render::DrawList& list, render::Color ba
 
     const SwapchainImage& target = swapchain_.images()[image_index];
     const VkExtent2D e = swapchain_.extent();
-    render::upload_draw_list(ctx_, list, f.geometry);
+    // Geometry: each layer copied into this slot's buffers unless they already hold its revision
+    // (slot 0: the base layer when it is drawn in the pass).
+    if (f.geometry.size() < layers.size() + 1) {
+        f.geometry.resize(layers.size() + 1);
+        f.uploaded.resize(layers.size() + 1, 0);
+    }
+    if (!keep_base) render::upload_draw_list(ctx_, *base.list, f.geometry[0]);
+    for (std::size_t i = 0; i < layers.size(); ++i) {
+        if (layers[i].revision != 0 && f.uploaded[i + 1] == layers[i].revision) continue;
+        render::upload_draw_list(ctx_, *layers[i].list, f.geometry[i + 1]);
+        f.uploaded[i + 1] = layers[i].revision;
+    }
     if (screenshot)
         render::ensure_buffer(ctx_, readback_, static_cast<VkDeviceSize>(e.width) * e.height * 4,
                               VK_BUFFER_USAGE_TRANSFER_DST_BIT);
@@ -166,28 +195,37 @@ FrameOutcome WindowTarget::render(const render::DrawList& list, render::Color ba
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     vk_check(vkBeginCommandBuffer(f.cmd, &begin), "vkBeginCommandBuffer");
 
-    // Render pass: clear to the theme background, the draw list, then the overlay (ImGui).
+    // Base layer kept as a picture: drawn again if its key changed, then copied into the image.
+    if (redraw_base) cache_->record_update(f.cmd, *pipelines_, *base.list, background, base.cache_key);
+    if (keep_base) cache_->record_copy(f.cmd, target.image);
+
+    // Render pass: the copied base loaded, or a clear to the theme background and the base drawn;
+    // the layers, then the overlay (ImGui).
     VkClearValue clear[2]{};
     clear[0].color = {{background.r / 255.0f, background.g / 255.0f, background.b / 255.0f, background.a / 255.0f}};
     clear[1].depthStencil = {1.0f, 0};
     VkRenderPassBeginInfo rp{};
     rp.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO;
-    rp.renderPass = render_pass_;
+    rp.renderPass = keep_base ? load_pass_ : render_pass_;
     rp.framebuffer = target.framebuffer;
     rp.renderArea = {{0, 0}, e};
     rp.clearValueCount = 2;
     rp.pClearValues = clear;
     vkCmdBeginRenderPass(f.cmd, &rp, VK_SUBPASS_CONTENTS_INLINE);
-    render::record_draw_list(f.cmd, *pipelines_, list, f.geometry);
+    if (!keep_base) render::record_draw_list(f.cmd, *pipelines_, *base.list, f.geometry[0]);
+    for (std::size_t i = 0; i < layers.size(); ++i)
+        render::record_draw_list(f.cmd, *pipelines_, *layers[i].list, f.geometry[i + 1]);
     if (overlay) overlay(f.cmd);
     vkCmdEndRenderPass(f.cmd);  // the image is now in PRESENT_SRC_KHR
 
     // Screenshot: copy the very image that is presented.
     if (screenshot) record_readback(f.cmd, target.image);
     vk_check(vkEndCommandBuffer(f.cmd), "vkEndCommandBuffer");
+    recording.stop();
 
-    // Submit: wait for the acquisition before writing colour; signal the image's semaphore.
-    const VkPipelineStageFlags wait_stage = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    // Submit: wait for the acquisition before writing colour (or copying the base layer in);
+    // signal the image's semaphore.
+    const VkPipelineStageFlags wait_stage = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
     VkSubmitInfo submit{};
     submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
     submit.waitSemaphoreCount = 1;
@@ -197,7 +235,14 @@ FrameOutcome WindowTarget::render(const render::DrawList& list, render::Color ba
     submit.pCommandBuffers = &f.cmd;
     submit.signalSemaphoreCount = 1;
     submit.pSignalSemaphores = &rendered_[image_index];
+    StageTimer submitting(stages, Stage::submit);
     vk_check(vkQueueSubmit(ctx_.queue(), 1, &submit, f.done), "vkQueueSubmit");
+    submitting.stop();
+    if (stage_timing_ && stages) {
+        // Measuring: wait for the queue here, so the rasteriser's work is not counted as present.
+        StageTimer rasterising(stages, Stage::rasterise);
+        vk_check(vkWaitForFences(dev, 1, &f.done, VK_TRUE, UINT64_MAX), "vkWaitForFences (timed)");
+    }
 
     // Present: out-of-date or suboptimal marks the swapchain for recreation before the next frame.
     VkSwapchainKHR sc = swapchain_.handle();
@@ -208,7 +253,9 @@ FrameOutcome WindowTarget::render(const render::DrawList& list, render::Color ba
     present.swapchainCount = 1;
     present.pSwapchains = &sc;
     present.pImageIndices = &image_index;
+    StageTimer presenting(stages, Stage::present);
     r = vkQueuePresentKHR(ctx_.queue(), &present);
+    presenting.stop();
     if (r == VK_ERROR_OUT_OF_DATE_KHR || r == VK_SUBOPTIMAL_KHR) out_of_date_ = true;
     else vk_check(r, "vkQueuePresentKHR");
     frame_index_ = (frame_index_ + 1) % kFramesInFlight;

@@ -38,15 +38,28 @@ Metrics metrics_for(const View& view) {
 
 }  // namespace parts
 
-void build_frame(const FrameContent& content, const View& view, const Theme& theme, DrawList& out) {
-    out.clear();
+void build_scene_layer(const FrameContent& content, const View& view, const Theme& theme, DrawList& out) {
     const parts::Metrics m = parts::metrics_for(view);
     parts::draw_grid(view, theme, out);
-    if (content.overlays.zones && content.finger && content.env) parts::draw_zones(content, view, theme, out);
+    if (scene_layer_follows_finger(content)) parts::draw_zones(content, view, theme, out);
     if (content.scene) parts::draw_solids(*content.scene, view, theme, m, out);
+}
+
+void build_overlay_layer(const FrameContent& content, const View& view, const Theme& theme, DrawList& out) {
+    const parts::Metrics m = parts::metrics_for(view);
     if (content.overlays.cspace && content.finger && content.env) parts::draw_cspace(content, view, theme, m, out);
     if (content.finger) parts::draw_proxy_state(content, view, theme, m, out);
     parts::draw_legend(content, view, theme, m, out);
+}
+
+bool scene_layer_follows_finger(const FrameContent& content) {
+    return content.overlays.zones && content.finger && content.env;
+}
+
+void build_frame(const FrameContent& content, const View& view, const Theme& theme, DrawList& out) {
+    out.clear();
+    build_scene_layer(content, view, theme, out);
+    build_overlay_layer(content, view, theme, out);
 }
 
 }  // namespace contactlab::render

@@ -64,7 +64,18 @@ inline constexpr double kFlattenTolerancePx = 0.2;
 // The view that shows the whole scene and the finger (with its body), with a margin.
 View default_view(const FrameContent& content, int width, int height);
 
-// Fills `out` (its size is the view's) with the frame.
+// Fills `out` (its size is the view's) with the frame: build_scene_layer, then build_overlay_layer.
 void build_frame(const FrameContent& content, const View& view, const Theme& theme, DrawList& out);
+
+// The frame in two layers, so that a caller drawing many frames (the editor) can keep the first
+// while only the finger moves: drawn in this order into one target they give build_frame's pixels.
+// The scene layer is the grid and the solids: it depends on the scene, the view and the theme
+// only, except with the zones overlay, which lies between them and follows the finger (see
+// scene_layer_follows_finger). The overlay layer is the rest: c-space overlay, proxy ghost,
+// finger, force, contacts and the legend. Both append to `out` (build_frame clears it first).
+void build_scene_layer(const FrameContent& content, const View& view, const Theme& theme, DrawList& out);
+void build_overlay_layer(const FrameContent& content, const View& view, const Theme& theme, DrawList& out);
+// True when the scene layer also depends on the finger (the zones overlay is on).
+bool scene_layer_follows_finger(const FrameContent& content);
 
 }  // namespace contactlab::render

@@ -32,16 +32,17 @@ VkFormat pick_stencil_format(const VulkanContext& ctx) {
     throw VulkanError("no stencil attachment format supported by " + ctx.device_name());
 }
 
-VkRenderPass create_render_pass(VkDevice device, VkFormat color, VkFormat stencil, VkImageLayout color_final_layout) {
-    // Attachments: 0 colour (clear, store), 1 stencil (clear, discard); single sample.
+VkRenderPass create_render_pass(VkDevice device, VkFormat color, VkFormat stencil, VkImageLayout color_final_layout,
+                                bool keep_color) {
+    // Attachments: 0 colour (clear or load, store), 1 stencil (clear, discard); single sample.
     VkAttachmentDescription att[2]{};
     att[0].format = color;
     att[0].samples = VK_SAMPLE_COUNT_1_BIT;
-    att[0].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    att[0].loadOp = keep_color ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
     att[0].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     att[0].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
     att[0].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    att[0].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    att[0].initialLayout = keep_color ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED;
     att[0].finalLayout = color_final_layout;
     att[1].format = stencil;
     att[1].samples = VK_SAMPLE_COUNT_1_BIT;

@@ -15,8 +15,11 @@ inline constexpr VkFormat kColorFormat = VK_FORMAT_B8G8R8A8_UNORM;
 VkFormat pick_stencil_format(const VulkanContext& ctx);
 
 // One subpass: colour cleared then stored and left in `color_final_layout`; stencil cleared, not
-// stored. 1x sampling.
-VkRenderPass create_render_pass(VkDevice device, VkFormat color, VkFormat stencil, VkImageLayout color_final_layout);
+// stored. 1x sampling. With `keep_color` the colour is loaded instead of cleared and must be in
+// COLOR_ATTACHMENT_OPTIMAL when the pass begins (the editor copies its cached scene layer in
+// first); the two kinds are compatible, so one pipeline set and framebuffer serve both.
+VkRenderPass create_render_pass(VkDevice device, VkFormat color, VkFormat stencil, VkImageLayout color_final_layout,
+                                bool keep_color = false);
 
 class Pipelines {
 public:
