@@ -99,7 +99,7 @@ bool Swapchain::create(VkRenderPass render_pass, VkFormat stencil_format, int wi
     // Transfer destination too where the surface allows it: the cached scene layer is copied in.
     copy_target_ = (caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_DST_BIT) != 0;
     info.imageUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
-                      (copy_target_ ? VK_IMAGE_USAGE_TRANSFER_DST_BIT : 0u);
+                      (copy_target_ ? VkImageUsageFlags{VK_IMAGE_USAGE_TRANSFER_DST_BIT} : VkImageUsageFlags{0});
     info.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
     info.preTransform = caps.currentTransform;
     info.compositeAlpha = (caps.supportedCompositeAlpha & VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR)
