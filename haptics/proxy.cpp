@@ -339,9 +339,21 @@ void Proxy::gather_near(Vec2 finger, double phi_from, double phi_to, double reac
     segment_ids_.erase(std::unique(segment_ids_.begin(), segment_ids_.end()), segment_ids_.end());
 }
 
+// The pad frame at phi, kept from the last call while phi and the finger stay the same: its sines,
+// cosines and arctangents were a tenth of a small scene's tick, and a device that does not turn
+// the finger keeps phi fixed.
+const PadFrame& Proxy::pad_frame(double phi) {
+    if (!(pad_frame_valid_ && pad_frame_.phi == phi && pad_frame_.finger.kind == def_.finger.kind &&
+          pad_frame_.finger.radius == def_.finger.radius && pad_frame_.finger.length == def_.finger.length)) {
+        pad_frame_ = make_pad_frame(def_.finger, phi);
+        pad_frame_valid_ = true;
+    }
+    return pad_frame_;
+}
+
 void Proxy::build_pieces(double phi) {
     pieces_.clear();
-    const PadFrame pad = make_pad_frame(def_.finger, phi);
+    const PadFrame& pad = pad_frame(phi);
     for (int id : segment_ids_) append_cspace_pieces(*env_, id, pad, pieces_);
     active_count_ = 0;
 }
@@ -1105,7 +1117,7 @@ void Proxy::anticipate(Vec2 finger, double phi) {
     // tick at 100,000 segments). Instead gather only what can come within a short reach, as the
     // motion does (normal cones, pad-end views): a piece found within that reach is the nearest
     // of all. If none is, a second gather reaches to the upper bound, which is exact.
-    const PadFrame pad = make_pad_frame(def_.finger, phi);
+    const PadFrame& pad = pad_frame(phi);
     pieces_.clear();
     append_cspace_pieces(*env_, nearest_id, pad, pieces_);
     double upper = nearest_segment + R + kOnTolerance;  // m

@@ -111,6 +111,7 @@ private:
     // within `end_reach` of the pad's ends between the two angles.
     void gather_near(Vec2 finger, double phi_from, double phi_to, double reach, double end_reach);
     void build_pieces(double phi);                         // pieces_ of segment_ids_ at phi
+    const PadFrame& pad_frame(double phi);
     struct WarmDisc {
         Vec2 center{0.0};    // m
         double radius = 0.0; // m
@@ -145,6 +146,8 @@ private:
     // Scratch space reused every tick (capacity kept: no allocation in steady state).
     std::vector<int> segment_ids_;
     std::vector<CPiece> pieces_;
+    PadFrame pad_frame_;            // the last pad frame made (pad_frame())
+    bool pad_frame_valid_ = false;
     std::vector<Aabb> piece_boxes_;  // each piece's box grown by kBoxSlack: cheap rejection per walk step
     std::vector<Aabb> group_boxes_;  // the box of each run of kPieceGroup consecutive piece_boxes_
     int contact_pieces_[4] = {-1, -1, -1, -1};  // the piece behind each reported contact

@@ -1,10 +1,14 @@
 // generate_cli.cpp — `contactlab generate bumps|block|arc ... --output SCENE.json`: the seeds'
-// stimuli as scene files (haptics/stimuli.hpp).
+// stimuli as scene files (haptics/stimuli.hpp); `generate peer-workload`: the bench's dense
+// sinusoid and its 1 mm deep stroke as files, the workload to time another haptics library on.
 #include "engine/app/subcommands.hpp"
+#include "engine/bench/cost_scenes.hpp"
+#include "haptics/atomic_file.hpp"
 #include "haptics/scene_io.hpp"
 #include "haptics/stimuli.hpp"
 
 #include <cstdio>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -17,7 +21,20 @@ struct GenerateArgs {
     double d = 0.06;        // m, block top length before the edge
     double chord = 0.30;    // m, arc stimulus chord
     double height = 0.02;   // m, arc stimulus height
+    int segments = 1000;    // peer workload: line segments on the 0.4 m sinusoid
+    std::string trace;      // peer workload: the finger samples CSV to write
 };
+
+// The finger samples as `contactlab trace` / `bench --input` read them (t,x,y,phi; s, m, m, rad),
+// every value exact to the last bit.
+void save_trace(const std::vector<FingerSample>& samples, const std::string& path) {
+    std::ostringstream csv;
+    csv << kFingerSamplesHeader << "\n";
+    for (const FingerSample& s : samples)
+        csv << exact(s.t) << "," << exact(s.x.x) << "," << exact(s.x.y) << "," << exact(s.phi) << "\n";
+    write_file_atomically(path, csv.str());
+    std::fprintf(stderr, "generate: %zu finger samples written to %s\n", samples.size(), path.c_str());
+}
 
 void save(const Scene& scene, const std::string& path, const std::string& what) {
     save_scene_file(scene, path);
@@ -72,6 +89,22 @@ void register_generate_command(CLI::App& app, int& rc) {
     arc->add_option("--output,-o", a.output, "Scene file to write")->required();
     arc->add_option("--chord", a.chord, "Chord (m)")->default_val(0.30);
     arc->add_option("--height", a.height, "Height (m): 0.01, 0.02 or 0.03 in the seed")->default_val(0.02);
+    // The peer workload (issue 18): what the bench's "dense" lines case times, as files.
+    CLI::App* peer = gen->add_subcommand(
+        "peer-workload", "The bench's dense case as files: a 0.4 m sinusoid (1 cm amplitude, 10 cm wavelength) of "
+                         "N line segments, and a 4000-tick stroke 1 mm deep along it (R = 2.6 cm pad facing down)");
+    peer->add_option("--output,-o", a.output, "Scene file to write")->required();
+    peer->add_option("--trace", a.trace, "Finger samples CSV to write (t,x,y,phi), for bench --input or a peer")
+        ->required();
+    peer->add_option("--segments", a.segments, "Line segments on the 0.4 m contour")
+        ->default_val(1000)
+        ->check(CLI::Range(1, 10000000));
+    peer->callback([&rc] {
+        const bench::CostCase c{bench::SegmentKind::lines, bench::Growth::dense, a.segments};
+        save(bench::cost_scene(c), a.output, "peer workload (" + std::to_string(a.segments) + " segments)");
+        save_trace(bench::cost_stroke(c), a.trace);
+        rc = 0;
+    });
     arc->callback([&rc] {
         run([] { save(generate_arc(a.chord, a.height), a.output, "arc stimulus"); });
         rc = 0;
