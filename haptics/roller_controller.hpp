@@ -10,6 +10,8 @@
 //   I: I[k] = I[k-1] + Ki e[k] T             (rectangular rule; the integral is kept in drive units)
 //   D: -Kd v_f[k], v_f the measured rate (l[k] - l[k-1]) / T through the first-order low-pass
 //      1 / (s / w_c + 1) discretised exactly: v_f += (1 - exp(-w_c T)) (v - v_f), w_c = 2 pi f_c
+//   FF: +kff r_f[k], r_f the target's rate (l_d[k] - l_d[k-1]) / T through its own low-pass at
+//      ff_cutoff_hz (beyond eq. 2; kff = 0 is eq. 2 alone, see RollerGains::kff)
 // Derivative on the *measurement* (a step in l_d never kicks the motor); conditional-integration
 // anti-windup, output saturation and travel limits. Gains may change live between ticks: the
 // integral is stored in output units, so changing Ki does not step the output.
