@@ -14,6 +14,8 @@ RollerGains sampled_roller_gains(const RollerGains& g, double dt) noexcept {
     out.ki = g.ki * s * s * s;
     // Never negative: below p = 1 / (3 tau) the motor's back-EMF alone damps more than needed.
     out.kd = std::max(0.0, g.kd * s - (1.0 - s) * g.back_emf);
+    // Kd + back_emf scales by s (see above), and the feed-forward that cancels it with it.
+    out.kff = g.kff * s;
     return out;
 }
 
@@ -31,7 +33,7 @@ void RollerController::reset(double l) noexcept {
 bool roller_gains_usable(const RollerGains& g) noexcept {
     auto gain = [](double v) { return std::isfinite(v) && v >= 0.0; };
     auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
-    return gain(g.kp) && gain(g.ki) && gain(g.kd) && gain(g.kff) && positive(g.d_cutoff_hz) && positive(g.max_drive) &&
+    return gain(g.kp) && gain(g.ki) && gain(g.kd) && gain(g.kff) && positive(g.d_cutoff_hz) && positive(g.ff_cutoff_hz) && positive(g.max_drive) &&
            gain(g.pole) && positive(g.max_pole_period) && gain(g.back_emf);
 }
 
@@ -51,7 +53,9 @@ double RollerController::step(double l_d, double l, double dt) noexcept {
     prev_l_ = l;
     const double alpha = 1.0 - std::exp(-2.0 * 3.141592653589793 * gains_.d_cutoff_hz * dt);
     rate_f_ += alpha * (raw_rate - rate_f_);
-    target_rate_f_ += alpha * (target_rate - target_rate_f_);
+    // The target's rate has its own, slower filter: it carries the encoders' steps (see ff_cutoff_hz).
+    const double alpha_ff = 1.0 - std::exp(-2.0 * 3.141592653589793 * gains_.ff_cutoff_hz * dt);
+    target_rate_f_ += alpha_ff * (target_rate - target_rate_f_);
 
     const RollerGains g = sampled_roller_gains(gains_, dt);
     const double umax = std::max(0.0, g.max_drive);

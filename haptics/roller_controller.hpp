@@ -10,6 +10,8 @@
 //   I: I[k] = I[k-1] + Ki e[k] T             (rectangular rule; the integral is kept in drive units)
 //   D: -Kd v_f[k], v_f the measured rate (l[k] - l[k-1]) / T through the first-order low-pass
 //      1 / (s / w_c + 1) discretised exactly: v_f += (1 - exp(-w_c T)) (v - v_f), w_c = 2 pi f_c
+//   FF: +kff r_f[k], r_f the target's rate (l_d[k] - l_d[k-1]) / T through its own low-pass at
+//      ff_cutoff_hz (beyond eq. 2; kff = 0 is eq. 2 alone, see RollerGains::kff)
 // Derivative on the *measurement* (a step in l_d never kicks the motor); conditional-integration
 // anti-windup, output saturation and travel limits. Gains may change live between ticks: the
 // integral is stored in output units, so changing Ki does not step the output.
@@ -29,10 +31,22 @@ struct RollerGains {
     double kd = 820.0;          // drive per m/s of roller speed (V s/m)
     double d_cutoff_hz = 300.0; // derivative low-pass cut-off (Hz)
     double max_drive = 12.0;    // output saturation, |u| <= max_drive (V)
-    // Optional, beyond eq. 2: drive per m/s of the target's rate (V s/m), filtered like the
-    // derivative. Set to the motor's back-EMF per nut speed it cancels the lag on a moving
-    // target; 0 (the default) is seed 000's pure PID.
-    double kff = 0.0;
+    // Velocity feed-forward, beyond eq. 2: drive per m/s of the target's rate d l_d/dt (V s/m),
+    // the rate low-passed at ff_cutoff_hz. Why: eq. 2 damps the *measured* rate (-Kd s l), so on
+    // a target moving at v the loop must hold Kd v + back_emf v of drive from P and I to move at
+    // all; the integral stops at the rail (anti-windup, |I| <= max_drive), so at 5 cm/s (44 V of
+    // Kd v against a 12 V rail) P holds the rest and the roller lags (Kd v + back_emf v -
+    // max_drive) / Kp = 0.10 mm for as long as the target moves. kff = Kd + back_emf (864.88
+    // V s/m, the default) supplies exactly that drive: the derivative then acts on the error's
+    // rate and the back-EMF is pre-paid, so a steady ramp needs no P or I. 0 is seed 000's pure
+    // eq. 2 (the figures for both: README "Roller"). Below 1 kHz it is re-placed with Kd.
+    double kff = 864.88;
+    // Cut-off of the target-rate filter (Hz). l_d moves in encoder steps (0.04 mm of l per angle
+    // count, 0.02 mm per arm count) that a per-tick difference turns into +-40 mm/s of rate; at
+    // 300 Hz (the derivative's) kff x that is +-30 V of chatter and doubles the slow-motion error.
+    // 20 Hz averages the steps over ~8 ms and lags a ramp's onset by 1 / (2 pi 20) = 8 ms, inside
+    // the transient the motor's force limit imposes anyway (bench: roller tracking).
+    double ff_cutoff_hz = 20.0;
     // Sampling limit of the design (below 1 kHz). The gains above place the three closed-loop
     // poles at s = -pole (rad/s); a discrete PID holds that design only while pole T is well
     // inside the sampling (at p T = 0.8-4, i.e. 500-100 Hz, the same gains limit-cycle by up to
@@ -40,8 +54,9 @@ struct RollerGains {
     // controller re-places the poles at p = max_pole_period / T with the pole-placement scaling
     // (s = p / pole). 0.4 is the defaults' own p T at 1 kHz, so below 1 kHz the loop is the 1 kHz
     // loop slowed by T / 1 ms (at 0.5, 500-800 Hz kept a 17-34 um limit cycle):
-    //   Kp s^2, Ki s^3, Kd s - (1 - s) back_emf
-    // (Kd + back_emf = 3 tau p / g grows with p; back_emf = 1 / g is the damping the motor's own
+    //   Kp s^2, Ki s^3, Kd s - (1 - s) back_emf, kff s
+    // (kff scales as Kd + back_emf does, so kff = Kd + back_emf stays the exact cancellation;
+    // Kd + back_emf = 3 tau p / g grows with p; back_emf = 1 / g is the damping the motor's own
     // back-EMF gives, V s/m). pole = 0 turns this off (gains used as given at every rate).
     double pole = 400.0;            // rad/s, where kp, ki, kd were placed
     double max_pole_period = 0.4;   // largest p T kept (dimensionless)

@@ -32,6 +32,7 @@ std::string roller_gains_problem(const RollerGains& g) {
          {range("roller.kp", g.kp, 0.0, kHuge, "V/m"), range("roller.ki", g.ki, 0.0, kHuge, "V/(m s)"),
           range("roller.kd", g.kd, 0.0, kHuge, "V s/m"), range("roller.kff", g.kff, 0.0, kHuge, "V s/m"),
           range("roller.d_cutoff_hz", g.d_cutoff_hz, 0.0, 1e6, "Hz", true),
+          range("roller.ff_cutoff_hz", g.ff_cutoff_hz, 0.0, 1e6, "Hz", true),
           range("roller.max_drive", g.max_drive, 0.0, 1e3, "V", true),
           range("roller.pole", g.pole, 0.0, 1e7, "rad/s"),
           range("roller.max_pole_period", g.max_pole_period, 0.0, 10.0, "", true),

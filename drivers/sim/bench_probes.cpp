@@ -156,6 +156,9 @@ BlockTracking block_task_tracking(double speed, double rate, const RollerGains& 
     const auto window = std::max<std::size_t>(2, static_cast<std::size_t>(std::lround(0.010 * rate)));
     std::deque<double> recent;       // m, the last `window` targets while engaged in contact
     const auto ticks = static_cast<std::uint64_t>(std::lround(rig.device.hand().path().end() * rate));
+    // The whole run, for the jump analysis afterwards (it looks kJumpRateWindow ahead).
+    std::vector<double> target(ticks, 0.0), measured(ticks, 0.0);  // m
+    std::vector<char> sampled(ticks, 0);                             // engaged and in contact
     for (std::uint64_t k = 0; k < ticks; ++k) {
         rig.loop.step(T, true);
         const ServoSnapshot s = rig.servo.snapshot();
@@ -164,6 +167,9 @@ BlockTracking block_task_tracking(double speed, double rate, const RollerGains& 
             recent.clear();
             continue;
         }
+        sampled[k] = 1;
+        target[k] = s.roller_target;
+        measured[k] = s.roller_l;
         lmin = std::min(lmin, s.roller_target);
         lmax = std::max(lmax, s.roller_target);
         const double e = s.roller_target - s.roller_l;  // m
@@ -179,6 +185,41 @@ BlockTracking block_task_tracking(double speed, double rate, const RollerGains& 
     }
     tr.l_range = tr.samples > 0 ? lmax - lmin : 0.0;
     tr.rms_measured = tr.samples > 0 ? std::sqrt(sum_sq / static_cast<double>(tr.samples)) : 0.0;
+
+    // Jumps of l_d (bench_probes.hpp, RollerTrackingRow): compare the mean rate over the window
+    // before each tick with that over the window after it.
+    const auto n = static_cast<std::int64_t>(ticks);
+    const auto w = static_cast<std::int64_t>(std::max(1L, std::lround(kJumpRateWindow * rate)));     // ticks
+    const auto settle = static_cast<std::int64_t>(std::lround(kJumpSettleWindow * rate));            // ticks
+    std::vector<char> jump(ticks, 0);
+    for (std::int64_t k = 0; k < n; ++k) {
+        if (!sampled[k]) continue;
+        bool all_in = k >= w && k + w < n;
+        for (std::int64_t j = k - w; all_in && j <= k + w; ++j) all_in = sampled[j] != 0;
+        if (!all_in) {
+            jump[k] = 1;  // contact made or lost nearby: l_d switches from or to the anticipation's
+            continue;
+        }
+        const double before = (target[k] - target[k - w]) / (w * T);  // m/s
+        const double after = (target[k + w] - target[k]) / (w * T);    // m/s
+        jump[k] = std::abs(after - before) > kJumpRateChange;
+    }
+    double track_sq = 0.0;  // m^2
+    std::int64_t since_jump = settle + 1;  // ticks since the last jump tick
+    for (std::int64_t k = 0; k < n; ++k) {
+        if (jump[k] && (k == 0 || !jump[k - 1])) ++tr.jumps;
+        since_jump = jump[k] ? 0 : since_jump + 1;
+        if (!sampled[k]) continue;
+        const double e = std::abs(target[k] - measured[k]);  // m
+        if (since_jump <= settle) {
+            tr.max_jump = std::max(tr.max_jump, e);
+        } else {
+            tr.max_tracking = std::max(tr.max_tracking, e);
+            track_sq += e * e;
+            ++tr.tracking_samples;
+        }
+    }
+    tr.rms_tracking = tr.tracking_samples > 0 ? std::sqrt(track_sq / static_cast<double>(tr.tracking_samples)) : 0.0;
     return tr;
 }
 
@@ -198,6 +239,8 @@ RollerGains roller_gains_scaled(double scale, const RollerParams& plant) {
     out.ki *= scale * scale * scale;
     // Kd(s p0) = (3 tau s p0 - 1) / g = s (3 tau p0 - 1) / g + (s - 1) / g.
     out.kd = out.kd * scale + (scale - 1.0) / g;
+    // The feed-forward cancels Kd + back-EMF = 3 tau p / g, which scales with p.
+    out.kff *= scale;
     // Used as placed: the table explores the gains themselves (p T = 0.8 at scale 2 and 1 kHz),
     // which the controller's re-placement near the sampling (RollerGains::pole) would undo.
     out.pole = 0.0;
@@ -240,17 +283,24 @@ std::vector<RollerTrackingRow> roller_tracking_table(bool quick) {
                                              : std::vector<double>{0.01, 0.02, 0.05, 0.1};
     const double rate = 1000.0;  // Hz: seed 000's servo rate
     std::vector<RollerTrackingRow> rows;
-    rows.reserve(scales.size() * speeds.size());
-    for (double scale : scales) {
-        const RollerGains gains = drivers::sim::roller_gains_scaled(scale);
+    rows.reserve((scales.size() + 1) * speeds.size());
+    auto run = [&](double scale, bool feed_forward) {
+        RollerGains gains = drivers::sim::roller_gains_scaled(scale);
+        if (!feed_forward) gains.kff = 0.0;
         for (double speed : speeds) {
             const drivers::sim::BlockTracking tr = drivers::sim::block_task_tracking(speed, rate, gains);
+            const double nan = std::numeric_limits<double>::quiet_NaN();
             RollerTrackingRow row;
             row.gain_scale = scale;
             row.finger_speed = speed;
             row.rate_hz = rate;
-            row.max_error = tr.opened ? tr.max_measured : std::numeric_limits<double>::quiet_NaN();
-            row.rms_error = tr.opened ? tr.rms_measured : std::numeric_limits<double>::quiet_NaN();
+            row.feed_forward = feed_forward;
+            row.max_error = tr.opened ? tr.max_measured : nan;
+            row.rms_error = tr.opened ? tr.rms_measured : nan;
+            row.max_tracking_error = tr.opened && tr.tracking_samples > 0 ? tr.max_tracking : nan;
+            row.rms_tracking_error = tr.opened && tr.tracking_samples > 0 ? tr.rms_tracking : nan;
+            row.max_jump_error = tr.opened ? tr.max_jump : nan;
+            row.jumps = tr.jumps;
             row.pole_rad_s = 400.0 * scale;
             row.max_element_error = tr.max_element;
             row.target_range = tr.l_range;
@@ -258,6 +308,32 @@ std::vector<RollerTrackingRow> roller_tracking_table(bool quick) {
             row.onset_floor = drivers::sim::onset_floor(tr.max_rate, 1.0 / rate);
             rows.push_back(row);
         }
+    };
+    for (double scale : scales) run(scale, true);
+    run(1.0, false);  // the "before": seed 000's eq. 2 alone, at the default poles
+    return rows;
+}
+
+std::vector<RollerJumpRow> roller_jump_table(bool quick) {
+    const drivers::sim::SimCldParams sp;
+    // m: (from, to); the 16 mm jump ends 2 mm inside the +10 mm stop.
+    const std::vector<std::pair<double, double>> jumps =
+        quick ? std::vector<std::pair<double, double>>{{-0.005, 0.005}}
+              : std::vector<std::pair<double, double>>{{0.0, 0.002}, {-0.005, 0.005}, {-0.008, 0.008}};
+    std::vector<RollerJumpRow> rows;
+    for (const auto& [from, to] : jumps) {
+        const drivers::sim::RollerJumpResponse r =
+            drivers::sim::roller_jump_response(sp.roller, RollerGains{}, from, to, 1000.0, 0.05e-3, 0.5, sp.substep,
+                                               sp.min_substeps);
+        RollerJumpRow row;
+        row.jump = r.jump;
+        row.jump_settle_s = r.finite ? r.settle_s : std::numeric_limits<double>::quiet_NaN();
+        row.force_limited_s = r.force_limited_s;
+        row.band = r.band;
+        row.overshoot = r.overshoot;
+        row.max_excursion = r.max_excursion;
+        row.half_travel = r.half_travel;
+        rows.push_back(row);
     }
     return rows;
 }

@@ -70,12 +70,33 @@ std::vector<StabilityRow> stability_table(bool quick);
 // Seed 000's block task (drivers/tasks.hpp: along the top, over the corner, down the far face) on
 // the simulated CLD at `rate_hz`; the error is the roller's encoder against the servo's target
 // l_d, sampled every tick while engaged and in contact.
+//
+// Tracking vs jumps. Seeds 000/001 give the error "during hand motion" (0.05 mm at 5 cm/s, 0.01 mm
+// slow); the block task also has moments where l_d's motion changes faster than a force-limited
+// roller can follow: past the block's edge the contact starts along the pad at the hand's speed
+// from rest (a step in d l_d/dt), it stops when the finger tips, and contact is made and lost.
+// A tick is a *jump* of l_d when l_d's mean rate over the next kJumpRateWindow differs from that
+// over the previous one by more than kJumpRateChange (this also catches any step of l_d of more
+// than kJumpRateChange x kJumpRateWindow = 0.2 mm), or when contact is missing within
+// kJumpRateWindow of it. `max_tracking_error` is the error outside the jumps and the
+// kJumpSettleWindow after each; `max_jump_error` the error inside them.
+inline constexpr double kJumpRateWindow = 0.010;  // s: averages out the encoders' steps of l_d
+                                                  //   (0.04 mm per angle count: <= 8 mm/s of noise between two windows)
+inline constexpr double kJumpRateChange = 0.020;  // m/s: above that noise; below it the onset
+                                                  //   floor (onset_floor()) is under 0.04 mm at 1 kHz
+inline constexpr double kJumpSettleWindow = 0.030;  // s: a 5 cm/s onset takes 3 ms of full force
+                                                    //   and the 400 rad/s triple pole ~20 ms to settle
 struct RollerTrackingRow {
     double gain_scale = 1;       // multiplier on the default closed-loop bandwidth (pole placement) or gains
     double finger_speed = 0;     // m/s along the block task's contour
     double rate_hz = 1000;
-    double max_error = 0;        // m, roller vs target
+    bool feed_forward = true;    // velocity feed-forward (RollerGains::kff = Kd + back-EMF); false: seed 000's pure eq. 2
+    double max_error = 0;        // m, roller vs target, every tick in contact (tracking and jumps)
     double rms_error = 0;        // m
+    double max_tracking_error = 0;  // m, outside the jumps' windows (see above)
+    double rms_tracking_error = 0;  // m
+    double max_jump_error = 0;   // m, inside them
+    int jumps = 0;               // jumps of l_d found
     // Beyond the bench's interface:
     double pole_rad_s = 0;       // rad/s, the placed closed-loop pole (triple), 400 x gain_scale
     double max_element_error = 0;  // m, contact element (after the wires: what the finger feels) vs target
@@ -84,9 +105,27 @@ struct RollerTrackingRow {
     double onset_floor = 0;      // m, least error any controller can have on that onset (see onset_floor())
 };
 // quick: gain scales {1, 2} x speeds {0.02, 0.05} m/s; full: gain scales {0.5, 1, 2} x speeds
-// {0.01, 0.02, 0.05, 0.1} m/s. All at 1 kHz. Rows per gain scale, speeds ascending. The errors
-// are NaN if the simulated device did not open (a bench must not report a 0 it did not measure).
+// {0.01, 0.02, 0.05, 0.1} m/s. All at 1 kHz, with the default feed-forward, then the same speeds
+// at gain scale 1 without it (the "before": seed 000's pure eq. 2). Rows per (scale, feed-forward),
+// speeds ascending. The errors are NaN if the simulated device did not open (a bench must not
+// report a 0 it did not measure).
 std::vector<RollerTrackingRow> roller_tracking_table(bool quick);
+
+// ---- Roller response to a jump of l_d ----------------------------------------------------------
+// The roller alone (drivers/sim/roller_sine.hpp) at 1 kHz with the default gains: l_d jumps by
+// 2 mm (0 -> 2 mm), 10 mm (-5 -> 5 mm) and 16 mm (-8 -> 8 mm, near the +-10 mm stops), and the
+// settling into 0.05 mm (seed 001's 5 cm/s figure) is set against the force-limited least time.
+struct RollerJumpRow {
+    double jump = 0;             // m
+    double jump_settle_s = 0;    // s, until |l_d - l| stays within `band`
+    double force_limited_s = 0;  // s, least time with the drive on the rail (force_limited_jump_time)
+    double band = 0;             // m
+    double overshoot = 0;        // m, past the target
+    double max_excursion = 0;    // m, furthest |nut| from the centre
+    double half_travel = 0;      // m
+};
+// quick: the 10 mm jump only.
+std::vector<RollerJumpRow> roller_jump_table(bool quick);
 
 // The 1 cm peak-to-peak sine -3 dB frequency (Hz) of the roller alone at 1 kHz with the default
 // gains (seed 000: about 8 Hz). quick: the sweep starts at 2 Hz (the motor's force does not
@@ -143,6 +182,11 @@ AboveBoundProbe above_bound_probe(double rate, double ratio, double seconds = 3.
 struct BlockTracking {
     double max_measured = 0.0;  // m, |l_target - l_encoder|
     double rms_measured = 0.0;  // m, RMS of the same over the ticks sampled
+    double max_tracking = 0.0;  // m, the same outside the jumps of l_d and their windows (RollerTrackingRow)
+    double rms_tracking = 0.0;  // m
+    double max_jump = 0.0;      // m, inside them
+    int jumps = 0;              // jumps of l_d found
+    std::uint64_t tracking_samples = 0;  // ticks outside the jumps' windows
     double max_element = 0.0;   // m, |l_target - l_element| (what the finger feels)
     double l_range = 0.0;       // m, how far l_d travelled
     double max_rate = 0.0;      // m/s, fastest l_d over 10 ms windows (encoder steps averaged out)

@@ -137,4 +137,66 @@ RollerStepRun roller_step_run(const RollerParams& plant, const RollerGains& gain
     return r;
 }
 
+RollerJumpResponse roller_jump_response(const RollerParams& plant, const RollerGains& gains, double from, double to,
+                                        double rate, double band, double hold, double substep, int min_substeps) {
+    CldRoller roller(plant);
+    roller.place_at(from);
+    RollerController ctl(gains, RollerTravel{-roller.half_travel(), roller.half_travel()});
+    ctl.reset(roller.measured());
+    const double T = 1.0 / rate;  // s
+    const int n_sub = std::max(std::max(1, min_substeps), static_cast<int>(std::ceil(T / substep - 1e-9)));
+    const double h = T / n_sub;   // s
+    RollerJumpResponse r;
+    r.jump = to - from;
+    r.band = band;
+    r.half_travel = roller.half_travel();
+    r.force_limited_s = force_limited_jump_time(plant, r.jump);
+    const double dir = r.jump >= 0.0 ? 1.0 : -1.0;
+    double last_out = 0.0;  // s, the end of the last tick outside the band
+    const auto ticks = static_cast<long>(std::lround(hold * rate));
+    for (long k = 0; k < ticks; ++k) {
+        const double l = roller.measured();  // m
+        const double u = ctl.step(to, l, T);
+        roller.set_voltage(u);
+        r.finite = r.finite && std::isfinite(u) && std::isfinite(l);
+        const double e = to - l;  // m
+        // Tick k reads the roller at k T (the jump is seen at k = 0).
+        if (std::abs(e) > band) last_out = (k + 1) * T;
+        r.overshoot = std::max(r.overshoot, -dir * e);
+        for (int i = 0; i < n_sub; ++i) roller.step(h);
+        r.max_excursion = std::max(r.max_excursion, std::abs(roller.nut()));
+    }
+    r.settle_s = last_out;
+    return r;
+}
+
+double force_limited_jump_time(const RollerParams& plant, double jump) {
+    const double d = std::abs(jump);  // m
+    if (!(d > 0.0)) return 0.0;
+    constexpr double h = 1e-5;        // s
+    // Full drive toward the target until `ts` (s), then full drive back until the nut turns:
+    // returns how far it got (m) and when it stopped (s).
+    auto run = [&](double ts, double& t_stop) {
+        CldRoller r(plant);
+        r.place_at(-0.5 * d);  // centred, so even a full-travel jump stays off the stops
+        double t = 0.0, prev = r.nut();
+        while (t < 1.0) {
+            r.set_voltage(t < ts ? plant.max_voltage : -plant.max_voltage);
+            r.step(h);
+            t += h;
+            if (t > ts && r.nut() <= prev) break;
+            prev = r.nut();
+        }
+        t_stop = t;
+        return prev + 0.5 * d;
+    };
+    double lo = 0.0, hi = 0.5, t_stop = 0.0;  // s: the switch time lies between
+    for (int i = 0; i < 60; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (run(mid, t_stop) < d ? lo : hi) = mid;
+    }
+    run(hi, t_stop);
+    return t_stop;
+}
+
 }  // namespace contactlab::drivers::sim

@@ -64,4 +64,27 @@ struct RollerStepRun {
 RollerStepRun roller_step_run(const RollerParams& plant, const RollerGains& gains, double rate, double hold = 0.4,
                               double substep = 1e-4, int min_substeps = 10);
 
+// The response to a jump of l_d (bench "roller jump"): the roller at rest at `from` (m) under
+// `gains` at `rate` (Hz); l_d jumps to `to` (m) and is held for `hold` s.
+struct RollerJumpResponse {
+    double jump = 0.0;            // m, to - from
+    double settle_s = 0.0;        // s from the jump until |l_d - l| stays within `band`; the hold's length if never
+    double band = 0.0;            // m, the settling band
+    double force_limited_s = 0.0; // s, the least any controller can take (force_limited_jump_time)
+    double overshoot = 0.0;       // m, furthest the encoder went past `to`, in the jump's direction
+    double max_excursion = 0.0;   // m, furthest |nut| from the travel's centre (inside half_travel: no overshoot beyond the travel)
+    double half_travel = 0.0;     // m
+    bool finite = true;
+};
+RollerJumpResponse roller_jump_response(const RollerParams& plant, const RollerGains& gains, double from, double to,
+                                        double rate = 1000.0, double band = 0.05e-3, double hold = 0.5,
+                                        double substep = 1e-4, int min_substeps = 10);
+
+// The least time (s) the roller can move `jump` (m) from rest to rest with its drive on the rail:
+// full drive toward the target, then full drive back, switched so that the nut stops on the target
+// (one switch is time-optimal for this second-order plant: Pontryagin's bang-bang). Found by
+// bisection on the switch time, on the same roller model (back-EMF, friction, stiction), stepped
+// at 10 us. This is the motor's force limit the jump settling is measured against.
+double force_limited_jump_time(const RollerParams& plant, double jump);
+
 }  // namespace contactlab::drivers::sim

@@ -124,31 +124,33 @@ Chart stability_chart(const BenchResults& r) {
     return c;
 }
 
-// One colour per pole scale: max error solid, RMS dashed.
+// One colour per pole scale and feed-forward: the tracking max (outside the jumps of l_d) solid,
+// the max over every tick in contact (jumps included) dashed.
 Chart roller_chart(const BenchResults& r) {
     Chart c = base_chart("Roller tracking error against finger speed (seed 000 block task)", "finger speed (mm/s)",
                          AxisScale::linear, "roller error (um)", AxisScale::linear);
     c.x.include_zero = true;
     c.y.include_zero = true;
-    std::vector<double> scales;
+    std::vector<std::pair<double, bool>> groups;  // (gain scale, feed-forward)
     for (const RollerTrackingRow& t : r.roller)
-        if (std::find(scales.begin(), scales.end(), t.gain_scale) == scales.end()) scales.push_back(t.gain_scale);
+        if (std::find(groups.begin(), groups.end(), std::pair{t.gain_scale, t.feed_forward}) == groups.end())
+            groups.emplace_back(t.gain_scale, t.feed_forward);
     int colour = 0;
-    for (const double g : scales) {
-        char name[48];
-        std::snprintf(name, sizeof name, "pole x%.2g, max", g);
-        ChartSeries max = series(name, colour, Marker::disc);
-        std::snprintf(name, sizeof name, "pole x%.2g, RMS", g);
-        ChartSeries rms = series(name, colour, Marker::square, true);
+    for (const auto& [g, ff] : groups) {
+        char name[64];
+        std::snprintf(name, sizeof name, "pole x%.2g%s, tracking", g, ff ? "" : " no FF");
+        ChartSeries track = series(name, colour, Marker::disc);
+        std::snprintf(name, sizeof name, "pole x%.2g%s, all", g, ff ? "" : " no FF");
+        ChartSeries all = series(name, colour, Marker::square, true);
         for (const RollerTrackingRow& t : r.roller) {
-            if (t.gain_scale != g) continue;
-            max.x.push_back(t.finger_speed * 1e3);
-            max.y.push_back(t.max_error * 1e6);
-            rms.x.push_back(t.finger_speed * 1e3);
-            rms.y.push_back(t.rms_error * 1e6);
+            if (t.gain_scale != g || t.feed_forward != ff) continue;
+            track.x.push_back(t.finger_speed * 1e3);
+            track.y.push_back(t.max_tracking_error * 1e6);
+            all.x.push_back(t.finger_speed * 1e3);
+            all.y.push_back(t.max_error * 1e6);
         }
-        c.series.push_back(std::move(max));
-        c.series.push_back(std::move(rms));
+        c.series.push_back(std::move(track));
+        c.series.push_back(std::move(all));
         ++colour;
     }
     return c;

@@ -100,9 +100,21 @@ nlohmann::json results_json(const BenchResults& r) {
                                   {"k_settles", s.k_settles}, {"k_ideal_settles", s.k_ideal_settles},
                                   {"k_ideal_no_fault", s.k_ideal_no_fault}, {"above_bound", above}});
     }
+    // max_error / rms_error: every tick in contact (as before the split); max_tracking_error /
+    // rms_tracking_error: outside the jumps of l_d and the window after each (bench_probes.hpp).
     for (const RollerTrackingRow& t : r.roller)
         j["roller_tracking"].push_back({{"gain_scale", t.gain_scale}, {"finger_speed", t.finger_speed},
-                                        {"rate_hz", t.rate_hz}, {"max_error", t.max_error}, {"rms_error", t.rms_error}});
+                                        {"rate_hz", t.rate_hz}, {"feed_forward", t.feed_forward},
+                                        {"max_error", t.max_error}, {"rms_error", t.rms_error},
+                                        {"max_tracking_error", t.max_tracking_error},
+                                        {"rms_tracking_error", t.rms_tracking_error},
+                                        {"max_jump_error", t.max_jump_error}, {"jumps", t.jumps},
+                                        {"jump_window_s", kJumpSettleWindow}});
+    for (const RollerJumpRow& t : r.roller_jump)
+        j["roller_jump"].push_back({{"jump", t.jump}, {"jump_settle_s", t.jump_settle_s},
+                                    {"force_limited_s", t.force_limited_s}, {"band", t.band},
+                                    {"overshoot", t.overshoot}, {"max_excursion", t.max_excursion},
+                                    {"half_travel", t.half_travel}});
     j["roller_bandwidth_hz"] = r.roller_bandwidth_hz;
     // Frame time in ms (a frame is ~1e6 times a tick: ns would read badly).
     j["render_size"] = {r.render.width, r.render.height};
@@ -197,12 +209,30 @@ std::string results_markdown(const BenchResults& r, const ReportPlots* plots) {
         md += " |\n";
     }
     md += figure(plots, "stability.png");
-    md += "\n## Roller tracking (seed 000 block task)\n\n"
-          "| pole scale | finger speed | rate | max error | RMS error |\n| ---: | ---: | ---: | ---: | ---: |\n";
+    md += fmt("\n## Roller tracking (seed 000 block task)\n\n"
+              "Tracking: |l_d - l| while l_d moves continuously, i.e. outside the jumps of l_d (its 10 ms "
+              "mean rate changing by more than %.0f mm/s, or contact made or lost) and the ", kJumpRateChange * 1e3) +
+          fmt("%.0f ms after each; jumps: inside those windows; all: every tick in contact. Feed-forward off is "
+              "seed 000's eq. 2 alone (the \"before\"); on is the default (kff = Kd + back-EMF).\n\n",
+              kJumpSettleWindow * 1e3) +
+          "| pole scale | feed-forward | finger speed | rate | tracking max | tracking RMS | jumps | jump max | all max | all RMS |\n"
+          "| ---: | :---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
     for (const RollerTrackingRow& t : r.roller)
-        md += fmt("| %.2g", t.gain_scale) + fmt(" | %.0f mm/s", t.finger_speed * 1e3) + fmt(" | %.0f Hz", t.rate_hz) +
-              " | " + metres(t.max_error) + " | " + metres(t.rms_error) + " |\n";
+        md += fmt("| %.2g", t.gain_scale) + (t.feed_forward ? " | on" : " | off") +
+              fmt(" | %.0f mm/s", t.finger_speed * 1e3) + fmt(" | %.0f Hz", t.rate_hz) + " | " +
+              metres(t.max_tracking_error) + " | " + metres(t.rms_tracking_error) + " | " + std::to_string(t.jumps) +
+              " | " + metres(t.max_jump_error) + " | " + metres(t.max_error) + " | " + metres(t.rms_error) + " |\n";
     md += figure(plots, "roller_tracking.png");
+    if (!r.roller_jump.empty()) {
+        md += "\nRoller alone, a jump of l_d at 1 kHz (default gains): settling into the band, against the least time "
+              "the motor's force allows (full drive, then full reverse).\n\n"
+              "| jump | settle | force-limited | band | overshoot | furthest from centre / half travel |\n"
+              "| ---: | ---: | ---: | ---: | ---: | ---: |\n";
+        for (const RollerJumpRow& t : r.roller_jump)
+            md += "| " + metres(t.jump) + fmt(" | %.1f ms", t.jump_settle_s * 1e3) + fmt(" | %.1f ms", t.force_limited_s * 1e3) +
+                  " | " + metres(t.band) + " | " + metres(t.overshoot) + " | " + metres(t.max_excursion) + " / " +
+                  metres(t.half_travel) + " |\n";
+    }
     md += fmt("\nRoller 1 cm sine bandwidth (-3 dB, 1 kHz): %.2f Hz (seed 000: about 8 Hz).\n", r.roller_bandwidth_hz);
     md += fmt("\n## Render frame time (offscreen, %.0f", r.render.width) + fmt("x%.0f px)\n\n", r.render.height);
     if (!r.render.skipped.empty()) {

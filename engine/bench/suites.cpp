@@ -232,6 +232,7 @@ BenchResults run_suites(const BenchOptions& options) {
     // Closed-loop simulation in virtual time (drivers/sim/bench_probes.hpp): no timing involved.
     r.stability = stability_table(options.quick);
     r.roller = roller_tracking_table(options.quick);
+    r.roller_jump = roller_jump_table(options.quick);
     r.roller_bandwidth_hz = roller_bandwidth_hz(options.quick);
     r.render = render_frame_suite(options.quick);
     r.servo_beside = servo_beside_renderer(options.quick);

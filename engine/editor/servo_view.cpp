@@ -38,6 +38,7 @@ bool same_params(const ServoParams& a, const ServoParams& b) {
     return a.stiffness == b.stiffness && a.max_force == b.max_force && a.roller.kp == b.roller.kp &&
            a.roller.ki == b.roller.ki && a.roller.kd == b.roller.kd && a.roller.max_drive == b.roller.max_drive &&
            a.roller.d_cutoff_hz == b.roller.d_cutoff_hz && a.roller.kff == b.roller.kff &&
+           a.roller.ff_cutoff_hz == b.roller.ff_cutoff_hz &&
            a.roller.pole == b.roller.pole && a.roller.max_pole_period == b.roller.max_pole_period &&
            a.roller.back_emf == b.roller.back_emf &&
            a.safety.watchdog_timeout == b.safety.watchdog_timeout && a.roller_travel == b.roller_travel;

@@ -78,6 +78,10 @@ BenchResults made_up_results() {
             t.finger_speed = v;
             t.max_error = v * 1e-3 / g;
             t.rms_error = v * 0.3e-3 / g;
+            t.max_tracking_error = v * 0.4e-3 / g;
+            t.rms_tracking_error = v * 0.1e-3 / g;
+            t.max_jump_error = t.max_error;
+            t.jumps = 2;
             r.roller.push_back(t);
         }
     r.render.device = "made-up device";
@@ -151,7 +155,8 @@ TEST_CASE("bench report: PNGs written at the plot size and linked from the Markd
 
 TEST_CASE("bench report: a figure with no drawable data is not drawn and the page says why") {
     BenchResults r = made_up_results();
-    for (RollerTrackingRow& t : r.roller) t.max_error = t.rms_error = std::numeric_limits<double>::quiet_NaN();
+    for (RollerTrackingRow& t : r.roller)
+        t.max_error = t.rms_error = t.max_tracking_error = t.rms_tracking_error = std::numeric_limits<double>::quiet_NaN();
     const fs::path dir = fresh_dir("contactlab_test_bench_report_nan");
     const ReportPlots plots = write_report_plots(r, dir.string());
     const PlotFile* roller = plots.find("roller_tracking.png");
@@ -162,6 +167,28 @@ TEST_CASE("bench report: a figure with no drawable data is not drawn and the pag
     const std::string md = results_markdown(r, &plots);
     CHECK(md.find("_Plot `roller_tracking.png` not drawn: ") != std::string::npos);
     fs::remove_all(dir);
+}
+
+TEST_CASE("bench report: the JSON splits the roller's tracking from its jumps, old keys kept") {
+    BenchResults r = made_up_results();
+    RollerJumpRow jump;
+    jump.jump = 0.01;
+    jump.jump_settle_s = 0.081;
+    jump.force_limited_s = 0.059;
+    r.roller_jump.push_back(jump);
+    const nlohmann::json j = results_json(r);
+    REQUIRE(j["roller_tracking"].size() == r.roller.size());
+    const nlohmann::json& t = j["roller_tracking"][0];
+    for (const char* key : {"max_error", "rms_error", "max_tracking_error", "rms_tracking_error", "max_jump_error",
+                            "jumps", "jump_window_s", "feed_forward"})
+        CHECK_MESSAGE(t.contains(key), key);
+    CHECK(t["max_tracking_error"].get<double>() == doctest::Approx(r.roller[0].max_tracking_error));
+    REQUIRE(j["roller_jump"].size() == 1);
+    CHECK(j["roller_jump"][0]["jump_settle_s"].get<double>() == doctest::Approx(0.081));
+    CHECK(j["roller_jump"][0]["force_limited_s"].get<double>() == doctest::Approx(0.059));
+    const std::string md = results_markdown(r);
+    CHECK(md.find("tracking max") != std::string::npos);
+    CHECK(md.find("force-limited") != std::string::npos);
 }
 
 TEST_CASE("bench report: the JSON holds render_ms.<N> in ms") {

@@ -117,6 +117,7 @@ TEST_CASE("servo parameters the tick cannot honour name the field and the value"
         {"roller.ki", [](ServoParams& p) { p.roller.ki = kInf; }},
         {"roller.kp", [](ServoParams& p) { p.roller.kp = -3.0; }},
         {"roller.d_cutoff_hz", [](ServoParams& p) { p.roller.d_cutoff_hz = 0.0; }},
+        {"roller.ff_cutoff_hz", [](ServoParams& p) { p.roller.ff_cutoff_hz = 0.0; }},
         {"roller.max_drive", [](ServoParams& p) { p.roller.max_drive = kNaN; }},
     };
     for (const Case& k : cases) {

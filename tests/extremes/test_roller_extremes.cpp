@@ -111,12 +111,13 @@ TEST_CASE("absurd targets and broken periods give a finite drive") {
 
 TEST_CASE("non-finite or negative gains hold the roller still (zero drive) instead of driving it wild") {
     for (double bad : {kNaN, kInf, -kInf, -1.0}) {
-        for (int which = 0; which < 8; ++which) {
+        for (int which = 0; which < 10; ++which) {
             CAPTURE(bad);
             CAPTURE(which);
             RollerGains g;
             REQUIRE(roller_gains_usable(g));
-            double* fields[] = {&g.kp, &g.ki, &g.kd, &g.d_cutoff_hz, &g.max_drive, &g.pole, &g.max_pole_period, &g.back_emf};
+            double* fields[] = {&g.kp,   &g.ki,   &g.kd,   &g.d_cutoff_hz, &g.max_drive, &g.pole, &g.max_pole_period,
+                                &g.back_emf, &g.kff, &g.ff_cutoff_hz};
             *fields[which] = bad;
             CHECK_FALSE(roller_gains_usable(g));
             RollerController c(g, RollerTravel{});
