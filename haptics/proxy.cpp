@@ -328,6 +328,14 @@ void Proxy::gather_near(Vec2 finger, double phi_from, double phi_to, double reac
         env_->tree.query_offset_reach(finger, shape.radius, reach, segment_ids_, -1.0);
         const double h = pad_half_angle(shape);
         for (const double side : {-1.0, 1.0}) {
+            if (phi_from == phi_to) {
+                // One angle: the segments within end_reach of the pad's end, a disc. (The box
+                // around it, 2 end_reach wide, held thousands more on a dense slope: hovering
+                // 1 cm above one, the reach is 1 cm.)
+                env_->tree.query_offset_reach(finger + shape.radius * unit_at(pad_mid_angle(phi_to) + side * h), 0.0,
+                                              end_reach, segment_ids_);
+                continue;
+            }
             Aabb box;
             box.grow(finger + shape.radius * unit_at(pad_mid_angle(phi_from) + side * h));
             box.grow(finger + shape.radius * unit_at(pad_mid_angle(phi_to) + side * h));
