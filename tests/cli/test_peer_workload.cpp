@@ -1,0 +1,60 @@
+// test_peer_workload.cpp — `contactlab generate peer-workload`: the bench's dense case as files
+// (issue 18), checked against the sinusoid it claims to be, and timed back through
+// `contactlab bench --scene --input`.
+#include "csv.hpp"
+#include "process.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+
+using namespace cli_test;
+
+namespace {
+// The profile: 1 cm amplitude, 10 cm wavelength over 0.4 m (m).
+double height(double x) { return 0.01 * std::sin(2.0 * std::numbers::pi * x / 0.1); }
+double slope(double x) { return 0.01 * 2.0 * std::numbers::pi / 0.1 * std::cos(2.0 * std::numbers::pi * x / 0.1); }
+std::size_t count_of(const std::string& text, const std::string& what) {
+    std::size_t n = 0;
+    for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+    return n;
+}
+}  // namespace
+
+TEST_CASE("generate peer-workload: N line segments on the sinusoid, a 4000-tick stroke 1 mm deep along its normal") {
+    TempDir dir;
+    const std::string scene_path = dir.file("peer.json"), trace_path = dir.file("peer.csv");
+    const auto p = run_contactlab({"generate", "peer-workload", "--segments", "250", "-o", scene_path, "--trace", trace_path});
+    INFO("stderr: " << p.err);
+    REQUIRE(p.exit_code == 0);
+    CHECK(count_of(read_text(scene_path), "\"line\"") == 250);
+    const Csv csv = parse_csv(read_text(trace_path));
+    CHECK(csv.header == "t,x,y,phi");
+    REQUIRE(csv.rows.size() == 4000);
+    // Sample k: the finger centre R - 1 mm = 25 mm along the profile's normal at x = 0.1 + 0.2 k / 4000,
+    // pad facing down (phi 0), one per millisecond (5 cm/s along x).
+    for (const std::size_t k : {std::size_t{0}, std::size_t{1234}, std::size_t{3999}}) {
+        const double x0 = 0.1 + 0.2 * static_cast<double>(k) / 4000.0;
+        const double norm = std::hypot(slope(x0), 1.0);
+        CAPTURE(k);
+        CHECK(csv.rows[k][0] == doctest::Approx(1e-3 * static_cast<double>(k)).epsilon(1e-12));
+        CHECK(std::abs(csv.rows[k][1] - (x0 - 0.025 * slope(x0) / norm)) <= 1e-12);
+        CHECK(std::abs(csv.rows[k][2] - (height(x0) + 0.025 / norm)) <= 1e-12);
+        CHECK(csv.rows[k][3] == 0.0);
+    }
+    // The same files time through bench --scene: the pad is pressed in for most of the stroke.
+    const auto b = run_contactlab({"bench", "--scene", scene_path, "--input", trace_path, "--passes", "1"});
+    INFO("bench stderr: " << b.err);
+    REQUIRE(b.exit_code == 0);
+    CHECK(b.out.find("4000 samples x 1 passes") != std::string::npos);
+    CHECK(b.out.find("ns per tick: median") != std::string::npos);
+}
+
+TEST_CASE("generate peer-workload: a segment count below 1 is refused, naming the option") {
+    TempDir dir;
+    const auto p = run_contactlab({"generate", "peer-workload", "--segments", "0", "-o", dir.file("p.json"), "--trace",
+                                   dir.file("p.csv")});
+    CHECK(p.exit_code != 0);
+    CHECK(p.err.find("--segments") != std::string::npos);
+}
