@@ -92,7 +92,8 @@ void register_generate_command(CLI::App& app, int& rc) {
     // The peer workload (issue 18): what the bench's "dense" lines case times, as files.
     CLI::App* peer = gen->add_subcommand(
         "peer-workload", "The bench's dense case as files: a 0.4 m sinusoid (1 cm amplitude, 10 cm wavelength) of "
-                         "N line segments, and a 4000-tick stroke 1 mm deep along it (R = 2.6 cm pad facing down)");
+                         "N line segments, and a 4000-tick stroke 1 mm deep along it (R = 2.6 cm pad facing down) after one "
+                         "sample 5 cm above its start");
     peer->add_option("--output,-o", a.output, "Scene file to write")->required();
     peer->add_option("--trace", a.trace, "Finger samples CSV to write (t,x,y,phi), for bench --input or a peer")
         ->required();
@@ -102,7 +103,15 @@ void register_generate_command(CLI::App& app, int& rc) {
     peer->callback([&rc] {
         const bench::CostCase c{bench::SegmentKind::lines, bench::Growth::dense, a.segments};
         save(bench::cost_scene(c), a.output, "peer workload (" + std::to_string(a.segments) + " segments)");
-        save_trace(bench::cost_stroke(c), a.trace);
+        // One sample 5 cm above the stroke's start first, as the bench's suites start: a trace
+        // begins with no history, and a first sample already 1 mm deep would put the proxy inside
+        // the solid, where it follows the finger freely (timing anticipation, not contact).
+        std::vector<FingerSample> samples = bench::cost_stroke(c);
+        FingerSample lead = samples.front();
+        lead.x.y += 0.05;
+        for (FingerSample& s : samples) s.t += 1e-3;
+        samples.insert(samples.begin(), lead);
+        save_trace(samples, a.trace);
         rc = 0;
     });
     arc->callback([&rc] {

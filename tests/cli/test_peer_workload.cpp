@@ -31,23 +31,28 @@ TEST_CASE("generate peer-workload: N line segments on the sinusoid, a 4000-tick 
     CHECK(count_of(read_text(scene_path), "\"line\"") == 250);
     const Csv csv = parse_csv(read_text(trace_path));
     CHECK(csv.header == "t,x,y,phi");
-    REQUIRE(csv.rows.size() == 4000);
-    // Sample k: the finger centre R - 1 mm = 25 mm along the profile's normal at x = 0.1 + 0.2 k / 4000,
-    // pad facing down (phi 0), one per millisecond (5 cm/s along x).
+    REQUIRE(csv.rows.size() == 4001);
+    // Stroke sample k (row k + 1): the finger centre R - 1 mm = 25 mm along the profile's normal at
+    // x = 0.1 + 0.2 k / 4000, pad facing down (phi 0), one per millisecond (5 cm/s along x).
     for (const std::size_t k : {std::size_t{0}, std::size_t{1234}, std::size_t{3999}}) {
         const double x0 = 0.1 + 0.2 * static_cast<double>(k) / 4000.0;
         const double norm = std::hypot(slope(x0), 1.0);
         CAPTURE(k);
-        CHECK(csv.rows[k][0] == doctest::Approx(1e-3 * static_cast<double>(k)).epsilon(1e-12));
-        CHECK(std::abs(csv.rows[k][1] - (x0 - 0.025 * slope(x0) / norm)) <= 1e-12);
-        CHECK(std::abs(csv.rows[k][2] - (height(x0) + 0.025 / norm)) <= 1e-12);
-        CHECK(csv.rows[k][3] == 0.0);
+        const std::vector<double>& row = csv.rows[k + 1];
+        CHECK(row[0] == doctest::Approx(1e-3 * static_cast<double>(k + 1)).epsilon(1e-12));
+        CHECK(std::abs(row[1] - (x0 - 0.025 * slope(x0) / norm)) <= 1e-12);
+        CHECK(std::abs(row[2] - (height(x0) + 0.025 / norm)) <= 1e-12);
+        CHECK(row[3] == 0.0);
     }
-    // The same files time through bench --scene: the pad is pressed in for most of the stroke.
+    // Row 0: 5 cm above the stroke's start, in free space, so the trace starts outside the solid.
+    CHECK(csv.rows[0][0] == 0.0);
+    CHECK(csv.rows[0][1] == csv.rows[1][1]);
+    CHECK(std::abs(csv.rows[0][2] - (csv.rows[1][2] + 0.05)) <= 1e-15);
+    // The same files time through bench --scene: the pad is pressed in on every stroke tick.
     const auto b = run_contactlab({"bench", "--scene", scene_path, "--input", trace_path, "--passes", "1"});
     INFO("bench stderr: " << b.err);
     REQUIRE(b.exit_code == 0);
-    CHECK(b.out.find("4000 samples x 1 passes") != std::string::npos);
+    CHECK(b.out.find("4001 samples x 1 passes, 100 % in contact") != std::string::npos);
     CHECK(b.out.find("ns per tick: median") != std::string::npos);
 }
 
