@@ -103,6 +103,26 @@ Aabb arc_bounds(Vec2 c, double r, double start, double width) {
     return b;
 }
 
+bool AabbTree::offset_may_reach(const Node& n, Vec2 p, double r, double reach, double side) {
+    if (n.box.distance_to(p) > r + reach) return false;
+    if (n.normals.width < kPi) {
+        // q + r n within reach of p  <=>  q within reach of p - r n: the node's box must come
+        // within reach of the arc of points p - r n, n in the cone (p + r n for side -1). The
+        // arc's box holds its ends and the axis extremes it passes (arc_bounds, without trig).
+        const double s = side > 0.0 ? -r : r;  // m: p + s n
+        Aabb arc;
+        arc.grow(p + s * n.cone_from);
+        arc.grow(p + s * n.cone_to);
+        if (n.cone_axes & 1u) arc.grow(p + Vec2{s, 0.0});
+        if (n.cone_axes & 2u) arc.grow(p + Vec2{0.0, s});
+        if (n.cone_axes & 4u) arc.grow(p - Vec2{s, 0.0});
+        if (n.cone_axes & 8u) arc.grow(p - Vec2{0.0, s});
+        return arc.gap_to(n.box) <= reach;
+    }
+    // Every q within r - reach of p: |q + r n - p| >= r - |q - p| > reach.
+    return !(n.box.max_distance_to(p) < r - reach);
+}
+
 void AabbTree::query_offset_reach(Vec2 p, double r, double reach, std::vector<int>& out, double side) const {
     if (nodes_.empty()) return;
     int stack[kMaxDepth * 2];
@@ -110,23 +130,27 @@ void AabbTree::query_offset_reach(Vec2 p, double r, double reach, std::vector<in
     stack[top++] = 0;
     while (top > 0) {
         const Node& n = nodes_[stack[--top]];
-        if (n.box.distance_to(p) > r + reach) continue;
-        if (n.normals.width < kPi) {
-            // q + r n within reach of p  <=>  q within reach of p - r n: the node's box must come
-            // within reach of the arc of points p - r n, n in the cone (p + r n for side -1). The
-            // arc's box holds its ends and the axis extremes it passes (arc_bounds, without trig).
-            const double s = side > 0.0 ? -r : r;  // m: p + s n
-            Aabb arc;
-            arc.grow(p + s * n.cone_from);
-            arc.grow(p + s * n.cone_to);
-            if (n.cone_axes & 1u) arc.grow(p + Vec2{s, 0.0});
-            if (n.cone_axes & 2u) arc.grow(p + Vec2{0.0, s});
-            if (n.cone_axes & 4u) arc.grow(p - Vec2{s, 0.0});
-            if (n.cone_axes & 8u) arc.grow(p - Vec2{0.0, s});
-            if (arc.gap_to(n.box) > reach) continue;
-        } else if (n.box.max_distance_to(p) < r - reach) {
-            continue;  // every q within r - reach of p: |q + r n - p| >= r - |q - p| > reach
+        if (!offset_may_reach(n, p, r, reach, side)) continue;
+        if (n.left < 0) {
+            for (int i = n.first; i < n.first + n.count; ++i) out.push_back(items_[i]);
+            continue;
         }
+        stack[top++] = n.left;
+        stack[top++] = n.right;
+    }
+}
+
+void AabbTree::query_pad_reach(Vec2 p, double r, double reach, bool inner, const Vec2* ends, int end_count,
+                               double end_reach, std::vector<int>& out) const {
+    if (nodes_.empty()) return;
+    int stack[kMaxDepth * 2];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const Node& n = nodes_[stack[--top]];
+        bool may = offset_may_reach(n, p, r, reach, 1.0) || (inner && offset_may_reach(n, p, r, reach, -1.0));
+        for (int k = 0; k < end_count && !may; ++k) may = n.box.distance_to(ends[k]) <= end_reach;
+        if (!may) continue;
         if (n.left < 0) {
             for (int i = n.first; i < n.first + n.count; ++i) out.push_back(items_[i]);
             continue;

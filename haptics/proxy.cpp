@@ -322,20 +322,24 @@ void Proxy::gather_near(Vec2 finger, double phi_from, double phi_to, double reac
         return;
     }
     const FingerShape& shape = def_.finger;
+    if (phi_from == phi_to) {
+        // One angle: the offset pieces, the inner ones, and the segments within end_reach of
+        // each pad end (a disc: the box around an end, 2 end_reach wide, held thousands more on
+        // a dense slope when hovering 1 cm above it), all in one walk of the tree.
+        const bool ends = pad_has_endpoints(shape);
+        const double h = pad_half_angle(shape);
+        const Vec2 end_points[2] = {finger + shape.radius * unit_at(pad_mid_angle(phi_to) - h),
+                                    finger + shape.radius * unit_at(pad_mid_angle(phi_to) + h)};
+        env_->tree.query_pad_reach(finger, shape.radius, reach, ends, end_points, ends ? 2 : 0, end_reach, segment_ids_);
+        std::sort(segment_ids_.begin(), segment_ids_.end());
+        return;
+    }
     env_->tree.query_offset_reach(finger, shape.radius, reach, segment_ids_);
     if (pad_has_endpoints(shape)) {
         // The inner pieces (cspace.hpp) lie on the solid's side: q - R n.
         env_->tree.query_offset_reach(finger, shape.radius, reach, segment_ids_, -1.0);
         const double h = pad_half_angle(shape);
         for (const double side : {-1.0, 1.0}) {
-            if (phi_from == phi_to) {
-                // One angle: the segments within end_reach of the pad's end, a disc. (The box
-                // around it, 2 end_reach wide, held thousands more on a dense slope: hovering
-                // 1 cm above one, the reach is 1 cm.)
-                env_->tree.query_offset_reach(finger + shape.radius * unit_at(pad_mid_angle(phi_to) + side * h), 0.0,
-                                              end_reach, segment_ids_);
-                continue;
-            }
             Aabb box;
             box.grow(finger + shape.radius * unit_at(pad_mid_angle(phi_from) + side * h));
             box.grow(finger + shape.radius * unit_at(pad_mid_angle(phi_to) + side * h));
