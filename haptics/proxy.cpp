@@ -327,9 +327,8 @@ void Proxy::gather_near(Vec2 finger, double phi_from, double phi_to, double reac
         // each pad end (a disc: the box around an end, 2 end_reach wide, held thousands more on
         // a dense slope when hovering 1 cm above it), all in one walk of the tree.
         const bool ends = pad_has_endpoints(shape);
-        const double h = pad_half_angle(shape);
-        const Vec2 end_points[2] = {finger + shape.radius * unit_at(pad_mid_angle(phi_to) - h),
-                                    finger + shape.radius * unit_at(pad_mid_angle(phi_to) + h)};
+        const PadFrame& pad = pad_frame(phi_to);  // the ends' directions, computed once per angle
+        const Vec2 end_points[2] = {finger + shape.radius * pad.end_dir[0], finger + shape.radius * pad.end_dir[1]};
         env_->tree.query_pad_reach(finger, shape.radius, reach, ends, end_points, ends ? 2 : 0, end_reach, segment_ids_);
         std::sort(segment_ids_.begin(), segment_ids_.end());
         return;
