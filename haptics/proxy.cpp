@@ -149,6 +149,11 @@ Proxy::Proxy(const Environment& env, const ProxyDef& def) : env_(&env), def_(def
     pieces_.reserve(4096);
     piece_boxes_.reserve(4096);
     group_boxes_.reserve(4096 / 8 + 1);
+    next_pieces_.reserve(4096);
+    next_boxes_.reserve(4096);
+    built_ids_.reserve(1024);
+    built_first_.reserve(1025);
+    next_first_.reserve(1025);
 }
 
 void Proxy::reset(Vec2 finger, double phi) {
@@ -280,13 +285,11 @@ void Proxy::move_proxy(Vec2 finger, double phi, double turn, double max_push, Ve
         work_.rotation_steps = 0;
         build_pieces(phi);
     }
-    // Boxes of the final pieces only: the walk is the one user (not the re-projection sub-steps).
-    piece_boxes_.clear();
+    // Group boxes of the final pieces only: the walk is the one user.
     group_boxes_.clear();
     for (std::size_t i = 0; i < pieces_.size(); ++i) {
-        piece_boxes_.push_back(piece_box(pieces_[i]).grown(kBoxSlack));
         if (i % kPieceGroup == 0) group_boxes_.emplace_back();
-        group_boxes_.back().grow(piece_boxes_.back());
+        group_boxes_.back().grow(piece_boxes_[i]);
     }
     proxy_ = walk(proxy_, finger);
 }
@@ -362,11 +365,42 @@ const PadFrame& Proxy::pad_frame(double phi) {
     return pad_frame_;
 }
 
+// pieces_ (and their boxes, piece_boxes_) for segment_ids_ at phi. A segment's pieces depend only
+// on the segment and the pad frame, so at the angle of the last build the pieces of segments built
+// then are copied, not made again: a finger sliding over a dense contour keeps most of last tick's
+// segments, a small scene all of them (building was a fifth of the tick). Same pieces, same order.
 void Proxy::build_pieces(double phi) {
-    pieces_.clear();
-    const PadFrame& pad = pad_frame(phi);
-    for (int id : segment_ids_) append_cspace_pieces(*env_, id, pad, pieces_);
     active_count_ = 0;
+    const PadFrame& pad = pad_frame(phi);
+    const bool reuse = built_valid_ && phi == built_phi_;
+    next_pieces_.clear();
+    next_boxes_.clear();
+    next_first_.clear();
+    std::size_t j = 0;  // position in built_ids_ (both lists are sorted)
+    for (const int id : segment_ids_) {
+        next_first_.push_back(static_cast<int>(next_pieces_.size()));
+        if (reuse) {
+            while (j < built_ids_.size() && built_ids_[j] < id) ++j;
+            if (j < built_ids_.size() && built_ids_[j] == id) {
+                for (int k = built_first_[j]; k < built_first_[j + 1]; ++k) {
+                    next_pieces_.push_back(pieces_[static_cast<std::size_t>(k)]);
+                    next_boxes_.push_back(piece_boxes_[static_cast<std::size_t>(k)]);
+                }
+                continue;
+            }
+        }
+        const std::size_t from = next_pieces_.size();
+        append_cspace_pieces(*env_, id, pad, next_pieces_);
+        for (std::size_t k = from; k < next_pieces_.size(); ++k)
+            next_boxes_.push_back(piece_box(next_pieces_[k]).grown(kBoxSlack));
+    }
+    next_first_.push_back(static_cast<int>(next_pieces_.size()));
+    std::swap(pieces_, next_pieces_);
+    std::swap(piece_boxes_, next_boxes_);
+    std::swap(built_first_, next_first_);
+    built_ids_.assign(segment_ids_.begin(), segment_ids_.end());
+    built_phi_ = phi;
+    built_valid_ = true;
 }
 
 // After phi changed, pieces made by the pad's ends moved by at most `max_push` (m). If the proxy
@@ -1130,6 +1164,7 @@ void Proxy::anticipate(Vec2 finger, double phi) {
     // of all. If none is, a second gather reaches to the upper bound, which is exact.
     const PadFrame& pad = pad_frame(phi);
     pieces_.clear();
+    built_valid_ = false;  // pieces_ no longer holds what build_pieces built (nor piece_boxes_)
     append_cspace_pieces(*env_, nearest_id, pad, pieces_);
     double upper = nearest_segment + R + kOnTolerance;  // m
     for (const CPiece& piece : pieces_) upper = std::min(upper, glm::length(piece_foot(piece, finger).point - finger));

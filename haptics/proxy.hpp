@@ -96,7 +96,10 @@ public:
     const ProxyOutput& update(Vec2 finger, double phi, double dt = kDefaultServoPeriod);
     const ProxyOutput& output() const { return out_; }
     const ProxyDef& def() const { return def_; }
-    void set_def(const ProxyDef& def) { def_ = def; }
+    void set_def(const ProxyDef& def) {
+        def_ = def;
+        built_valid_ = false;  // the pieces depend on the finger
+    }
 
 private:
     struct Hit {
@@ -150,6 +153,14 @@ private:
     bool pad_frame_valid_ = false;
     std::vector<Aabb> piece_boxes_;  // each piece's box grown by kBoxSlack: cheap rejection per walk step
     std::vector<Aabb> group_boxes_;  // the box of each run of kPieceGroup consecutive piece_boxes_
+    // What build_pieces last built (pieces_ and piece_boxes_): for segments built_ids_ (sorted)
+    // at built_phi_, segment built_ids_[j]'s pieces at [built_first_[j], built_first_[j + 1]).
+    // built_valid_ is false once pieces_ holds anything else. next_*: the double buffer.
+    std::vector<int> built_ids_, built_first_, next_first_;
+    std::vector<CPiece> next_pieces_;
+    std::vector<Aabb> next_boxes_;
+    double built_phi_ = 0.0;
+    bool built_valid_ = false;
     int contact_pieces_[4] = {-1, -1, -1, -1};  // the piece behind each reported contact
     bool has_stiction_ = false;   // friction: a stiction point is held
     Vec2 stiction_{0.0};          // m
