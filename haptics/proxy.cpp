@@ -150,6 +150,7 @@ Proxy::Proxy(const Environment& env, const ProxyDef& def) : env_(&env), def_(def
     piece_boxes_.reserve(4096);
     group_boxes_.reserve(4096 / 8 + 1);
     next_pieces_.reserve(4096);
+    nearest_pieces_.reserve(64);
     next_boxes_.reserve(4096);
     built_ids_.reserve(1024);
     built_first_.reserve(1025);
@@ -1163,11 +1164,11 @@ void Proxy::anticipate(Vec2 finger, double phi) {
     // motion does (normal cones, pad-end views): a piece found within that reach is the nearest
     // of all. If none is, a second gather reaches to the upper bound, which is exact.
     const PadFrame& pad = pad_frame(phi);
-    pieces_.clear();
-    built_valid_ = false;  // pieces_ no longer holds what build_pieces built (nor piece_boxes_)
-    append_cspace_pieces(*env_, nearest_id, pad, pieces_);
+    // (Its own scratch list: pieces_ keeps what build_pieces built, for the next build to copy.)
+    nearest_pieces_.clear();
+    append_cspace_pieces(*env_, nearest_id, pad, nearest_pieces_);
     double upper = nearest_segment + R + kOnTolerance;  // m
-    for (const CPiece& piece : pieces_) upper = std::min(upper, glm::length(piece_foot(piece, finger).point - finger));
+    for (const CPiece& piece : nearest_pieces_) upper = std::min(upper, glm::length(piece_foot(piece, finger).point - finger));
     upper += kOnTolerance;
     const double first_reach = std::max(0.0, nearest_segment - R) + kAnticipationReachMargin;
     for (const double reach : {std::min(first_reach, upper), upper}) {

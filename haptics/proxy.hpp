@@ -158,6 +158,7 @@ private:
     // built_valid_ is false once pieces_ holds anything else. next_*: the double buffer.
     std::vector<int> built_ids_, built_first_, next_first_;
     std::vector<CPiece> next_pieces_;
+    std::vector<CPiece> nearest_pieces_;  // anticipate: the nearest segment's pieces
     std::vector<Aabb> next_boxes_;
     double built_phi_ = 0.0;
     bool built_valid_ = false;
