@@ -151,6 +151,8 @@ Proxy::Proxy(const Environment& env, const ProxyDef& def) : env_(&env), def_(def
     group_boxes_.reserve(4096 / 8 + 1);
     next_pieces_.reserve(4096);
     nearest_pieces_.reserve(64);
+    aside_pieces_.reserve(4096);
+    aside_boxes_.reserve(4096);
     next_boxes_.reserve(4096);
     built_ids_.reserve(1024);
     built_first_.reserve(1025);
@@ -373,7 +375,21 @@ const PadFrame& Proxy::pad_frame(double phi) {
 void Proxy::build_pieces(double phi) {
     active_count_ = 0;
     const PadFrame& pad = pad_frame(phi);
+    if (segment_ids_.empty()) {
+        // Nothing near (a free finger's motion): keep the last build aside for the next one to
+        // copy from (anticipation's, a tick later) instead of forgetting it.
+        if (!cache_aside_) {
+            std::swap(pieces_, aside_pieces_);
+            std::swap(piece_boxes_, aside_boxes_);
+            cache_aside_ = true;
+        }
+        pieces_.clear();
+        piece_boxes_.clear();
+        return;
+    }
     const bool reuse = built_valid_ && phi == built_phi_;
+    const std::vector<CPiece>& old_pieces = cache_aside_ ? aside_pieces_ : pieces_;
+    const std::vector<Aabb>& old_boxes = cache_aside_ ? aside_boxes_ : piece_boxes_;
     next_pieces_.clear();
     next_boxes_.clear();
     next_first_.clear();
@@ -384,8 +400,8 @@ void Proxy::build_pieces(double phi) {
             while (j < built_ids_.size() && built_ids_[j] < id) ++j;
             if (j < built_ids_.size() && built_ids_[j] == id) {
                 for (int k = built_first_[j]; k < built_first_[j + 1]; ++k) {
-                    next_pieces_.push_back(pieces_[static_cast<std::size_t>(k)]);
-                    next_boxes_.push_back(piece_boxes_[static_cast<std::size_t>(k)]);
+                    next_pieces_.push_back(old_pieces[static_cast<std::size_t>(k)]);
+                    next_boxes_.push_back(old_boxes[static_cast<std::size_t>(k)]);
                 }
                 continue;
             }
@@ -399,6 +415,7 @@ void Proxy::build_pieces(double phi) {
     std::swap(pieces_, next_pieces_);
     std::swap(piece_boxes_, next_boxes_);
     std::swap(built_first_, next_first_);
+    cache_aside_ = false;
     built_ids_.assign(segment_ids_.begin(), segment_ids_.end());
     built_phi_ = phi;
     built_valid_ = true;
@@ -1175,15 +1192,22 @@ void Proxy::anticipate(Vec2 finger, double phi) {
         gather_within_reach(finger, phi, reach);
         build_pieces(phi);
         double best = std::numeric_limits<double>::infinity();
-        out_.anticipating = false;
+        const CPiece* nearest = nullptr;  // the first piece at the least distance
+        Vec2 nearest_foot{0.0};
         for (const CPiece& piece : pieces_) {
             const PieceFoot foot = piece_foot(piece, finger);
             const double d = glm::length(foot.point - finger);
             if (d >= best) continue;
             best = d;
-            out_.anticipating = true;
-            out_.l_d = piece_contact_location(piece, def_.finger, phi, foot.point);
-            out_.anticipated_point = piece_contact_point(piece, def_.finger, foot.point);
+            nearest = &piece;
+            nearest_foot = foot.point;
+        }
+        // Contact location and point of the winner only (over a dense valley thousands of pieces
+        // improve on each other in turn).
+        out_.anticipating = nearest != nullptr;
+        if (nearest) {
+            out_.l_d = piece_contact_location(*nearest, def_.finger, phi, nearest_foot);
+            out_.anticipated_point = piece_contact_point(*nearest, def_.finger, nearest_foot);
         }
         if (best <= reach) return;
     }

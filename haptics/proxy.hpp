@@ -159,6 +159,10 @@ private:
     std::vector<int> built_ids_, built_first_, next_first_;
     std::vector<CPiece> next_pieces_;
     std::vector<CPiece> nearest_pieces_;  // anticipate: the nearest segment's pieces
+    // An empty build keeps the last one here (cache_aside_), still described by built_*.
+    std::vector<CPiece> aside_pieces_;
+    std::vector<Aabb> aside_boxes_;
+    bool cache_aside_ = false;
     std::vector<Aabb> next_boxes_;
     double built_phi_ = 0.0;
     bool built_valid_ = false;
