@@ -57,6 +57,9 @@ int AabbTree::build(const std::vector<Aabb>& boxes, const std::vector<NormalCone
     if (count <= kLeafSize) {
         nodes_[index].first = first;
         nodes_[index].count = count;
+        // Ascending within the leaf: a query walking leaves in the contour's order then returns
+        // sorted ids, which the proxy's sort then only has to check.
+        std::sort(items_.begin() + first, items_.begin() + first + count);
         return index;
     }
     // Split at the median of box centres along the longer axis: balanced, so depth ~ log2(N/4)
@@ -155,8 +158,10 @@ void AabbTree::query_pad_reach(Vec2 p, double r, double reach, bool inner, const
             for (int i = n.first; i < n.first + n.count; ++i) out.push_back(items_[i]);
             continue;
         }
-        stack[top++] = n.left;
+        // The left child first (pushed last): along a contour drawn left to right its items come
+        // first, so the output is already in order there.
         stack[top++] = n.right;
+        stack[top++] = n.left;
     }
 }
 

@@ -352,8 +352,9 @@ void Proxy::gather_near(Vec2 finger, double phi_from, double phi_to, double reac
     }
     env_->tree.query_pad_reach(finger, shape.radius, reach, ends, end_centres, ends ? 2 : 0, end_reach + half_chord,
                                segment_ids_);
-    // Sorted, so the pieces' order (and thus tie-breaks) does not depend on the tree.
-    std::sort(segment_ids_.begin(), segment_ids_.end());
+    // Sorted, so the pieces' order (and thus tie-breaks) does not depend on the tree. (Along a
+    // contour the tree's order usually is sorted already: checking is linear, sorting is not.)
+    if (!std::is_sorted(segment_ids_.begin(), segment_ids_.end())) std::sort(segment_ids_.begin(), segment_ids_.end());
 }
 
 // The pad frame at phi, kept from the last call while phi and the finger stay the same: its sines,
