@@ -23,59 +23,11 @@ SceneLayerCache::~SceneLayerCache() {
     if (render_pass_) vkDestroyRenderPass(ctx_.device(), render_pass_, nullptr);
 }
 
-SceneLayerCache::Attachment SceneLayerCache::create_attachment(VkFormat format, VkImageUsageFlags usage,
-                                                               VkImageAspectFlags aspect) {
-    const VkDevice dev = ctx_.device();
-    Attachment a;
-    VkImageCreateInfo info{};
-    info.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
-    info.imageType = VK_IMAGE_TYPE_2D;
-    info.format = format;
-    info.extent = {extent_.width, extent_.height, 1};
-    info.mipLevels = 1;
-    info.arrayLayers = 1;
-    info.samples = VK_SAMPLE_COUNT_1_BIT;
-    info.tiling = VK_IMAGE_TILING_OPTIMAL;
-    info.usage = usage;
-    info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-    info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    try {
-        vk_check(vkCreateImage(dev, &info, nullptr, &a.image), "vkCreateImage (scene layer)");
-        VkMemoryRequirements req;
-        vkGetImageMemoryRequirements(dev, a.image, &req);
-        VkMemoryAllocateInfo alloc{};
-        alloc.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-        alloc.allocationSize = req.size;
-        alloc.memoryTypeIndex = ctx_.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-        vk_check(vkAllocateMemory(dev, &alloc, nullptr, &a.memory), "vkAllocateMemory (scene layer)");
-        vk_check(vkBindImageMemory(dev, a.image, a.memory, 0), "vkBindImageMemory (scene layer)");
-        VkImageViewCreateInfo view{};
-        view.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
-        view.image = a.image;
-        view.viewType = VK_IMAGE_VIEW_TYPE_2D;
-        view.format = format;
-        view.subresourceRange = {aspect, 0, 1, 0, 1};
-        vk_check(vkCreateImageView(dev, &view, nullptr, &a.view), "vkCreateImageView (scene layer)");
-    } catch (...) {
-        destroy_attachment(a);
-        throw;
-    }
-    return a;
-}
-
-void SceneLayerCache::destroy_attachment(Attachment& a) {
-    const VkDevice dev = ctx_.device();
-    if (a.view) vkDestroyImageView(dev, a.view, nullptr);
-    if (a.image) vkDestroyImage(dev, a.image, nullptr);
-    if (a.memory) vkFreeMemory(dev, a.memory, nullptr);
-    a = Attachment{};
-}
-
 void SceneLayerCache::destroy_images() {
     if (framebuffer_) vkDestroyFramebuffer(ctx_.device(), framebuffer_, nullptr);
     framebuffer_ = VK_NULL_HANDLE;
-    destroy_attachment(stencil_);
-    destroy_attachment(color_);
+    destroy_image_attachment(ctx_.device(), stencil_);
+    destroy_image_attachment(ctx_.device(), color_);
     key_ = 0;
 }
 
@@ -84,11 +36,11 @@ void SceneLayerCache::resize(VkExtent2D extent) {
     extent_ = extent;
     if (extent.width == 0 || extent.height == 0) return;
     // Attachments: colour (drawn, then a copy source) and its own stencil for the solids' fills.
-    color_ = create_attachment(render::kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                               VK_IMAGE_ASPECT_COLOR_BIT);
-    VkImageAspectFlags stencil_aspect = VK_IMAGE_ASPECT_STENCIL_BIT;
-    if (stencil_format_ != VK_FORMAT_S8_UINT) stencil_aspect |= VK_IMAGE_ASPECT_DEPTH_BIT;
-    stencil_ = create_attachment(stencil_format_, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, stencil_aspect);
+    color_ = render::create_image_attachment(ctx_, extent_, render::kColorFormat,
+                                             VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                                             VK_IMAGE_ASPECT_COLOR_BIT, "scene layer colour");
+    stencil_ = render::create_image_attachment(ctx_, extent_, stencil_format_, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                                               render::stencil_aspect(stencil_format_), "scene layer stencil");
 
     // Framebuffer over both.
     VkImageView views[2] = {color_.view, stencil_.view};

@@ -11,6 +11,7 @@
 // and theme, see editor.cpp) changes.
 #pragma once
 
+#include "engine/render/attachment.hpp"
 #include "engine/render/context.hpp"
 #include "engine/render/draw_list.hpp"
 #include "engine/render/pipelines.hpp"
@@ -43,20 +44,13 @@ public:
     long updates() const { return updates_; }
 
 private:
-    struct Attachment {
-        VkImage image = VK_NULL_HANDLE;
-        VkDeviceMemory memory = VK_NULL_HANDLE;
-        VkImageView view = VK_NULL_HANDLE;
-    };
-    Attachment create_attachment(VkFormat format, VkImageUsageFlags usage, VkImageAspectFlags aspect);
-    void destroy_attachment(Attachment& a);
     void destroy_images();
 
     const render::VulkanContext& ctx_;
     VkFormat stencil_format_;
     VkRenderPass render_pass_ = VK_NULL_HANDLE;
     VkExtent2D extent_{0, 0};
-    Attachment color_, stencil_;
+    render::ImageAttachment color_, stencil_;
     VkFramebuffer framebuffer_ = VK_NULL_HANDLE;
     render::FrameBuffers geometry_;
     std::uint64_t key_ = 0;

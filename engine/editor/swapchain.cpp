@@ -30,12 +30,7 @@ void Swapchain::destroy_images() {
         if (im.view) vkDestroyImageView(dev, im.view, nullptr);
     }
     images_.clear();
-    if (stencil_view_) vkDestroyImageView(dev, stencil_view_, nullptr);
-    if (stencil_) vkDestroyImage(dev, stencil_, nullptr);
-    if (stencil_memory_) vkFreeMemory(dev, stencil_memory_, nullptr);
-    stencil_view_ = VK_NULL_HANDLE;
-    stencil_ = VK_NULL_HANDLE;
-    stencil_memory_ = VK_NULL_HANDLE;
+    render::destroy_image_attachment(dev, stencil_);
 }
 
 void Swapchain::destroy() {
@@ -115,35 +110,8 @@ bool Swapchain::create(VkRenderPass render_pass, VkFormat stencil_format, int wi
     extent_ = extent;
 
     // Stencil attachment: device-local, the size of the swapchain images.
-    VkImageCreateInfo si{};
-    si.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
-    si.imageType = VK_IMAGE_TYPE_2D;
-    si.format = stencil_format;
-    si.extent = {extent.width, extent.height, 1};
-    si.mipLevels = 1;
-    si.arrayLayers = 1;
-    si.samples = VK_SAMPLE_COUNT_1_BIT;
-    si.tiling = VK_IMAGE_TILING_OPTIMAL;
-    si.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
-    si.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    vk_check(vkCreateImage(dev, &si, nullptr, &stencil_), "vkCreateImage (stencil)");
-    VkMemoryRequirements req;
-    vkGetImageMemoryRequirements(dev, stencil_, &req);
-    VkMemoryAllocateInfo alloc{};
-    alloc.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-    alloc.allocationSize = req.size;
-    alloc.memoryTypeIndex = ctx_.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    vk_check(vkAllocateMemory(dev, &alloc, nullptr, &stencil_memory_), "vkAllocateMemory (stencil)");
-    vk_check(vkBindImageMemory(dev, stencil_, stencil_memory_, 0), "vkBindImageMemory (stencil)");
-    VkImageAspectFlags aspect = VK_IMAGE_ASPECT_STENCIL_BIT;
-    if (stencil_format != VK_FORMAT_S8_UINT) aspect |= VK_IMAGE_ASPECT_DEPTH_BIT;
-    VkImageViewCreateInfo sv{};
-    sv.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
-    sv.image = stencil_;
-    sv.viewType = VK_IMAGE_VIEW_TYPE_2D;
-    sv.format = stencil_format;
-    sv.subresourceRange = {aspect, 0, 1, 0, 1};
-    vk_check(vkCreateImageView(dev, &sv, nullptr, &stencil_view_), "vkCreateImageView (stencil)");
+    stencil_ = render::create_image_attachment(ctx_, extent, stencil_format, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                                               render::stencil_aspect(stencil_format), "stencil");
 
     // Image views and framebuffers: one per swapchain image, sharing the stencil attachment.
     uint32_t n = 0;
@@ -161,7 +129,7 @@ bool Swapchain::create(VkRenderPass render_pass, VkFormat stencil_format, int wi
         v.format = fmt->format;
         v.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
         vk_check(vkCreateImageView(dev, &v, nullptr, &im.view), "vkCreateImageView (swapchain)");
-        VkImageView attachments[2] = {im.view, stencil_view_};
+        VkImageView attachments[2] = {im.view, stencil_.view};
         VkFramebufferCreateInfo fb{};
         fb.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
         fb.renderPass = render_pass;

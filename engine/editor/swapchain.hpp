@@ -4,6 +4,7 @@
 // the surface reports out-of-date; never created at 0x0 (a minimised window).
 #pragma once
 
+#include "engine/render/attachment.hpp"
 #include "engine/render/context.hpp"
 
 #include <vulkan/vulkan.h>
@@ -52,9 +53,7 @@ private:
     bool copy_target_ = false;
     std::vector<SwapchainImage> images_;
     // Stencil attachment (one: frames are recorded one after another on one queue).
-    VkImage stencil_ = VK_NULL_HANDLE;
-    VkDeviceMemory stencil_memory_ = VK_NULL_HANDLE;
-    VkImageView stencil_view_ = VK_NULL_HANDLE;
+    render::ImageAttachment stencil_;
 };
 
 }  // namespace contactlab::editor

@@ -16,11 +16,12 @@ OffscreenTarget::OffscreenTarget(const VulkanContext& ctx, int width, int height
     try {
         // Attachments: colour (also a copy source for readback) and stencil.
         const VkFormat stencil_format = pick_stencil_format(ctx_);
-        color_ = create_attachment(kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                                   VK_IMAGE_ASPECT_COLOR_BIT);
-        VkImageAspectFlags stencil_aspect = VK_IMAGE_ASPECT_STENCIL_BIT;
-        if (stencil_format != VK_FORMAT_S8_UINT) stencil_aspect |= VK_IMAGE_ASPECT_DEPTH_BIT;
-        stencil_ = create_attachment(stencil_format, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, stencil_aspect);
+        const VkExtent2D extent{static_cast<uint32_t>(width_), static_cast<uint32_t>(height_)};
+        color_ = create_image_attachment(ctx_, extent, kColorFormat,
+                                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                                         VK_IMAGE_ASPECT_COLOR_BIT, "offscreen colour");
+        stencil_ = create_image_attachment(ctx_, extent, stencil_format, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                                           stencil_aspect(stencil_format), "offscreen stencil");
 
         // Render pass: the colour ends ready to be copied out.
         render_pass_ = create_render_pass(dev, kColorFormat, stencil_format, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
@@ -75,56 +76,8 @@ void OffscreenTarget::destroy() {
     if (render_pass_) vkDestroyRenderPass(dev, render_pass_, nullptr);
     framebuffer_ = VK_NULL_HANDLE;
     render_pass_ = VK_NULL_HANDLE;
-    destroy_attachment(stencil_);
-    destroy_attachment(color_);
-}
-
-OffscreenTarget::Attachment OffscreenTarget::create_attachment(VkFormat format, VkImageUsageFlags usage,
-                                                               VkImageAspectFlags aspect) {
-    const VkDevice dev = ctx_.device();
-    Attachment a;
-    VkImageCreateInfo info{};
-    info.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
-    info.imageType = VK_IMAGE_TYPE_2D;
-    info.format = format;
-    info.extent = {static_cast<uint32_t>(width_), static_cast<uint32_t>(height_), 1};
-    info.mipLevels = 1;
-    info.arrayLayers = 1;
-    info.samples = VK_SAMPLE_COUNT_1_BIT;
-    info.tiling = VK_IMAGE_TILING_OPTIMAL;
-    info.usage = usage;
-    info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-    info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    try {
-        vk_check(vkCreateImage(dev, &info, nullptr, &a.image), "vkCreateImage");
-        VkMemoryRequirements req;
-        vkGetImageMemoryRequirements(dev, a.image, &req);
-        VkMemoryAllocateInfo alloc{};
-        alloc.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-        alloc.allocationSize = req.size;
-        alloc.memoryTypeIndex = ctx_.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-        vk_check(vkAllocateMemory(dev, &alloc, nullptr, &a.memory), "vkAllocateMemory (image)");
-        vk_check(vkBindImageMemory(dev, a.image, a.memory, 0), "vkBindImageMemory");
-        VkImageViewCreateInfo view{};
-        view.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
-        view.image = a.image;
-        view.viewType = VK_IMAGE_VIEW_TYPE_2D;
-        view.format = format;
-        view.subresourceRange = {aspect, 0, 1, 0, 1};
-        vk_check(vkCreateImageView(dev, &view, nullptr, &a.view), "vkCreateImageView");
-    } catch (...) {
-        destroy_attachment(a);
-        throw;
-    }
-    return a;
-}
-
-void OffscreenTarget::destroy_attachment(Attachment& a) {
-    const VkDevice dev = ctx_.device();
-    if (a.view) vkDestroyImageView(dev, a.view, nullptr);
-    if (a.image) vkDestroyImage(dev, a.image, nullptr);
-    if (a.memory) vkFreeMemory(dev, a.memory, nullptr);
-    a = Attachment{};
+    destroy_image_attachment(dev, stencil_);
+    destroy_image_attachment(dev, color_);
 }
 
 Image OffscreenTarget::render(const DrawList& list, Color background) {

@@ -4,6 +4,7 @@
 // the pipelines, and a host-visible readback buffer. One render at a time; each waits for the GPU.
 #pragma once
 
+#include "engine/render/attachment.hpp"
 #include "engine/render/context.hpp"
 #include "engine/render/draw_list.hpp"
 #include "engine/render/image.hpp"
@@ -29,18 +30,11 @@ public:
     Image render(const DrawList& list, Color background);
 
 private:
-    struct Attachment {
-        VkImage image = VK_NULL_HANDLE;
-        VkDeviceMemory memory = VK_NULL_HANDLE;
-        VkImageView view = VK_NULL_HANDLE;
-    };
-    Attachment create_attachment(VkFormat format, VkImageUsageFlags usage, VkImageAspectFlags aspect);
-    void destroy_attachment(Attachment& a);
     void destroy();
 
     const VulkanContext& ctx_;
     int width_, height_;
-    Attachment color_, stencil_;
+    ImageAttachment color_, stencil_;
     VkRenderPass render_pass_ = VK_NULL_HANDLE;
     VkFramebuffer framebuffer_ = VK_NULL_HANDLE;
     std::unique_ptr<Pipelines> pipelines_;
