@@ -47,17 +47,11 @@ ControlOutput ForceController::step(const Eigen::Vector3d& reference, const Esti
         rate_f_.setZero();
         primed_ = true;
     }
-    const double alpha = 1.0 - std::exp(-2.0 * std::numbers::pi * def_.d_cutoff_hz * dt);  // exact first order
-    rate_f_ += alpha * ((q - prev_) / dt - rate_f_);
+    rate_f_ += low_pass_weight(def_.d_cutoff_hz, dt) * ((q - prev_) / dt - rate_f_);
     prev_ = q;
     for (int i = 0; i < 3; ++i) {
         const double ff = def_.feedforward ? holding_torque(motor_, qr(i)) : 0.0;
-        const double tau = ff + def_.kp * (qr(i) - q(i)) - def_.kd * rate_f_(i);
-        out.torque(i) = std::clamp(tau, -motor_.stall_torque, motor_.stall_torque);
-        if (out.torque(i) != tau && out.status == ControlStatus::ok) {
-            out.status = ControlStatus::saturated;
-            out.cable = i;
-        }
+        set_clamped_torque(out, i, ff + def_.kp * (qr(i) - q(i)) - def_.kd * rate_f_(i), motor_.stall_torque);
     }
     return out;
 }

@@ -21,6 +21,10 @@
 #include "haptics/wearable/estimation.hpp"
 #include "haptics/wearable/motor.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
 namespace contactlab::wearable {
 
 // Default gains. Table 1's friction (0.02 mN m, 8 % of the stall torque) leaves a dead band
@@ -53,6 +57,21 @@ struct ControlOutput {
     ControlStatus status = ControlStatus::ok;
     int cable = -1;                                    // the cable a fault or clamp names
 };
+
+// Weight of a new sample in a first-order low-pass at cutoff_hz (Hz) sampled every dt (s): the
+// exact discretisation 1 - exp(-2 pi f dt) (both controllers filter their rates with it).
+inline double low_pass_weight(double cutoff_hz, double dt) noexcept {
+    return 1.0 - std::exp(-2.0 * std::numbers::pi * cutoff_hz * dt);
+}
+// Sets motor i's torque to tau (N m) clamped to +-stall_torque; the first clamp in an otherwise
+// good output marks it saturated, naming the cable.
+inline void set_clamped_torque(ControlOutput& out, int i, double tau, double stall_torque) noexcept {
+    out.torque(i) = std::clamp(tau, -stall_torque, stall_torque);
+    if (out.torque(i) != tau && out.status == ControlStatus::ok) {
+        out.status = ControlStatus::saturated;
+        out.cable = i;
+    }
+}
 
 class ForceController {
 public:

@@ -37,8 +37,7 @@ ControlOutput PositionController::step(const Pose& reference, const Estimate& es
         rate_f_.setZero();
         primed_ = true;
     }
-    const double alpha = 1.0 - std::exp(-2.0 * std::numbers::pi * def_.d_cutoff_hz * dt);
-    rate_f_ += alpha * ((err - prev_) / dt - rate_f_);
+    rate_f_ += low_pass_weight(def_.d_cutoff_hz, dt) * ((err - prev_) / dt - rate_f_);
     prev_ = err;
     for (int i = 0; i < 3; ++i) {
         const bool slack = estimate.tension(i) < slack_tension_;
@@ -47,12 +46,7 @@ ControlOutput PositionController::step(const Pose& reference, const Estimate& es
             continue;
         }
         const double hold = def_.hold_tension ? holding_torque(motor_, estimate.tension(i)) : 0.0;
-        const double tau = hold + def_.kp * err(i) + def_.kd * rate_f_(i);
-        out.torque(i) = std::clamp(tau, -motor_.stall_torque, motor_.stall_torque);
-        if (out.torque(i) != tau && out.status == ControlStatus::ok) {
-            out.status = ControlStatus::saturated;
-            out.cable = i;
-        }
+        set_clamped_torque(out, i, hold + def_.kp * err(i) + def_.kd * rate_f_(i), motor_.stall_torque);
     }
     return out;
 }
