@@ -53,8 +53,7 @@ TEST_CASE("sim-cld in the editor: the finger follows the cursor into contact, fo
                            "device mouse\nexpect stopped 1\nexpect state idle\n"
                            "key space\nwait 0.3\nexpect stopped 0\nexpect contact 1\nexpect force 1.5 0.000001\n"
                            "quit\n");
-    setenv("TMPDIR", dir.path().c_str(), 1);
-    const auto p = run_under_xvfb({"edit", "--script", script, "--software", "--validation", "--timeout", "100"});
+    const auto p = run_validated_script(script, dir.path());
     INFO("stderr: " << p.err);
     CHECK(p.exit_code == 0);
     CHECK_FALSE(contains(p.err, "FAILED"));
@@ -103,8 +102,7 @@ TEST_CASE("a recording made in the editor replays the same finger trajectory") {
                            "report replayed\n"
                            "device replay " + dir.file("missing.csv") + "\n"
                            "quit\n");
-    setenv("TMPDIR", dir.path().c_str(), 1);
-    const auto p = run_under_xvfb({"edit", "--script", script, "--software", "--validation", "--timeout", "100"});
+    const auto p = run_validated_script(script, dir.path());
     INFO("stderr: " << p.err);
     // The one expected failure: a recording that does not exist, named in the message.
     CHECK(p.exit_code == 1);
@@ -163,8 +161,7 @@ TEST_CASE("servo rate: changing it restarts the servo safely and the period stat
                            "rate 50\n"
                            "expect rate 200\n"
                            "quit\n");
-    setenv("TMPDIR", dir.path().c_str(), 1);
-    const auto p = run_under_xvfb({"edit", "--script", script, "--software", "--validation", "--timeout", "100"});
+    const auto p = run_validated_script(script, dir.path());
     INFO("stderr: " << p.err);
     // The one expected failure: 50 Hz is refused, naming the range, and the servo carries on.
     CHECK(p.exit_code == 1);
@@ -193,8 +190,7 @@ TEST_CASE("the device menu lists the USB models, and one that cannot open leaves
     const std::string script = dir.file("usb.txt");
     write_text(script, "devices\ndevice sim-cld\nwait_state engaged 5\ndevice usb:hapio\nexpect device mouse\n"
                        "wait_state engaged 5\nexpect device_state engaged\nquit\n");
-    setenv("TMPDIR", dir.path().c_str(), 1);
-    const auto p = run_under_xvfb({"edit", "--script", script, "--software", "--validation", "--timeout", "100"});
+    const auto p = run_validated_script(script, dir.path());
     INFO("stderr: " << p.err);
     for (const char* spec : {"mouse", "sim-cld", "replay:"}) CHECK(contains(p.err, std::string("script device option ") + spec + ": available"));
     for (const char* spec : {"usb:hapio", "usb:falcon"}) {
@@ -256,8 +252,7 @@ TEST_CASE("sim-wearable in the editor: the cursor is the finger and the platform
                            "report wearable\n"
                            "screenshot " + shot + "\n"
                            "quit\n");
-    setenv("TMPDIR", dir.path().c_str(), 1);
-    const auto p = run_under_xvfb({"edit", "--script", script, "--software", "--validation", "--timeout", "100"});
+    const auto p = run_validated_script(script, dir.path());
     INFO("stderr: " << p.err);
     CHECK(p.exit_code == 0);
     CHECK_FALSE(contains(p.err, "FAILED"));

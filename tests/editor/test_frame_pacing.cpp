@@ -120,8 +120,7 @@ TEST_CASE("idle editor: next to no frames while nothing moves, every tick still 
                "report ramp\n"
                "expect force 1 0.000001\n"
                "quit\n");
-    setenv("TMPDIR", dir.path().c_str(), 1);
-    const auto p = run_under_xvfb({"edit", "--script", script, "--software", "--validation", "--timeout", "100"});
+    const auto p = run_validated_script(script, dir.path());
     INFO("stderr: " << p.err);
     CHECK(p.exit_code == 0);
     CHECK_FALSE(contains(p.err, "FAILED"));

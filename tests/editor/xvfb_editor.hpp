@@ -24,6 +24,13 @@ inline cli_test::ProcessResult run_under_xvfb(std::vector<std::string> args, con
     return cli_test::run_process("/usr/bin/xvfb-run", all, cwd, std::chrono::seconds(120));
 }
 
+// `contactlab edit --script SCRIPT --software --validation --timeout 100` under Xvfb, with TMPDIR
+// set to `tmpdir` first (an untitled scene's recovery file lands there, out of the next test's way).
+inline cli_test::ProcessResult run_validated_script(const std::string& script, const std::string& tmpdir) {
+    setenv("TMPDIR", tmpdir.c_str(), 1);
+    return run_under_xvfb({"edit", "--script", script, "--software", "--validation", "--timeout", "100"});
+}
+
 // Starts `xvfb-run ... contactlab ARGS` without waiting (stdout and stderr to `log`); returns the
 // xvfb-run process's id. With kill_editor() below a test can kill the editor as a crash would.
 inline pid_t start_under_xvfb(std::vector<std::string> args, const std::string& log) {

@@ -15,6 +15,33 @@
 using namespace contactlab;
 using namespace contactlab::test;
 
+namespace {
+struct CountedRun {
+    SideEffects effects;
+    long contact = 0;  // ticks whose record says contact
+};
+// One warm-up tick (it takes the scene, allocated off-thread; the proxy's scratch is reserved),
+// then `ticks` ticks with allocations, locks and writes counted on every thread; `between(k)`
+// runs after tick k, and is counted too.
+template <class Between>
+CountedRun run_counted(drivers::ServoLoop& loop, SpscRing<drivers::TickRecord>& ring, int ticks, Between between) {
+    drivers::TickRecord r;
+    loop.step(1e-3, false);
+    while (ring.try_pop(r)) {}
+    reset_side_effects();
+    CountedRun run;
+    count_all_threads(true);
+    for (int k = 0; k < ticks; ++k) {
+        loop.step(1e-3, false);
+        while (ring.try_pop(r)) run.contact += r.contact ? 1 : 0;
+        between(k);
+    }
+    count_all_threads(false);
+    run.effects = side_effects();
+    return run;
+}
+}  // namespace
+
 TEST_CASE("100,000 servo ticks allocate nothing, lock nothing, write nothing") {
     // The block task repeated: descend, slide, tip over the edge, descend; loop the path so the
     // run stays in varied contact for all 100,000 ticks.
@@ -31,17 +58,7 @@ TEST_CASE("100,000 servo ticks allocate nothing, lock nothing, write nothing") {
     servo.scenes().publish(std::make_unique<ServoScene>(scene));
     drivers::ServoLoop loop(dev, servo, 1e-3, &ring);
     REQUIRE(loop.start());
-    drivers::TickRecord r;
-    // Warm-up tick takes the scene (allocated off-thread above); the proxy's scratch is reserved.
-    loop.step(1e-3, false);
-    while (ring.try_pop(r)) {}
-
-    reset_side_effects();
-    long contact = 0;
-    count_all_threads(true);
-    for (int k = 0; k < 100000; ++k) {
-        loop.step(1e-3, false);
-        while (ring.try_pop(r)) contact += r.contact ? 1 : 0;
+    const CountedRun run = run_counted(loop, ring, 100000, [&](int k) {
         // A parameter edit every second, as the UI would publish it (publishing is also
         // allocation-free; applying it is part of the tick).
         if (k % 1000 == 0) {
@@ -49,14 +66,13 @@ TEST_CASE("100,000 servo ticks allocate nothing, lock nothing, write nothing") {
             p.stiffness = 800.0 + (k / 1000 % 5) * 100.0;
             servo.publish_params(p);
         }
-    }
-    count_all_threads(false);
-    const SideEffects e = side_effects();
+    });
+    const SideEffects& e = run.effects;
     CHECK(e.allocs == 0);
     CHECK(e.frees == 0);
     CHECK(e.locks == 0);
     CHECK(e.io == 0);
-    CHECK(contact > 50000);  // the ticks measured were mostly in contact
+    CHECK(run.contact > 50000);  // the ticks measured were mostly in contact
     CHECK(servo.snapshot().fault_count == 0);
 }
 
@@ -79,23 +95,12 @@ TEST_CASE("20,000 servo ticks on the simulated wearable platform allocate nothin
     servo.scenes().publish(std::make_unique<ServoScene>(scene));
     drivers::ServoLoop loop(dev, servo, 1e-3, &ring);
     REQUIRE(loop.start());
-    drivers::TickRecord r;
-    loop.step(1e-3, false);
-    while (ring.try_pop(r)) {}
-
-    reset_side_effects();
-    long contact = 0;
-    count_all_threads(true);
-    for (int k = 0; k < 20000; ++k) {
-        loop.step(1e-3, false);
-        while (ring.try_pop(r)) contact += r.contact ? 1 : 0;
-    }
-    count_all_threads(false);
-    const SideEffects e = side_effects();
+    const CountedRun run = run_counted(loop, ring, 20000, [](int) {});
+    const SideEffects& e = run.effects;
     CHECK(e.allocs == 0);
     CHECK(e.frees == 0);
     CHECK(e.locks == 0);
     CHECK(e.io == 0);
-    CHECK(contact > 5000);
+    CHECK(run.contact > 5000);
     CHECK(dev.state() != drivers::DeviceState::fault);
 }
