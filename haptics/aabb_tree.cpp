@@ -58,7 +58,7 @@ int AabbTree::build(const std::vector<Aabb>& boxes, const std::vector<NormalCone
         nodes_[index].first = first;
         nodes_[index].count = count;
         // Ascending within the leaf: a query walking leaves in the contour's order then returns
-        // sorted ids, which the proxy's sort then only has to check.
+        // sorted ids, which the proxy then only has to check (collect()).
         std::sort(items_.begin() + first, items_.begin() + first + count);
         return index;
     }
@@ -79,20 +79,7 @@ int AabbTree::build(const std::vector<Aabb>& boxes, const std::vector<NormalCone
 }
 
 void AabbTree::query(const Aabb& box, std::vector<int>& out) const {
-    if (nodes_.empty()) return;
-    int stack[kMaxDepth * 2];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-        const Node& n = nodes_[stack[--top]];
-        if (!n.box.overlaps(box)) continue;
-        if (n.left < 0) {
-            for (int i = n.first; i < n.first + n.count; ++i) out.push_back(items_[i]);
-            continue;
-        }
-        stack[top++] = n.left;
-        stack[top++] = n.right;
-    }
+    collect([&](const Node& n) { return n.box.overlaps(box); }, out);
 }
 
 Aabb arc_bounds(Vec2 c, double r, double start, double width) {
@@ -126,43 +113,16 @@ bool AabbTree::offset_may_reach(const Node& n, Vec2 p, double r, double reach, d
     return !(n.box.max_distance_to(p) < r - reach);
 }
 
-void AabbTree::query_offset_reach(Vec2 p, double r, double reach, std::vector<int>& out, double side) const {
-    if (nodes_.empty()) return;
-    int stack[kMaxDepth * 2];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-        const Node& n = nodes_[stack[--top]];
-        if (!offset_may_reach(n, p, r, reach, side)) continue;
-        if (n.left < 0) {
-            for (int i = n.first; i < n.first + n.count; ++i) out.push_back(items_[i]);
-            continue;
-        }
-        stack[top++] = n.left;
-        stack[top++] = n.right;
-    }
-}
-
 void AabbTree::query_pad_reach(Vec2 p, double r, double reach, bool inner, const Vec2* ends, int end_count,
                                double end_reach, std::vector<int>& out) const {
-    if (nodes_.empty()) return;
-    int stack[kMaxDepth * 2];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-        const Node& n = nodes_[stack[--top]];
-        bool may = offset_may_reach(n, p, r, reach, 1.0) || (inner && offset_may_reach(n, p, r, reach, -1.0));
-        for (int k = 0; k < end_count && !may; ++k) may = n.box.distance_to(ends[k]) <= end_reach;
-        if (!may) continue;
-        if (n.left < 0) {
-            for (int i = n.first; i < n.first + n.count; ++i) out.push_back(items_[i]);
-            continue;
-        }
-        // The left child first (pushed last): along a contour drawn left to right its items come
-        // first, so the output is already in order there.
-        stack[top++] = n.right;
-        stack[top++] = n.left;
-    }
+    collect(
+        [&](const Node& n) {
+            if (offset_may_reach(n, p, r, reach, 1.0) || (inner && offset_may_reach(n, p, r, reach, -1.0))) return true;
+            for (int k = 0; k < end_count; ++k)
+                if (n.box.distance_to(ends[k]) <= end_reach) return true;
+            return false;
+        },
+        out);
 }
 
 }  // namespace contactlab

@@ -55,29 +55,25 @@ class AabbTree {
 public:
     AabbTree() = default;
     explicit AabbTree(const std::vector<Aabb>& item_boxes);
-    // With each item's cone of free-side normals, for query_offset_reach.
+    // With each item's cone of free-side normals, for query_pad_reach.
     AabbTree(const std::vector<Aabb>& item_boxes, const std::vector<NormalCone>& item_normals);
 
     // Appends to `out` the index of every item whose box overlaps `box`. `out` keeps its capacity,
     // so a caller that reserves once does not allocate per query.
     void query(const Aabb& box, std::vector<int>& out) const;
 
-    // Appends every item that may have a point q with a free-side normal n (within its cone)
-    // such that q + r n lies within `reach` of p: the items whose offset by r (a c-space piece of
-    // a pad of radius r) can come within reach of a finger at p. Nodes are pruned by distance
-    // (farther than r + reach), by the offset of their normal cone, and, without cones, by the
-    // annulus: items wholly within r - reach of p offset to beyond reach. Conservative: may
-    // return more, never fewer. Why: under a pad pressed into a densely sampled contour, the box
-    // around the pad holds thousands of tiny segments of which only those near the contact can
-    // matter.
-    // side = -1 offsets against the free-side normals instead (q - r n): where the pad's concave
-    // side touches the contour from the solid's side (cspace.hpp, the inner pieces).
-    void query_offset_reach(Vec2 p, double r, double reach, std::vector<int>& out, double side = 1.0) const;
-
-    // The union of query_offset_reach(p, r, reach) (side +1), of the same with side -1 when
-    // `inner`, and of the items within end_reach (m) of each of the `end_count` points `ends`, in
-    // one traversal, each item once. Why: the proxy asks all four for one pad at one angle every
-    // tick; on a small scene the four walks of the tree were a fifth of the tick.
+    // Appends every item whose pieces may come within reach of a pad of radius r centred at p,
+    // each item once: those that may have a point q with a free-side normal n (within its cone)
+    // such that q + r n lies within `reach` of p (the pad's outer side: the items' offset by r can
+    // come within reach of a finger at p), with `inner` also those where q - r n does (the pad's
+    // concave side touching the contour from the solid's side, cspace.hpp's inner pieces), and
+    // those within end_reach (m) of any of the `end_count` points `ends` (the pad's ends). Nodes
+    // are pruned by distance (farther than r + reach), by the offset of their normal cone, and,
+    // without cones, by the annulus: items wholly within r - reach of p offset to beyond reach.
+    // Conservative: may return more, never fewer. Why: under a pad pressed into a densely sampled
+    // contour, the box around the pad holds thousands of tiny segments of which only those near
+    // the contact can matter; and one walk of the tree for all of it (four walks were a fifth of a
+    // small scene's tick).
     void query_pad_reach(Vec2 p, double r, double reach, bool inner, const Vec2* ends, int end_count,
                          double end_reach, std::vector<int>& out) const;
 
@@ -93,7 +89,7 @@ private:
         Aabb box;
         NormalCone normals;  // of every item below; full when the tree has no cones
         // The cone's end directions and which axis directions (bit k: angle k pi/2) it holds,
-        // computed once at build: query_offset_reach bounds the cone's arc with no sine, cosine
+        // computed once at build: query_pad_reach bounds the cone's arc with no sine, cosine
         // or fmod per node visited (they were a quarter of a dense contour's tick).
         Vec2 cone_from{1.0, 0.0}, cone_to{1.0, 0.0};
         std::uint8_t cone_axes = 0;
@@ -104,14 +100,38 @@ private:
     };
     int build(const std::vector<Aabb>& boxes, const std::vector<NormalCone>* normals, int first, int count);
     // Whether items below node n may have an offset point q + r n (side +1) or q - r n (side -1)
-    // within reach of p: query_offset_reach's test.
+    // within reach of p: query_pad_reach's test.
     static bool offset_may_reach(const Node& n, Vec2 p, double r, double reach, double side);
+    // Appends the items of every leaf reached through nodes for which may_hold(node) is true,
+    // left child first.
+    template <typename MayHold>
+    void collect(MayHold&& may_hold, std::vector<int>& out) const;
 
     std::vector<Node> nodes_;
     std::vector<int> items_;
     static constexpr int kLeafSize = 4;
     static constexpr int kMaxDepth = 64;
 };
+
+template <typename MayHold>
+void AabbTree::collect(MayHold&& may_hold, std::vector<int>& out) const {
+    if (nodes_.empty()) return;
+    int stack[kMaxDepth * 2];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const Node& n = nodes_[stack[--top]];
+        if (!may_hold(n)) continue;
+        if (n.left < 0) {
+            for (int i = n.first; i < n.first + n.count; ++i) out.push_back(items_[i]);
+            continue;
+        }
+        // The left child first (pushed last): along a contour drawn left to right its items come
+        // first, so a query's output is already in order there (items within a leaf are sorted).
+        stack[top++] = n.right;
+        stack[top++] = n.left;
+    }
+}
 
 template <typename ItemDistance>
 double AabbTree::nearest_distance(Vec2 p, ItemDistance&& item_distance) const {

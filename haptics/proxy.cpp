@@ -208,7 +208,7 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
     const bool local_allowed = def_.use_index && def_.law.contacts != ContactForce::sum;
     const WarmDisc warm = local_allowed ? warm_start_disc(finger, max_push) : WarmDisc{start, reach};
     if (warm.radius < reach) {
-        gather_near(warm.center, phi_, phi, warm.radius, warm.radius);
+        gather_near(warm.center, phi_, phi, warm.radius);
         move_proxy(finger, phi, turn, max_push, start, warm.center);
         work_.warm_start = path_extent_ + 2.0 * max_push + kWarmStartMargin <= warm.radius;
         if (!work_.warm_start) proxy_ = start;
@@ -280,10 +280,12 @@ void Proxy::move_proxy(Vec2 finger, double phi, double turn, double max_push, Ve
         const int steps = std::clamp(static_cast<int>(std::ceil(max_push / chord_step)), 1, kMaxRotationSteps);
         const double sub_push = 2.0 * R * std::sin(0.5 * dphi / steps) * (1.0 + 1e-9) + kOnTolerance;
         work_.rotation_steps = steps;
-        for (int k = 1; k <= steps; ++k) {
-            build_pieces(k == steps ? phi : phi_ + turn * k / steps);
+        for (int k = 1; k < steps; ++k) {
+            build_substep_pieces(phi_ + turn * k / steps);
             depenetrate(sub_push);
         }
+        build_pieces(phi);
+        depenetrate(sub_push);
     } else {
         work_.rotation_steps = 0;
         build_pieces(phi);
@@ -302,7 +304,7 @@ void Proxy::note_path_box(const Aabb& box) { path_extent_ = std::max(path_extent
 
 // The segments whose c-space pieces can come within `reach` (m) of the finger while the pad turns
 // from phi_ to phi: every piece the walk and the re-projection can meet. Pad-interior and vertex
-// pieces are the segment offset by R along its free-side normals (AabbTree::query_offset_reach);
+// pieces are the segment offset by R along its free-side normals (AabbTree::query_pad_reach);
 // endpoint pieces are the segment seen from a pad end, so they matter for segments within reach
 // of the pad ends' positions, which during the turn stay within the chord (<= reach) of the ends.
 // Under a pad pressed into a densely sampled contour this keeps the few segments near the
@@ -312,26 +314,26 @@ void Proxy::gather_for_motion(Vec2 finger, double phi, double reach) {
     // them to within its sagitta, which is at most the chord max_push, already inside `reach`.
     // (It was grown by 2 x reach: at 100,000 segments on 0.4 m that gathered thousands more and
     // cost twice the tick; a test compares against use_index = false in contact.)
-    gather_near(finger, phi_, phi, reach, reach);
+    gather_near(finger, phi_, phi, reach);
 }
 
 void Proxy::gather_within_reach(Vec2 finger, double phi, double reach) {
     // A pad-end piece is its segment moved by -R u_end: its points within `reach` of the finger
     // come from segment points within `reach` of the pad's end.
-    gather_near(finger, phi, phi, reach, reach);
+    gather_near(finger, phi, phi, reach);
 }
 
-void Proxy::gather_near(Vec2 finger, double phi_from, double phi_to, double reach, double end_reach) {
+void Proxy::gather_near(Vec2 finger, double phi_from, double phi_to, double reach) {
     segment_ids_.clear();
     if (!def_.use_index) {
         for (int i = 0; i < static_cast<int>(env_->segments.size()); ++i) segment_ids_.push_back(i);
         return;
     }
-    // The offset pieces, the inner ones, and the segments within end_reach of each pad end as it
+    // The offset pieces, the inner ones, and the segments within reach of each pad end as it
     // turns, all in one walk of the tree (four walks were a fifth of a small scene's tick), each
     // segment once. A pad end turning by the shortest way (at most a half-turn) from e0 to e1 stays
     // within |e1 - e0| / 2 of their midpoint (the arc's sagitta is at most half its chord), so a
-    // disc there covers it. (Boxes around the ends, 2 end_reach wide, held thousands more on a
+    // disc there covers it. (Boxes around the ends, 2 reach wide, held thousands more on a
     // dense slope when hovering 1 cm above it.)
     const FingerShape& shape = def_.finger;
     const bool ends = pad_has_endpoints(shape);
@@ -350,7 +352,7 @@ void Proxy::gather_near(Vec2 finger, double phi_from, double phi_to, double reac
             half_chord = 0.5 * glm::length(e1 - e0);
         }
     }
-    env_->tree.query_pad_reach(finger, shape.radius, reach, ends, end_centres, ends ? 2 : 0, end_reach + half_chord,
+    env_->tree.query_pad_reach(finger, shape.radius, reach, ends, end_centres, ends ? 2 : 0, reach + half_chord,
                                segment_ids_);
     // Sorted, so the pieces' order (and thus tie-breaks) does not depend on the tree. (Along a
     // contour the tree's order usually is sorted already: checking is linear, sorting is not.)
@@ -420,6 +422,19 @@ void Proxy::build_pieces(double phi) {
     built_ids_.assign(segment_ids_.begin(), segment_ids_.end());
     built_phi_ = phi;
     built_valid_ = true;
+}
+
+// pieces_ for segment_ids_ at a re-projection sub-step's angle: no boxes (only the walk uses them)
+// and nothing kept to copy (no later build asks for this angle). A large turn over a dense contour
+// takes hundreds of sub-steps.
+void Proxy::build_substep_pieces(double phi) {
+    active_count_ = 0;
+    const PadFrame& pad = pad_frame(phi);
+    pieces_.clear();
+    piece_boxes_.clear();
+    for (const int id : segment_ids_) append_cspace_pieces(*env_, id, pad, pieces_);
+    built_valid_ = false;
+    cache_aside_ = false;
 }
 
 // After phi changed, pieces made by the pad's ends moved by at most `max_push` (m). If the proxy

@@ -111,9 +111,10 @@ private:
     void gather_for_motion(Vec2 finger, double phi, double reach);
     void gather_within_reach(Vec2 finger, double phi, double reach);  // pieces at phi within reach
     // segment_ids_: segments whose R-offset can come within `reach` of the finger, or that lie
-    // within `end_reach` of the pad's ends between the two angles.
-    void gather_near(Vec2 finger, double phi_from, double phi_to, double reach, double end_reach);
+    // within `reach` of the pad's ends between the two angles.
+    void gather_near(Vec2 finger, double phi_from, double phi_to, double reach);
     void build_pieces(double phi);                         // pieces_ of segment_ids_ at phi
+    void build_substep_pieces(double phi);                 // the same, for a re-projection sub-step
     const PadFrame& pad_frame(double phi);
     struct WarmDisc {
         Vec2 center{0.0};    // m
