@@ -24,7 +24,7 @@ AabbTree::AabbTree(const std::vector<Aabb>& item_boxes) {
     std::iota(items_.begin(), items_.end(), 0);
     if (!items_.empty()) {
         nodes_.reserve(2 * items_.size() / kLeafSize + 2);
-        build(item_boxes, nullptr, 0, static_cast<int>(items_.size()));
+        build(item_boxes, nullptr, nullptr, 0, static_cast<int>(items_.size()));
     }
 }
 
@@ -33,20 +33,38 @@ AabbTree::AabbTree(const std::vector<Aabb>& item_boxes, const std::vector<Normal
     std::iota(items_.begin(), items_.end(), 0);
     if (!items_.empty()) {
         nodes_.reserve(2 * items_.size() / kLeafSize + 2);
-        build(item_boxes, &item_normals, 0, static_cast<int>(items_.size()));
+        build(item_boxes, &item_normals, nullptr, 0, static_cast<int>(items_.size()));
     }
 }
 
-int AabbTree::build(const std::vector<Aabb>& boxes, const std::vector<NormalCone>* normals, int first, int count) {
+AabbTree::AabbTree(const std::vector<Aabb>& item_boxes, const std::vector<NormalCone>& item_normals,
+                   const std::vector<OffsetBoxes>& item_offsets, double rho)
+    : has_offsets_(true), rho_(rho) {
+    items_.resize(item_boxes.size());
+    std::iota(items_.begin(), items_.end(), 0);
+    if (!items_.empty()) {
+        nodes_.reserve(2 * items_.size() / kLeafSize + 2);
+        build(item_boxes, &item_normals, &item_offsets, 0, static_cast<int>(items_.size()));
+    }
+}
+
+int AabbTree::build(const std::vector<Aabb>& boxes, const std::vector<NormalCone>* normals,
+                    const std::vector<OffsetBoxes>* offsets, int first, int count) {
     const int index = static_cast<int>(nodes_.size());
     nodes_.push_back({});
     Aabb box;
+    OffsetBoxes offset;
     NormalCone cone = normals ? NormalCone{} : NormalCone{0.0, kTwoPi};
     for (int i = first; i < first + count; ++i) {
         box.grow(boxes[items_[i]]);
         if (normals) cone = merge_cones(cone, (*normals)[static_cast<std::size_t>(items_[i])]);
+        if (offsets) {
+            offset.outer.grow((*offsets)[static_cast<std::size_t>(items_[i])].outer);
+            offset.inner.grow((*offsets)[static_cast<std::size_t>(items_[i])].inner);
+        }
     }
     nodes_[index].box = box;
+    nodes_[index].offset = offset;
     nodes_[index].normals = cone;
     if (cone.width >= 0.0 && cone.width < kPi) {
         nodes_[index].cone_from = unit_at(cone.start);
@@ -71,8 +89,8 @@ int AabbTree::build(const std::vector<Aabb>& boxes, const std::vector<NormalCone
                      items_.begin() + first + count, [&](int a, int b) {
                          return boxes[a].center()[axis] < boxes[b].center()[axis];
                      });
-    const int left = build(boxes, normals, first, half);
-    const int right = build(boxes, normals, first + half, count - half);
+    const int left = build(boxes, normals, offsets, first, half);
+    const int right = build(boxes, normals, offsets, first + half, count - half);
     nodes_[index].left = left;
     nodes_[index].right = right;
     return index;
@@ -93,8 +111,29 @@ Aabb arc_bounds(Vec2 c, double r, double start, double width) {
     return b;
 }
 
-bool AabbTree::offset_may_reach(const Node& n, Vec2 p, double r, double reach, double side) {
+bool AabbTree::offset_may_reach(const Node& n, Vec2 p, double r, double reach, double side) const {
     if (n.box.distance_to(p) > r + reach) return false;
+    if (has_offsets_) {
+        // q + r n = (q + rho n) + (r - rho) n, and q - r n = (q - rho n) - (r - rho) n: the node's
+        // offset box at rho, moved by d n for every n of its cone.
+        Aabb moved = side > 0.0 ? n.offset.outer : n.offset.inner;
+        const double d = side > 0.0 ? r - rho_ : rho_ - r;  // m
+        if (d != 0.0) {
+            Aabb sweep;  // the box of d n over the cone
+            if (n.normals.width < kPi) {
+                sweep.grow(d * n.cone_from);
+                sweep.grow(d * n.cone_to);
+                if (n.cone_axes & 1u) sweep.grow(Vec2{d, 0.0});
+                if (n.cone_axes & 2u) sweep.grow(Vec2{0.0, d});
+                if (n.cone_axes & 4u) sweep.grow(Vec2{-d, 0.0});
+                if (n.cone_axes & 8u) sweep.grow(Vec2{0.0, -d});
+            } else {
+                sweep = Aabb{Vec2(-std::abs(d)), Vec2(std::abs(d))};
+            }
+            moved = Aabb{moved.lo + sweep.lo, moved.hi + sweep.hi};
+        }
+        if (moved.distance_to(p) > reach) return false;
+    }
     if (n.normals.width < kPi) {
         // q + r n within reach of p  <=>  q within reach of p - r n: the node's box must come
         // within reach of the arc of points p - r n, n in the cone (p + r n for side -1). The

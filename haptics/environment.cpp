@@ -90,6 +90,38 @@ int intersect_spans(const AngleSpan& a, const AngleSpan& b, AngleSpan out[2]) {
     return n;
 }
 
+// The boxes of q + rho n and q - rho n over the segment's points q and the free-side normals n its
+// c-space pieces offset along (cspace.cpp): a line moved along its normal, an arc's circle grown
+// or shrunk by rho (through its centre when rho exceeds its radius), and at a convex end the
+// vertex's circle of radius rho over its cone. Grown by 1e-10 m against rounding: the proxy builds
+// its pieces at its own radius, with its own roundings.
+OffsetBoxes offset_boxes(const EnvSegment& e, double rho) {
+    auto circle = [](Vec2 c, double k, double start, double width) {  // c + k u(a), a in the span
+        return k >= 0.0 ? arc_bounds(c, k, start, width) : arc_bounds(c, -k, start + kPi, width);
+    };
+    OffsetBoxes b;
+    if (e.kind == EnvSegment::Kind::line) {
+        for (const double side : {1.0, -1.0}) {
+            Aabb& box = side > 0.0 ? b.outer : b.inner;
+            box.grow(e.start + side * rho * e.normal);
+            box.grow(e.end + side * rho * e.normal);
+        }
+    } else {
+        const double out = e.free_outside ? rho : -rho;  // m: q + rho n = c + (radius + out) u
+        b.outer = circle(e.center, e.radius + out, e.angles.start, e.angles.width);
+        b.inner = circle(e.center, e.radius - out, e.angles.start, e.angles.width);
+    }
+    auto vertex = [&](Vec2 v, const AngleSpan& cone) {
+        if (cone.width <= 0.0) return;
+        b.outer.grow(arc_bounds(v, rho, cone.start, cone.width));
+        b.inner.grow(arc_bounds(v, rho, cone.start + kPi, cone.width));
+    };
+    vertex(e.end, e.end_cone);
+    if (e.prev < 0) vertex(e.start, e.start_cone);
+    constexpr double kRounding = 1e-10;  // m
+    return {b.outer.grown(kRounding), b.inner.grown(kRounding)};
+}
+
 Environment build_environment(const Scene& scene) {
     Environment env;
     std::vector<CurvePiece> curve_pieces;
@@ -152,8 +184,11 @@ Environment build_environment(const Scene& scene) {
     }
     std::vector<Aabb> boxes;
     std::vector<NormalCone> normals;  // free-side normals a c-space piece of the segment offsets along
+    std::vector<OffsetBoxes> offsets;  // the segment's offsets at the scene's pad radius
     boxes.reserve(env.segments.size());
     normals.reserve(env.segments.size());
+    offsets.reserve(env.segments.size());
+    const double rho = std::max(scene.finger.radius, 0.0);  // m
     for (const EnvSegment& e : env.segments) {
         boxes.push_back(e.box);
         env.bounds.grow(e.box);
@@ -168,8 +203,9 @@ Environment build_environment(const Scene& scene) {
         if (e.end_cone.width > 0.0) cone = merge_cones(cone, {e.end_cone.start, e.end_cone.width});
         if (e.prev < 0 && e.start_cone.width > 0.0) cone = merge_cones(cone, {e.start_cone.start, e.start_cone.width});
         normals.push_back(cone);
+        offsets.push_back(offset_boxes(e, rho));
     }
-    env.tree = AabbTree(boxes, normals);
+    env.tree = AabbTree(boxes, normals, offsets, rho);
     return env;
 }
 

@@ -77,6 +77,11 @@ struct Environment {
     double min_feature = std::numeric_limits<double>::infinity();
 };
 
+// The boxes of q + rho n (outer) and q - rho n (inner) over the segment's points q and the
+// free-side normals n its c-space pieces offset along, grown by 1e-10 m: what the index bounds a
+// pad of radius rho (m) by (AabbTree::query_pad_reach). build_environment uses the scene's R.
+OffsetBoxes offset_boxes(const EnvSegment& e, double rho);
+
 // Compiles a validated scene (see scene_io.hpp) into an Environment.
 Environment build_environment(const Scene& scene);
 

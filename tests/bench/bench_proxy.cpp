@@ -80,7 +80,8 @@ BENCHMARK(BM_ProxyTick)->Arg(10)->Arg(1000)->Arg(100000);
 
 // Density: the same 0.4 m sinusoid (amplitude 1 cm, wavelength 10 cm) refined into N line
 // segments, so at N = 100,000 thousands of 4 um segments lie under the pad. The finger slides
-// 1 mm deep along the curve's normal, pad facing down, over the middle 0.2 m in 4000 ticks.
+// 1 mm deep along the curve's normal, pad facing down, over the middle 0.2 m in the second
+// argument's number of ticks.
 double dense_height(double x) { return 0.01 * std::sin(2.0 * 3.141592653589793 * x / 0.1); }
 double dense_slope(double x) { return 0.01 * 2.0 * 3.141592653589793 / 0.1 * std::cos(2.0 * 3.141592653589793 * x / 0.1); }
 
@@ -96,8 +97,9 @@ void BM_ProxyTickDense(benchmark::State& state) {
     const Environment env = build_environment(scene);
     Proxy proxy(env, ProxyDef{});
     std::vector<Vec2> path;
-    for (int k = 0; k < 4000; ++k) {
-        const double x = 0.1 + 0.2 * k / 4000;
+    const int stroke_ticks = static_cast<int>(state.range(1));  // over the 0.2 m stroke
+    for (int k = 0; k < stroke_ticks; ++k) {
+        const double x = 0.1 + 0.2 * k / stroke_ticks;
         const Vec2 n = glm::normalize(Vec2{-dense_slope(x), 1.0});
         path.push_back(Vec2{x, dense_height(x)} + (0.026 - 0.001) * n);
     }
@@ -122,9 +124,12 @@ void BM_ProxyTickDense(benchmark::State& state) {
     state.counters["segs"] = gathered / ticks;
     state.counters["pieces"] = pieces / ticks;
     state.counters["steps"] = steps / ticks;
-    state.SetLabel(std::to_string(segments) + " segments on 0.4 m");
+    state.SetLabel(std::to_string(segments) + " segments on 0.4 m, " + std::to_string(200000 / stroke_ticks) + " um per tick");
 }
-BENCHMARK(BM_ProxyTickDense)->Arg(10)->Arg(100)->Arg(1000)->Arg(10000)->Arg(100000);
+// 4000 ticks: 5 cm/s at 1 kHz; 1000 ticks: 20 cm/s, the stroke `contactlab bench` times.
+BENCHMARK(BM_ProxyTickDense)
+    ->Args({10, 4000})->Args({100, 4000})->Args({1000, 4000})->Args({10000, 4000})->Args({100000, 4000})
+    ->Args({10, 1000})->Args({100000, 1000});
 
 // Curves: a generated seed 002 stimulus (seed 1: 2 small bumps, 1 large, 89 quads + 2 lines),
 // traced left to right 1 mm under its envelope at 0.035 mm per tick, in exact mode and flattened

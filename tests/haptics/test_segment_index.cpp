@@ -1,0 +1,108 @@
+// test_segment_index.cpp — the environment's index bounds every c-space piece it is asked about.
+//
+// The tree prunes a pad query by each node's offset boxes at the scene's pad radius rho
+// (environment.hpp, offset_boxes; aabb_tree.hpp, query_pad_reach). These tests check the two
+// facts that pruning rests on, over the contact soak's seeded random scenes (stars of lines, arcs
+// and curves, thin walls, terrains): every piece a segment makes for a pad of radius rho lies in
+// that segment's box for its side, and a proxy whose pad radius differs from rho (the box then
+// moved by (r - rho) n over the node's cone) still gathers every piece that matters, bit for bit.
+#include "haptics/cspace.hpp"
+#include "haptics/environment.hpp"
+#include "haptics/proxy.hpp"
+#include "haptics/verify/random_contact_scenes.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <random>
+
+using namespace contactlab;
+using namespace contactlab::verify;
+
+namespace {
+
+// Points along a piece: its ends and 15 between (a circle's along its span).
+std::vector<Vec2> points_on(const CPiece& p) {
+    std::vector<Vec2> out;
+    for (int k = 0; k <= 16; ++k) {
+        const double f = k / 16.0;
+        out.push_back(piece_point(p, f * (p.kind == CPiece::Kind::line ? p.len : p.span.width)));
+    }
+    return out;
+}
+
+bool inner_side(CPiece::Source s) { return s == CPiece::Source::vertex_inner || s == CPiece::Source::arc_inner; }
+
+}  // namespace
+
+TEST_CASE("index: every piece a segment makes for a pad of the scene's radius lies in its offset box") {
+    // Pad-end pieces are the segment seen from the pad's ends: the tree finds those by the ends'
+    // discs, not by offset, so they are not checked here.
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> angle(-kPi, kPi);
+    int checked = 0, inner_checked = 0;
+    for (std::uint64_t index = 0; index < 12; ++index) {
+        const ContactCase c = make_contact_case(case_seed(5, index));
+        const Environment env = build_environment(c.scene);
+        const FingerShape finger = finger_from_def(c.scene.finger);
+        CAPTURE(c.seed);
+        std::vector<CPiece> pieces;
+        for (int phi_k = 0; phi_k < 4; ++phi_k) {
+            const double phi = angle(rng);
+            for (int id = 0; id < static_cast<int>(env.segments.size()); ++id) {
+                const OffsetBoxes boxes = offset_boxes(env.segments[static_cast<std::size_t>(id)], finger.radius);
+                pieces.clear();
+                append_cspace_pieces(env, id, finger, phi, pieces);
+                for (const CPiece& p : pieces) {
+                    if (p.source == CPiece::Source::endpoint) continue;
+                    const Aabb& box = inner_side(p.source) ? boxes.inner : boxes.outer;
+                    for (const Vec2 q : points_on(p)) {
+                        CAPTURE(id);
+                        CAPTURE(static_cast<int>(p.source));
+                        REQUIRE(box.contains(q));
+                    }
+                    ++checked;
+                    inner_checked += inner_side(p.source) ? 1 : 0;
+                }
+            }
+        }
+    }
+    MESSAGE(checked, " pieces checked, ", inner_checked, " of them inner");
+    CHECK(checked > 1000);
+    CHECK(inner_checked > 50);
+}
+
+TEST_CASE("index: a pad smaller or larger than the scene's gathers every piece that matters (bit for bit)") {
+    // The index holds offset boxes at the scene's R; a device or a live edit may give the proxy
+    // another radius. Against use_index = false (every segment, every tick) on the soak's scenes,
+    // with the pad 0.6 and 1.5 times the scene's.
+    int rows = 0, contact_rows = 0;
+    for (const double scale : {0.6, 1.5}) {
+        for (std::uint64_t index = 0; index < 4; ++index) {
+            const ContactCase c = make_contact_case(case_seed(9, index));
+            const Environment env = build_environment(c.scene);
+            ProxyDef def = proxy_def_of(c.scene);
+            def.finger.radius *= scale;
+            def.finger.length *= scale;  // the same pad angle
+            Proxy indexed(env, def);
+            def.use_index = false;
+            Proxy brute(env, def);
+            CAPTURE(scale);
+            CAPTURE(c.seed);
+            indexed.reset(c.path.front().finger, c.path.front().phi);
+            brute.reset(c.path.front().finger, c.path.front().phi);
+            for (const HandSample& h : c.path) {
+                const ProxyOutput a = indexed.update(h.finger, h.phi);
+                const ProxyOutput& b = brute.update(h.finger, h.phi);
+                ++rows;
+                REQUIRE(a.proxy == b.proxy);
+                REQUIRE(a.force == b.force);
+                REQUIRE(a.l_d == b.l_d);
+                REQUIRE(a.contact_count == b.contact_count);
+                contact_rows += a.contact ? 1 : 0;
+            }
+        }
+    }
+    MESSAGE(rows, " rows, ", contact_rows, " in contact");
+    CHECK(contact_rows > rows / 4);
+}
