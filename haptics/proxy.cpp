@@ -66,6 +66,15 @@ constexpr int kPieceGroup = 8;
 // Boxes used to reject pieces far from a walk step are grown by this much (m), well beyond every
 // tolerance the entry tests accept (kOnTolerance along a piece, t_slack along the motion).
 constexpr double kBoxSlack = 1e-8;
+// A walk step's scan keeps the pieces whose boxes overlapped its motion box (Proxy::local_). A
+// later question about a point J within that box (the slide's end, a corner on it) needs only the
+// pieces whose boxes come within kNearMargin (m) of J: every piece a hand-over test at a point
+// kLocalAcceptRadius (m) from J looks at. A piece not among them lies more than kBoxSlack +
+// kNearMargin from J, so it enters no straight move from J within kLocalAcceptRadius: a hit that
+// near is the full scan's too. Why: sliding over a densely sampled contour crosses a vertex every
+// few micrometres, and each crossing asked the same questions of all ~200 pieces twice more.
+constexpr double kNearMargin = 1e-8;
+constexpr double kLocalAcceptRadius = 5e-9;
 // Sub-steps of a finger-angle change (see Proxy::update): the pad end's chord per sub-step (m) is
 // a quarter of the scene's smallest feature, within these bounds, and the count is capped so a
 // wild jump of phi costs a bounded time (at the cap a feature thinner than
@@ -377,6 +386,7 @@ const PadFrame& Proxy::pad_frame(double phi) {
 // segments, a small scene all of them (building was a fifth of the tick). Same pieces, same order.
 void Proxy::build_pieces(double phi) {
     active_count_ = 0;
+    local_valid_ = false;
     const PadFrame& pad = pad_frame(phi);
     if (segment_ids_.empty()) {
         // Nothing near (a free finger's motion): keep the last build aside for the next one to
@@ -429,6 +439,7 @@ void Proxy::build_pieces(double phi) {
 // takes hundreds of sub-steps.
 void Proxy::build_substep_pieces(double phi) {
     active_count_ = 0;
+    local_valid_ = false;
     const PadFrame& pad = pad_frame(phi);
     pieces_.clear();
     piece_boxes_.clear();
@@ -542,25 +553,42 @@ bool Proxy::inside_or_past_concave_end(const CPiece& piece, double param, double
 // is solid, so piece i's own normal still decides (returns false).
 bool Proxy::handed_over(int i, Vec2 at, Vec2 t, int ended) const {
     if (!leaves_range(pieces_[i], at, t)) return false;
+    auto continues = [&](int j) {  // piece j passes through `at` and keeps t within its extent
+        if (j == i || j == ended || !piece_boxes_[static_cast<std::size_t>(j)].contains(at)) return false;
+        const CPiece& other = pieces_[j];
+        if (std::abs(piece_signed_distance(other, at)) > kOnTolerance) return false;
+        const double slack = other.kind == CPiece::Kind::line ? kOnTolerance : kOnTolerance / other.radius;
+        if (!piece_param_inside(other, piece_param(other, at), slack)) return false;
+        return !leaves_range(other, at, t);
+    };
+    if (local_near(at, kLocalAcceptRadius)) {  // every box holding `at` is among the last scan's
+        for (const int j : local_)
+            if (continues(j)) return true;
+        return false;
+    }
     const int count = static_cast<int>(pieces_.size());
     for (int j = 0; j < count; ++j) {
         if (j % kPieceGroup == 0 && !group_boxes_[static_cast<std::size_t>(j / kPieceGroup)].contains(at)) {
             j += kPieceGroup - 1;  // none of this group's pieces passes through `at`
             continue;
         }
-        if (j == i || j == ended || !piece_boxes_[static_cast<std::size_t>(j)].contains(at)) continue;
-        const CPiece& other = pieces_[j];
-        if (std::abs(piece_signed_distance(other, at)) > kOnTolerance) continue;
-        const double slack = other.kind == CPiece::Kind::line ? kOnTolerance : kOnTolerance / other.radius;
-        if (!piece_param_inside(other, piece_param(other, at), slack)) continue;
-        if (!leaves_range(other, at, t)) return true;
+        if (continues(j)) return true;
     }
     return false;
+}
+
+bool Proxy::local_near(Vec2 at, double within) const {
+    // Boxes that come within kNearMargin of a point `within` of `at` overlap local_box_ if that
+    // point's margin box lies inside it.
+    const double m = within + kNearMargin;
+    return local_valid_ && at.x - m >= local_box_.lo.x && at.x + m <= local_box_.hi.x && at.y - m >= local_box_.lo.y &&
+           at.y + m <= local_box_.hi.y;
 }
 
 // ---- Proxy::walk --------------------------------------------------------------------------------
 Vec2 Proxy::walk(Vec2 p, Vec2 goal) {
     active_count_ = 0;
+    local_valid_ = false;  // pieces_ may have been rebuilt since the last scan
     int excluded = -1;     // the piece just slid off the end of (not re-entered at its end)
     int idle_steps = 0;    // consecutive steps that did not move the proxy
     proxy_ = p;
@@ -572,7 +600,14 @@ Vec2 Proxy::walk(Vec2 p, Vec2 goal) {
             // the finger heads back over it (a circle's chord from its end into a concave
             // junction), the neighbour through the junction is entered (fuzz-contact found the
             // proxy leaving a terrain's valley corner into the solid).
-            const Hit hit = first_entry_line(proxy_, goal, excluded, -1, excluded);
+            // Off a piece's end the move usually enters the next piece at once: asked first of
+            // the pieces the last scan kept near here, and of all only if none is entered there.
+            Hit hit;
+            if (excluded >= 0 && local_near(proxy_, kLocalAcceptRadius)) {
+                hit = first_entry_line(proxy_, goal, excluded, -1, excluded, /*among_local=*/true);
+                if (!(hit.found && glm::length(hit.point - proxy_) <= kLocalAcceptRadius)) hit = Hit{};
+            }
+            if (!hit.found) hit = first_entry_line(proxy_, goal, excluded, -1, excluded);
             const int ended = excluded;
             excluded = -1;
             // Off a piece's end at a concave junction, with the finger in the wedge beyond both
@@ -704,7 +739,7 @@ bool Proxy::try_release_corner(Vec2 goal) {
 }
 
 // ---- first_entry_line / first_entry_arc --------------------------------------------------------
-Proxy::Hit Proxy::first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b, int ended) const {
+Proxy::Hit Proxy::first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b, int ended, bool among_local) {
     Hit best;
     const Vec2 v = q - p;
     const double len = glm::length(v);
@@ -714,39 +749,33 @@ Proxy::Hit Proxy::first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b,
     motion.grow(p);
     motion.grow(q);
     motion = motion.grown(kBoxSlack);
-    const int count = static_cast<int>(pieces_.size());
-    for (int i = 0; i < count; ++i) {
-        if (i % kPieceGroup == 0 && !group_boxes_[static_cast<std::size_t>(i / kPieceGroup)].overlaps(motion)) {
-            i += kPieceGroup - 1;  // the whole group is far from this step
-            continue;
-        }
-        if (i == exclude_a || i == exclude_b) continue;
-        if (!piece_boxes_[static_cast<std::size_t>(i)].overlaps(motion)) continue;  // far from this step
+    auto consider = [&](int i) {
+        if (i == exclude_a || i == exclude_b) return;
         const CPiece& piece = pieces_[i];
         if (piece.kind == CPiece::Kind::line) {
             const double den = glm::dot(v, piece.n);
-            if (den >= -kTangentTolerance * len) continue;  // parallel or leaving
+            if (den >= -kTangentTolerance * len) return;  // parallel or leaving
             const double d0 = piece_signed_distance(piece, p);
-            if (d0 < -kOnTolerance) continue;                // started behind it: not entering
-            if (d0 + den >= 0.0) continue;                   // does not reach it
+            if (d0 < -kOnTolerance) return;                // started behind it: not entering
+            if (d0 + den >= 0.0) return;                   // does not reach it
             const double t = std::clamp(d0 / -den, 0.0, 1.0);
-            if (t >= best.s) continue;
+            if (t >= best.s) return;
             const Vec2 x = p + t * v;
-            if (!piece_param_inside(piece, piece_param(piece, x), kOnTolerance)) continue;
-            if (t <= t_slack && handed_over(i, x, v / len, ended)) continue;
+            if (!piece_param_inside(piece, piece_param(piece, x), kOnTolerance)) return;
+            if (t <= t_slack && handed_over(i, x, v / len, ended)) return;
             best = {true, t, x, i};
         } else {
             if (piece.free_outside && std::abs(piece_signed_distance(piece, p)) <= kOnTolerance) {
                 // Starting on a convex circle, the path enters only if it heads inward here; it
                 // cannot come back to the circle later. (The roots are useless here: a start
                 // 1e-13 m inside turns a tangent path into a 1e-7 m chord with a steep "entry".)
-                if (0.0 >= best.s) continue;
+                if (0.0 >= best.s) return;
                 const Vec2 radial = glm::normalize(p - piece.center);
-                if (glm::dot(v, radial) / len >= -graze_tolerance(piece)) continue;
-                if (handed_over(i, p, v / len, ended)) continue;
-                if (!piece_param_inside(piece, piece_param(piece, p), kOnTolerance / piece.radius)) continue;
+                if (glm::dot(v, radial) / len >= -graze_tolerance(piece)) return;
+                if (handed_over(i, p, v / len, ended)) return;
+                if (!piece_param_inside(piece, piece_param(piece, p), kOnTolerance / piece.radius)) return;
                 best = {true, 0.0, p, i};
-                continue;
+                return;
             }
             double roots[2];
             const int n = line_circle(p, v, piece.center, piece.radius, roots);
@@ -766,11 +795,33 @@ Proxy::Hit Proxy::first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b,
                 best = {true, std::max(t, 0.0), t < 0.0 ? p : x, i};
             }
         }
+    };
+    if (among_local) {  // the last scan's pieces near the start (walk: off a piece's end)
+        for (const int i : local_) consider(i);
+        return best;
     }
+    // A full scan: it also keeps, as local_, the pieces whose boxes overlap this motion's grown
+    // by the margins local_near needs (more pieces asked, the same answer: the box test only
+    // rejects pieces that cannot be entered).
+    local_valid_ = false;  // handed_over must not read the list while it is being filled
+    local_.clear();
+    const Aabb scan = motion.grown(kNearMargin + kLocalAcceptRadius);
+    const int count = static_cast<int>(pieces_.size());
+    for (int i = 0; i < count; ++i) {
+        if (i % kPieceGroup == 0 && !group_boxes_[static_cast<std::size_t>(i / kPieceGroup)].overlaps(scan)) {
+            i += kPieceGroup - 1;  // the whole group is far from this step
+            continue;
+        }
+        if (!piece_boxes_[static_cast<std::size_t>(i)].overlaps(scan)) continue;  // far from this step
+        local_.push_back(i);
+        consider(i);
+    }
+    local_box_ = scan;
+    local_valid_ = true;
     return best;
 }
 
-Proxy::Hit Proxy::first_entry_arc(const CPiece& on, double s0, double s1, int exclude) const {
+Proxy::Hit Proxy::first_entry_arc(const CPiece& on, double s0, double s1, int exclude) {
     Hit best;
     const double ds = s1 - s0;
     if (std::abs(ds) * on.radius <= 0.0) return best;
@@ -790,14 +841,21 @@ Proxy::Hit Proxy::first_entry_arc(const CPiece& on, double s0, double s1, int ex
         if (handed_over(i, x, t)) return;
         best = {true, std::max(s, 0.0), s < 0.0 ? proxy_ : x, i};
     };
-    const Aabb motion = arc_bounds(on.center, on.radius, on.span.start + std::min(s0, s1), std::abs(ds)).grown(kBoxSlack);
+    const Aabb motion = arc_bounds(on.center, on.radius, on.span.start + std::min(s0, s1), std::abs(ds))
+                            .grown(kBoxSlack + kNearMargin + kLocalAcceptRadius);
+    // Like first_entry_line's full scan, this keeps the pieces near the slide as local_ (its box
+    // grown by local_near's margins).
+    local_valid_ = false;
+    local_.clear();
     const int count = static_cast<int>(pieces_.size());
     for (int i = 0; i < count; ++i) {
         if (i % kPieceGroup == 0 && !group_boxes_[static_cast<std::size_t>(i / kPieceGroup)].overlaps(motion)) {
             i += kPieceGroup - 1;  // the whole group is far from this slide
             continue;
         }
-        if (i == exclude || !piece_boxes_[static_cast<std::size_t>(i)].overlaps(motion)) continue;
+        if (!piece_boxes_[static_cast<std::size_t>(i)].overlaps(motion)) continue;
+        local_.push_back(i);
+        if (i == exclude) continue;
         const CPiece& piece = pieces_[i];
         if (piece.kind == CPiece::Kind::line) {
             double roots[2];
@@ -809,6 +867,8 @@ Proxy::Hit Proxy::first_entry_arc(const CPiece& on, double s0, double s1, int ex
             for (int k = 0; k < n; ++k) consider(i, pts[k]);
         }
     }
+    local_box_ = motion;
+    local_valid_ = true;
     return best;
 }
 

@@ -128,8 +128,13 @@ private:
     bool handed_over(int i, Vec2 at, Vec2 t, int ended = -1) const;
     bool inside_or_past_concave_end(const CPiece& piece, double param, double reach) const;
     Vec2 walk(Vec2 from, Vec2 goal);
-    Hit first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b, int ended = -1) const;
-    Hit first_entry_arc(const CPiece& on, double s0, double s1, int exclude) const;
+    // Where the straight move p -> q first enters a piece. A full scan keeps local_; among_local
+    // asks only local_ (the caller judges whether that answer is the full one).
+    Hit first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b, int ended = -1, bool among_local = false);
+    Hit first_entry_arc(const CPiece& on, double s0, double s1, int exclude);
+    // Whether local_ holds every piece whose box comes within kNearMargin of any point `within`
+    // (m) of `at`.
+    bool local_near(Vec2 at, double within) const;
     bool try_release_corner(Vec2 goal);
     void collect_contacts(Vec2 goal);
     void refine_on_curves(Vec2 goal);
@@ -178,6 +183,11 @@ private:
     Vec2 last_finger_{0.0};         // m, the finger at the last tick
     Vec2 last_finger_motion_{0.0};  // m, how the finger moved in the last tick
     Vec2 last_motion_{0.0};         // m, how the proxy moved in the last tick
+    // The pieces whose boxes overlapped local_box_ (the last full scan's motion box, grown), in
+    // order: questions about points well inside it need ask only these (walk, handed_over).
+    std::vector<int> local_;
+    Aabb local_box_;
+    bool local_valid_ = false;
 };
 
 }  // namespace contactlab
