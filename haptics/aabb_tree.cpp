@@ -111,29 +111,37 @@ Aabb arc_bounds(Vec2 c, double r, double start, double width) {
     return b;
 }
 
+Aabb AabbTree::offset_box(const Node& n, double r, double side) const {
+    if (!has_offsets_) return n.box.grown(r);
+    // q + r n = (q + rho n) + (r - rho) n, and q - r n = (q - rho n) - (r - rho) n: the node's
+    // offset box at rho, moved by d n for every n of its cone.
+    const Aabb& at_rho = side > 0.0 ? n.offset.outer : n.offset.inner;
+    const double d = side > 0.0 ? r - rho_ : rho_ - r;  // m
+    if (d == 0.0) return at_rho;
+    Aabb sweep;  // the box of d n over the cone
+    if (n.normals.width < kPi) {
+        sweep.grow(d * n.cone_from);
+        sweep.grow(d * n.cone_to);
+        if (n.cone_axes & 1u) sweep.grow(Vec2{d, 0.0});
+        if (n.cone_axes & 2u) sweep.grow(Vec2{0.0, d});
+        if (n.cone_axes & 4u) sweep.grow(Vec2{-d, 0.0});
+        if (n.cone_axes & 8u) sweep.grow(Vec2{0.0, -d});
+    } else {
+        sweep = Aabb{Vec2(-std::abs(d)), Vec2(std::abs(d))};
+    }
+    return Aabb{at_rho.lo + sweep.lo, at_rho.hi + sweep.hi};
+}
+
+double AabbTree::pad_lower_bound(const Node& n, Vec2 p, double r, bool inner, const Vec2* ends, int end_count) const {
+    double lower = offset_box(n, r, 1.0).distance_to(p);
+    if (inner) lower = std::min(lower, offset_box(n, r, -1.0).distance_to(p));
+    for (int k = 0; k < end_count; ++k) lower = std::min(lower, n.box.distance_to(ends[k]));
+    return lower;
+}
+
 bool AabbTree::offset_may_reach(const Node& n, Vec2 p, double r, double reach, double side) const {
     if (n.box.distance_to(p) > r + reach) return false;
-    if (has_offsets_) {
-        // q + r n = (q + rho n) + (r - rho) n, and q - r n = (q - rho n) - (r - rho) n: the node's
-        // offset box at rho, moved by d n for every n of its cone.
-        Aabb moved = side > 0.0 ? n.offset.outer : n.offset.inner;
-        const double d = side > 0.0 ? r - rho_ : rho_ - r;  // m
-        if (d != 0.0) {
-            Aabb sweep;  // the box of d n over the cone
-            if (n.normals.width < kPi) {
-                sweep.grow(d * n.cone_from);
-                sweep.grow(d * n.cone_to);
-                if (n.cone_axes & 1u) sweep.grow(Vec2{d, 0.0});
-                if (n.cone_axes & 2u) sweep.grow(Vec2{0.0, d});
-                if (n.cone_axes & 4u) sweep.grow(Vec2{-d, 0.0});
-                if (n.cone_axes & 8u) sweep.grow(Vec2{0.0, -d});
-            } else {
-                sweep = Aabb{Vec2(-std::abs(d)), Vec2(std::abs(d))};
-            }
-            moved = Aabb{moved.lo + sweep.lo, moved.hi + sweep.hi};
-        }
-        if (moved.distance_to(p) > reach) return false;
-    }
+    if (has_offsets_ && offset_box(n, r, side).distance_to(p) > reach) return false;
     if (n.normals.width < kPi) {
         // q + r n within reach of p  <=>  q within reach of p - r n: the node's box must come
         // within reach of the arc of points p - r n, n in the cone (p + r n for side -1). The

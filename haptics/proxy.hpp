@@ -135,6 +135,10 @@ private:
     // Whether local_ holds every piece whose box comes within kNearMargin of any point `within`
     // (m) of `at`.
     bool local_near(Vec2 at, double within) const;
+    // Calls visit(i) in order for every piece whose box is not far(box), skipping whole runs and
+    // groups whose boxes are; stops when visit returns true.
+    template <typename Far, typename Visit>
+    void for_pieces(Far&& far, Visit&& visit) const;
     bool try_release_corner(Vec2 goal);
     void collect_contacts(Vec2 goal);
     void refine_on_curves(Vec2 goal);
@@ -159,12 +163,14 @@ private:
     bool pad_frame_valid_ = false;
     std::vector<Aabb> piece_boxes_;  // each piece's box grown by kBoxSlack: cheap rejection per walk step
     std::vector<Aabb> group_boxes_;  // the box of each run of kPieceGroup consecutive piece_boxes_
+    std::vector<Aabb> run_boxes_;    // ... and of each run of kPieceRun
     // What build_pieces last built (pieces_ and piece_boxes_): for segments built_ids_ (sorted)
     // at built_phi_, segment built_ids_[j]'s pieces at [built_first_[j], built_first_[j + 1]).
     // built_valid_ is false once pieces_ holds anything else. next_*: the double buffer.
     std::vector<int> built_ids_, built_first_, next_first_;
     std::vector<CPiece> next_pieces_;
     std::vector<CPiece> nearest_pieces_;  // anticipate: the nearest segment's pieces
+    CPiece anticipated_piece_;            // anticipate: the nearest piece
     // An empty build keeps the last one here (cache_aside_), still described by built_*.
     std::vector<CPiece> aside_pieces_;
     std::vector<Aabb> aside_boxes_;
