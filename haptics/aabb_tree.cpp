@@ -140,8 +140,10 @@ double AabbTree::pad_lower_bound(const Node& n, Vec2 p, double r, bool inner, co
 }
 
 bool AabbTree::offset_may_reach(const Node& n, Vec2 p, double r, double reach, double side) const {
-    if (n.box.distance_to(p) > r + reach) return false;
-    if (has_offsets_ && offset_box(n, r, side).distance_to(p) > reach) return false;
+    // (Squared distances: no square root per node.)
+    const double reach2 = reach * reach;  // m^2
+    if (n.box.distance_squared_to(p) > (r + reach) * (r + reach)) return false;
+    if (has_offsets_ && offset_box(n, r, side).distance_squared_to(p) > reach2) return false;
     if (n.normals.width < kPi) {
         // q + r n within reach of p  <=>  q within reach of p - r n: the node's box must come
         // within reach of the arc of points p - r n, n in the cone (p + r n for side -1). The
@@ -154,7 +156,7 @@ bool AabbTree::offset_may_reach(const Node& n, Vec2 p, double r, double reach, d
         if (n.cone_axes & 2u) arc.grow(p + Vec2{0.0, s});
         if (n.cone_axes & 4u) arc.grow(p - Vec2{s, 0.0});
         if (n.cone_axes & 8u) arc.grow(p - Vec2{0.0, s});
-        return arc.gap_to(n.box) <= reach;
+        return arc.gap_squared_to(n.box) <= reach2;
     }
     // Every q within r - reach of p: |q + r n - p| >= r - |q - p| > reach.
     return !(n.box.max_distance_to(p) < r - reach);
@@ -166,7 +168,7 @@ void AabbTree::query_pad_reach(Vec2 p, double r, double reach, bool inner, const
         [&](const Node& n) {
             if (offset_may_reach(n, p, r, reach, 1.0) || (inner && offset_may_reach(n, p, r, reach, -1.0))) return true;
             for (int k = 0; k < end_count; ++k)
-                if (n.box.distance_to(ends[k]) <= end_reach) return true;
+                if (n.box.distance_squared_to(ends[k]) <= end_reach * end_reach) return true;
             return false;
         },
         out);

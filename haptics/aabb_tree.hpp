@@ -7,6 +7,7 @@
 
 #include "haptics/vec2.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -29,10 +30,19 @@ struct Aabb {
         const Vec2 d = glm::max(glm::max(lo - p, p - hi), Vec2(0.0));
         return glm::length(d);
     }
+    // Its square (m^2): comparisons without a square root.
+    double distance_squared_to(Vec2 p) const {
+        const Vec2 d = glm::max(glm::max(lo - p, p - hi), Vec2(0.0));
+        return glm::dot(d, d);
+    }
     // Distance (m) from p to the box's farthest point.
     double max_distance_to(Vec2 p) const { return glm::length(glm::max(glm::abs(p - lo), glm::abs(hi - p))); }
     // Distance (m) between the two boxes; 0 when they overlap.
-    double gap_to(const Aabb& b) const { return glm::length(glm::max(glm::max(lo - b.hi, b.lo - hi), Vec2(0.0))); }
+    double gap_to(const Aabb& b) const { return std::sqrt(gap_squared_to(b)); }
+    double gap_squared_to(const Aabb& b) const {
+        const Vec2 d = glm::max(glm::max(lo - b.hi, b.lo - hi), Vec2(0.0));
+        return glm::dot(d, d);
+    }
     bool contains(Vec2 p) const { return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y; }
     // The box grown by `by` (m) on every side.
     Aabb grown(double by) const { return {lo - Vec2(by), hi + Vec2(by)}; }

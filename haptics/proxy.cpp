@@ -11,6 +11,8 @@
 
 #include <algorithm>
 #include <limits>
+#include <new>
+#include <type_traits>
 #include <cmath>
 
 namespace contactlab {
@@ -66,6 +68,10 @@ constexpr int kPieceGroup = 8;
 // ... and before that by the box of each run of this many (kPieceGroup groups): at 20 cm/s over
 // 100,000 segments on 0.4 m a tick holds ~350 pieces and a scan tested ~45 group boxes.
 constexpr int kPieceRun = 64;
+// Scenes of at most this many segments gather all of them every tick: the tree walk cost more
+// than the few extra pieces, and the same set each tick keeps last tick's pieces (build_pieces).
+// A tenth of a 10-segment scene's tick.
+constexpr int kSmallScene = kProxySmallScene;
 // Boxes used to reject pieces far from a walk step are grown by this much (m), well beyond every
 // tolerance the entry tests accept (kOnTolerance along a piece, t_slack along the motion).
 constexpr double kBoxSlack = 1e-8;
@@ -219,7 +225,9 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
     // over instead of the hundreds within a millimetre of the finger (issue 18).
     // The summed force law looks for every surface the finger has entered (apply_force_law),
     // anywhere within reach: it keeps the full gather.
-    const bool local_allowed = def_.use_index && def_.law.contacts != ContactForce::sum;
+    // (A small scene gathers everything anyway: nothing to gain, a second walk to lose.)
+    const bool local_allowed = def_.use_index && def_.law.contacts != ContactForce::sum &&
+                               static_cast<int>(env_->segments.size()) > kSmallScene;
     const WarmDisc warm = local_allowed ? warm_start_disc(finger, max_push) : WarmDisc{start, reach};
     if (warm.radius < reach) {
         gather_near(warm.center, phi_, phi, warm.radius);
@@ -240,7 +248,9 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
     // carry ~1e-13 m of error; kOnTolerance is 1e-9 m, a force of 1e-6 N at 1000 N/m).
     if (glm::length(proxy_ - finger) <= kOnTolerance) proxy_ = finger;
 
-    out_ = ProxyOutput{};
+    // Afresh, in place: a temporary and its copy were a twentieth of a small scene's tick.
+    static_assert(std::is_trivially_destructible_v<ProxyOutput>);
+    ::new (&out_) ProxyOutput;
     work_.segments = static_cast<int>(segment_ids_.size());
     work_.pieces = static_cast<int>(pieces_.size());
     out_.work = work_;
@@ -304,14 +314,18 @@ void Proxy::move_proxy(Vec2 finger, double phi, double turn, double max_push, Ve
         work_.rotation_steps = 0;
         build_pieces(phi);
     }
-    // Group and run boxes of the final pieces only: the walk is the one user.
-    group_boxes_.clear();
-    run_boxes_.clear();
-    for (std::size_t i = 0; i < pieces_.size(); ++i) {
-        if (i % kPieceGroup == 0) group_boxes_.emplace_back();
-        if (i % kPieceRun == 0) run_boxes_.emplace_back();
-        group_boxes_.back().grow(piece_boxes_[i]);
-        run_boxes_.back().grow(piece_boxes_[i]);
+    // Group and run boxes of the final pieces only: the walk is the one user. A finger resting
+    // or sliding slowly on a small scene keeps last tick's pieces, and their boxes.
+    if (pieces_changed_) {
+        pieces_changed_ = false;
+        group_boxes_.clear();
+        run_boxes_.clear();
+        for (std::size_t i = 0; i < pieces_.size(); ++i) {
+            if (i % kPieceGroup == 0) group_boxes_.emplace_back();
+            if (i % kPieceRun == 0) run_boxes_.emplace_back();
+            group_boxes_.back().grow(piece_boxes_[i]);
+            run_boxes_.back().grow(piece_boxes_[i]);
+        }
     }
     proxy_ = walk(proxy_, finger);
 }
@@ -342,7 +356,7 @@ void Proxy::gather_within_reach(Vec2 finger, double phi, double reach) {
 
 void Proxy::gather_near(Vec2 finger, double phi_from, double phi_to, double reach) {
     segment_ids_.clear();
-    if (!def_.use_index) {
+    if (!def_.use_index || static_cast<int>(env_->segments.size()) <= kSmallScene) {
         for (int i = 0; i < static_cast<int>(env_->segments.size()); ++i) segment_ids_.push_back(i);
         return;
     }
@@ -397,6 +411,7 @@ void Proxy::build_pieces(double phi) {
     local_valid_ = false;
     const PadFrame& pad = pad_frame(phi);
     if (segment_ids_.empty()) {
+        pieces_changed_ = true;
         // Nothing near (a free finger's motion): keep the last build aside for the next one to
         // copy from (anticipation's, a tick later) instead of forgetting it.
         if (!cache_aside_) {
@@ -409,6 +424,8 @@ void Proxy::build_pieces(double phi) {
         return;
     }
     const bool reuse = built_valid_ && phi == built_phi_;
+    if (reuse && !cache_aside_ && segment_ids_ == built_ids_) return;  // the same pieces: keep them
+    pieces_changed_ = true;
     const std::vector<CPiece>& old_pieces = cache_aside_ ? aside_pieces_ : pieces_;
     const std::vector<Aabb>& old_boxes = cache_aside_ ? aside_boxes_ : piece_boxes_;
     next_pieces_.clear();
@@ -447,6 +464,7 @@ void Proxy::build_pieces(double phi) {
 // takes hundreds of sub-steps.
 void Proxy::build_substep_pieces(double phi) {
     active_count_ = 0;
+    pieces_changed_ = true;
     local_valid_ = false;
     const PadFrame& pad = pad_frame(phi);
     pieces_.clear();

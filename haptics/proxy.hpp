@@ -50,6 +50,9 @@ struct ProxyContact {
 // checks these; `contactlab bench` measures the time they take).
 inline constexpr int kProxyMaxWalkSteps = 256;       // constrained-motion iterations per tick
 inline constexpr int kProxyMaxRotationSteps = 1024;  // finger-angle re-projection sub-steps per tick
+// Scenes of at most this many environment segments skip the index: every tick gathers all of them
+// (no warm start), which costs less than walking the tree and keeps last tick's pieces.
+inline constexpr int kProxySmallScene = 16;
 struct ProxyWork {
     int walk_steps = 0;      // iterations of the constrained motion (<= kProxyMaxWalkSteps)
     int rotation_steps = 0;  // re-projection sub-steps for a change of phi (<= kProxyMaxRotationSteps)
@@ -178,6 +181,7 @@ private:
     std::vector<Aabb> next_boxes_;
     double built_phi_ = 0.0;
     bool built_valid_ = false;
+    bool pieces_changed_ = true;  // pieces_ changed since group_boxes_ and run_boxes_ were made
     int contact_pieces_[4] = {-1, -1, -1, -1};  // the piece behind each reported contact
     bool has_stiction_ = false;   // friction: a stiction point is held
     Vec2 stiction_{0.0};          // m

@@ -23,6 +23,7 @@ inline Vec2 unit_at(double theta) { return {std::cos(theta), std::sin(theta)}; }
 inline double angle_of(Vec2 a) { return std::atan2(a.y, a.x); }
 // Wraps an angle into (-pi, pi].
 inline double wrap_pi(double a) {
+    if (a > -kPi && a < kPi) return a;  // remainder returns these unchanged: skip it (same bits)
     a = std::remainder(a, kTwoPi);
     return a <= -kPi ? a + kTwoPi : a;
 }

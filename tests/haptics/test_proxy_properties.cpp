@@ -296,10 +296,15 @@ TEST_CASE("in contact the index gathers every piece that matters: the same proxy
             CHECK(a.l_d == b.l_d);
         }
         CAPTURE(scene_index++);
+        CAPTURE(pair.env.segments.size());
         CHECK(contacts > 1000);
-        // Both paths are exercised: most ticks in contact keep to the warm start, the jumps miss it.
-        CHECK(warm > contacts / 2);
-        CHECK(cold > 20);
+        if (static_cast<int>(pair.env.segments.size()) > kProxySmallScene) {
+            // Both paths are exercised: most ticks in contact keep to the warm start, the jumps miss it.
+            CHECK(warm > contacts / 2);
+            CHECK(cold > 20);
+        } else {
+            CHECK(warm == 0);  // a small scene gathers every segment every tick
+        }
     }
 }
 
