@@ -19,6 +19,12 @@ NormalCone merge_cones(const NormalCone& a, const NormalCone& b) {
     return c;
 }
 
+bool cones_meet(const NormalCone& a, const NormalCone& b) {
+    if (a.width < 0.0 || b.width < 0.0) return false;
+    if (a.width >= kTwoPi || b.width >= kTwoPi) return true;
+    return wrap_2pi(b.start - a.start) <= a.width || wrap_2pi(a.start - b.start) <= b.width;
+}
+
 AabbTree::AabbTree(const std::vector<Aabb>& item_boxes) {
     items_.resize(item_boxes.size());
     std::iota(items_.begin(), items_.end(), 0);
@@ -45,6 +51,15 @@ AabbTree::AabbTree(const std::vector<Aabb>& item_boxes, const std::vector<Normal
     if (!items_.empty()) {
         nodes_.reserve(2 * items_.size() / kLeafSize + 2);
         build(item_boxes, &item_normals, &item_offsets, 0, static_cast<int>(items_.size()));
+    }
+    // In leaf order, beside items_: a leaf's items are read together.
+    item_boxes_.reserve(items_.size());
+    item_offsets_.reserve(items_.size());
+    item_normals_.reserve(items_.size());
+    for (const int i : items_) {
+        item_boxes_.push_back(item_boxes[static_cast<std::size_t>(i)]);
+        item_offsets_.push_back(item_offsets[static_cast<std::size_t>(i)]);
+        item_normals_.push_back(item_normals[static_cast<std::size_t>(i)]);
     }
 }
 
@@ -111,13 +126,7 @@ Aabb arc_bounds(Vec2 c, double r, double start, double width) {
     return b;
 }
 
-Aabb AabbTree::offset_box(const Node& n, double r, double side) const {
-    if (!has_offsets_) return n.box.grown(r);
-    // q + r n = (q + rho n) + (r - rho) n, and q - r n = (q - rho n) - (r - rho) n: the node's
-    // offset box at rho, moved by d n for every n of its cone.
-    const Aabb& at_rho = side > 0.0 ? n.offset.outer : n.offset.inner;
-    const double d = side > 0.0 ? r - rho_ : rho_ - r;  // m
-    if (d == 0.0) return at_rho;
+Aabb AabbTree::cone_sweep(const Node& n, double d) {
     Aabb sweep;  // the box of d n over the cone
     if (n.normals.width < kPi) {
         sweep.grow(d * n.cone_from);
@@ -129,13 +138,43 @@ Aabb AabbTree::offset_box(const Node& n, double r, double side) const {
     } else {
         sweep = Aabb{Vec2(-std::abs(d)), Vec2(std::abs(d))};
     }
-    return Aabb{at_rho.lo + sweep.lo, at_rho.hi + sweep.hi};
+    return sweep;
 }
 
-double AabbTree::pad_lower_bound(const Node& n, Vec2 p, double r, bool inner, const Vec2* ends, int end_count) const {
-    double lower = offset_box(n, r, 1.0).distance_to(p);
-    if (inner) lower = std::min(lower, offset_box(n, r, -1.0).distance_to(p));
+Aabb AabbTree::moved_offset(const Node& n, const OffsetBoxes& at_rho, double r, double side) const {
+    // q + r n = (q + rho n) + (r - rho) n, and q - r n = (q - rho n) - (r - rho) n: the offset box
+    // at rho, moved by d n for every n of the node's cone (which holds its items' cones).
+    const Aabb& box = side > 0.0 ? at_rho.outer : at_rho.inner;
+    const double d = side > 0.0 ? r - rho_ : rho_ - r;  // m
+    if (d == 0.0) return box;
+    const Aabb sweep = cone_sweep(n, d);
+    return Aabb{box.lo + sweep.lo, box.hi + sweep.hi};
+}
+
+Aabb AabbTree::offset_box(const Node& n, double r, double side) const {
+    if (!has_offsets_) return n.box.grown(r);
+    return moved_offset(n, n.offset, r, side);
+}
+
+double AabbTree::pad_lower_bound(const Node& n, Vec2 p, double r, bool inner, const Vec2* ends, int end_count,
+                                 const PadNormals& normals) const {
+    double lower = std::numeric_limits<double>::infinity();
+    if (cones_meet(n.normals, normals.outer)) lower = offset_box(n, r, 1.0).distance_to(p);
+    if (inner && cones_meet(n.normals, normals.inner)) lower = std::min(lower, offset_box(n, r, -1.0).distance_to(p));
     for (int k = 0; k < end_count; ++k) lower = std::min(lower, n.box.distance_to(ends[k]));
+    return lower;
+}
+
+double AabbTree::item_lower_bound(const Node& leaf, int position, Vec2 p, double r, bool inner, const Vec2* ends,
+                                  int end_count, const PadNormals& normals) const {
+    if (!has_offsets_) return 0.0;
+    const auto pos = static_cast<std::size_t>(position);
+    double lower = std::numeric_limits<double>::infinity();
+    if (cones_meet(item_normals_[pos], normals.outer))
+        lower = moved_offset(leaf, item_offsets_[pos], r, 1.0).distance_to(p);
+    if (inner && cones_meet(item_normals_[pos], normals.inner))
+        lower = std::min(lower, moved_offset(leaf, item_offsets_[pos], r, -1.0).distance_to(p));
+    for (int k = 0; k < end_count; ++k) lower = std::min(lower, item_boxes_[pos].distance_to(ends[k]));
     return lower;
 }
 

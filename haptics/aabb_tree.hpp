@@ -60,6 +60,8 @@ struct NormalCone {
 };
 // The smallest cone holding both.
 NormalCone merge_cones(const NormalCone& a, const NormalCone& b);
+// Whether the two cones share a direction.
+bool cones_meet(const NormalCone& a, const NormalCone& b);
 
 // An item's offset at a reference pad radius rho (m): `outer` bounds every point q + rho n and
 // `inner` every q - rho n, over the item's points q and the free-side normals n its c-space
@@ -114,12 +116,16 @@ public:
     // A node's lower bound is the least of the distance to its offset boxes (moved to radius r,
     // as query_pad_reach), with `inner` to its inner ones, and from each of the `end_count`
     // points `ends` (the pad's ends: an end piece is its segment moved by minus the end's offset)
-    // to its box. Items at the same distance as the best so far are still visited (ties: the
-    // caller picks). Why: 1 cm above a densely sampled contour the pieces within the nearest
-    // one's reach were thousands (a quarter of a millisecond a tick); this visits a few.
+    // to its box; a leaf's items are bounded alike by their own boxes. Items at the same
+    // distance as the best so far are still visited (ties: the caller picks). `outer_normals`:
+    // the free-side normals the pad can press along (its span turned by pi; inner pieces the
+    // opposite ones): offsets along other normals make no piece, so they bound nothing. Why:
+    // 1 cm above a densely sampled contour the pieces within the nearest one's reach were
+    // thousands (a quarter of a millisecond a tick), and over a slope steeper than the pad's
+    // half-angle most offsets are of normals the pad cannot press along.
     template <typename ItemDistance>
     double nearest_pad_item(Vec2 p, double r, bool inner, const Vec2* ends, int end_count,
-                            ItemDistance&& item_distance) const;
+                            const NormalCone& outer_normals, ItemDistance&& item_distance) const;
 
     int size() const { return static_cast<int>(items_.size()); }
 
@@ -143,11 +149,23 @@ private:
     // Whether items below node n may have an offset point q + r n (side +1) or q - r n (side -1)
     // within reach of p: query_pad_reach's test.
     bool offset_may_reach(const Node& n, Vec2 p, double r, double reach, double side) const;
+    // nearest_pad_item's normals: those each side's pieces may have.
+    struct PadNormals {
+        NormalCone outer, inner;
+    };
     // The node's offset box on `side` at radius r: its box at rho_ moved by +-(r - rho_) n over its
     // cone. Without offset boxes, the node's box grown by r.
     Aabb offset_box(const Node& n, double r, double side) const;
+    // The box of d n (m) over the node's cone.
+    static Aabb cone_sweep(const Node& n, double d);
+    // Offset boxes at rho_ (the node's, or one of its items') moved to radius r over n's cone.
+    Aabb moved_offset(const Node& n, const OffsetBoxes& at_rho, double r, double side) const;
+    // pad_lower_bound for the item at `position` in items_, under `leaf`: its own boxes.
+    double item_lower_bound(const Node& leaf, int position, Vec2 p, double r, bool inner, const Vec2* ends,
+                            int end_count, const PadNormals& normals) const;
     // nearest_pad_item's lower bound (m) on the distance from p to any piece of the node's items.
-    double pad_lower_bound(const Node& n, Vec2 p, double r, bool inner, const Vec2* ends, int end_count) const;
+    double pad_lower_bound(const Node& n, Vec2 p, double r, bool inner, const Vec2* ends, int end_count,
+                           const PadNormals& normals) const;
     // Appends the items of every leaf reached through nodes for which may_hold(node) is true,
     // left child first.
     template <typename MayHold>
@@ -156,6 +174,12 @@ private:
     std::vector<Node> nodes_;
     std::vector<int> items_;
     bool has_offsets_ = false;
+    // With offsets: each item's box and offset boxes, in items_ order (nearest_pad_item's bound
+    // per item: over a dense contour a leaf's bound is loose by its own size, and building a
+    // segment's pieces costs ten box tests).
+    std::vector<Aabb> item_boxes_;
+    std::vector<OffsetBoxes> item_offsets_;
+    std::vector<NormalCone> item_normals_;
     double rho_ = 0.0;  // m, the radius of the nodes' offset boxes
     static constexpr int kLeafSize = 4;
     static constexpr int kMaxDepth = 64;
@@ -213,25 +237,37 @@ double AabbTree::nearest_distance(Vec2 p, ItemDistance&& item_distance) const {
 
 template <typename ItemDistance>
 double AabbTree::nearest_pad_item(Vec2 p, double r, bool inner, const Vec2* ends, int end_count,
-                                  ItemDistance&& item_distance) const {
+                                  const NormalCone& outer_normals, ItemDistance&& item_distance) const {
+    // A hair wider than the pad: its tests accept a little past the threshold (cspace.cpp).
+    constexpr double kMargin = 1e-6;  // rad
+    PadNormals normals;
+    normals.outer = {wrap_2pi(outer_normals.start - kMargin), outer_normals.width + 2.0 * kMargin};
+    normals.inner = {wrap_2pi(normals.outer.start + kPi), normals.outer.width};
     double best = std::numeric_limits<double>::infinity();
     if (nodes_.empty()) return best;
+    // Bounds and exact distances are computed differently, so a bound may exceed an exact
+    // distance it equals by a rounding: only a bound this much (m) beyond the best prunes, and
+    // ties stay the caller's to break.
+    constexpr double kRounding = 1e-12;
     int stack[kMaxDepth * 2];
     double bound[kMaxDepth * 2];  // each stacked node's lower bound (m)
     int top = 0;
     stack[top] = 0;
-    bound[top++] = pad_lower_bound(nodes_[0], p, r, inner, ends, end_count);
+    bound[top++] = pad_lower_bound(nodes_[0], p, r, inner, ends, end_count, normals);
     while (top > 0) {
         --top;
-        if (bound[top] > best) continue;
+        if (bound[top] > best + kRounding) continue;
         const Node& n = nodes_[stack[top]];
         if (n.left < 0) {
-            for (int i = n.first; i < n.first + n.count; ++i) best = std::min(best, item_distance(items_[i]));
+            for (int i = n.first; i < n.first + n.count; ++i) {
+                if (item_lower_bound(n, i, p, r, inner, ends, end_count, normals) > best + kRounding) continue;
+                best = std::min(best, item_distance(items_[i]));
+            }
             continue;
         }
         // The nearer child is pushed last, so visited first: `best` shrinks early.
-        const double bl = pad_lower_bound(nodes_[n.left], p, r, inner, ends, end_count);
-        const double br = pad_lower_bound(nodes_[n.right], p, r, inner, ends, end_count);
+        const double bl = pad_lower_bound(nodes_[n.left], p, r, inner, ends, end_count, normals);
+        const double br = pad_lower_bound(nodes_[n.right], p, r, inner, ends, end_count, normals);
         const bool left_first = bl <= br;
         stack[top] = left_first ? n.right : n.left;
         bound[top++] = left_first ? br : bl;

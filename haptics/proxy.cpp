@@ -1281,7 +1281,9 @@ void Proxy::anticipate(Vec2 finger, double phi) {
         double best = std::numeric_limits<double>::infinity();  // m
         int best_segment = -1;
         Vec2 best_foot{0.0};
-        env_->tree.nearest_pad_item(finger, R, ends, end_points, ends ? 2 : 0, [&](int id) {
+        // Outer pieces press along normals opposite the pad's span (cspace.cpp).
+        const NormalCone outer_normals{wrap_2pi(pad.span.start + kPi), pad.span.width};
+        env_->tree.nearest_pad_item(finger, R, ends, end_points, ends ? 2 : 0, outer_normals, [&](int id) {
             nearest_pieces_.clear();
             append_cspace_pieces(*env_, id, pad, nearest_pieces_);
             double least = std::numeric_limits<double>::infinity();
