@@ -112,7 +112,7 @@ int AabbTree::build(const std::vector<Aabb>& boxes, const std::vector<NormalCone
 }
 
 void AabbTree::query(const Aabb& box, std::vector<int>& out) const {
-    collect([&](const Node& n) { return n.box.overlaps(box); }, out);
+    collect([&](const Node& n) { return n.box.overlaps(box); }, [](const Node&, int) { return true; }, out);
 }
 
 Aabb arc_bounds(Vec2 c, double r, double start, double width) {
@@ -201,13 +201,41 @@ bool AabbTree::offset_may_reach(const Node& n, Vec2 p, double r, double reach, d
     return !(n.box.max_distance_to(p) < r - reach);
 }
 
+AabbTree::PadNormals AabbTree::pad_normals(const NormalCone& outer_normals) {
+    // A hair wider than the pad: its tests accept a little past the threshold (cspace.cpp).
+    constexpr double kMargin = 1e-6;  // rad
+    if (outer_normals.width + 2.0 * kMargin >= kTwoPi) return {{0.0, kTwoPi}, {0.0, kTwoPi}};
+    PadNormals normals;
+    normals.outer = {wrap_2pi(outer_normals.start - kMargin), outer_normals.width + 2.0 * kMargin};
+    normals.inner = {wrap_2pi(normals.outer.start + kPi), normals.outer.width};
+    return normals;
+}
+
 void AabbTree::query_pad_reach(Vec2 p, double r, double reach, bool inner, const Vec2* ends, int end_count,
-                               double end_reach, std::vector<int>& out) const {
+                               double end_reach, const NormalCone& outer_normals, std::vector<int>& out) const {
+    const PadNormals normals = pad_normals(outer_normals);
+    const double end_reach2 = end_reach * end_reach;  // m^2
+    const double reach2 = reach * reach;              // m^2
     collect(
         [&](const Node& n) {
-            if (offset_may_reach(n, p, r, reach, 1.0) || (inner && offset_may_reach(n, p, r, reach, -1.0))) return true;
+            if (cones_meet(n.normals, normals.outer) && offset_may_reach(n, p, r, reach, 1.0)) return true;
+            if (inner && cones_meet(n.normals, normals.inner) && offset_may_reach(n, p, r, reach, -1.0)) return true;
             for (int k = 0; k < end_count; ++k)
-                if (n.box.distance_squared_to(ends[k]) <= end_reach * end_reach) return true;
+                if (n.box.distance_squared_to(ends[k]) <= end_reach2) return true;
+            return false;
+        },
+        [&](const Node& leaf, int position) {
+            // The leaf's test with each item's own boxes and cone (a leaf spans several items).
+            if (!has_offsets_) return true;
+            const auto pos = static_cast<std::size_t>(position);
+            if (cones_meet(item_normals_[pos], normals.outer) &&
+                moved_offset(leaf, item_offsets_[pos], r, 1.0).distance_squared_to(p) <= reach2)
+                return true;
+            if (inner && cones_meet(item_normals_[pos], normals.inner) &&
+                moved_offset(leaf, item_offsets_[pos], r, -1.0).distance_squared_to(p) <= reach2)
+                return true;
+            for (int k = 0; k < end_count; ++k)
+                if (item_boxes_[pos].distance_squared_to(ends[k]) <= end_reach2) return true;
             return false;
         },
         out);

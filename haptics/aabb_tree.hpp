@@ -102,8 +102,10 @@ public:
     // contour, the box around the pad holds thousands of tiny segments of which only those near
     // the contact can matter; and one walk of the tree for all of it (four walks were a fifth of a
     // small scene's tick).
+    // `outer_normals`: as nearest_pad_item's (offsets along normals the pad cannot press along
+    // make no piece); {0, 2 pi} for every normal.
     void query_pad_reach(Vec2 p, double r, double reach, bool inner, const Vec2* ends, int end_count,
-                         double end_reach, std::vector<int>& out) const;
+                         double end_reach, const NormalCone& outer_normals, std::vector<int>& out) const;
 
     // Smallest exact distance (m) from p to any item, where `item_distance(i)` is the exact distance
     // to item i. Nodes farther than the best distance so far are skipped.
@@ -153,6 +155,8 @@ private:
     struct PadNormals {
         NormalCone outer, inner;
     };
+    // The outer normals a microradian wider, and the inner ones opposite.
+    static PadNormals pad_normals(const NormalCone& outer_normals);
     // The node's offset box on `side` at radius r: its box at rho_ moved by +-(r - rho_) n over its
     // cone. Without offset boxes, the node's box grown by r.
     Aabb offset_box(const Node& n, double r, double side) const;
@@ -166,10 +170,10 @@ private:
     // nearest_pad_item's lower bound (m) on the distance from p to any piece of the node's items.
     double pad_lower_bound(const Node& n, Vec2 p, double r, bool inner, const Vec2* ends, int end_count,
                            const PadNormals& normals) const;
-    // Appends the items of every leaf reached through nodes for which may_hold(node) is true,
-    // left child first.
-    template <typename MayHold>
-    void collect(MayHold&& may_hold, std::vector<int>& out) const;
+    // Appends the items of every leaf reached through nodes for which may_hold(node) is true, and
+    // for which item_may_hold(leaf, position in items_) is, left child first.
+    template <typename MayHold, typename ItemMayHold>
+    void collect(MayHold&& may_hold, ItemMayHold&& item_may_hold, std::vector<int>& out) const;
 
     std::vector<Node> nodes_;
     std::vector<int> items_;
@@ -185,8 +189,8 @@ private:
     static constexpr int kMaxDepth = 64;
 };
 
-template <typename MayHold>
-void AabbTree::collect(MayHold&& may_hold, std::vector<int>& out) const {
+template <typename MayHold, typename ItemMayHold>
+void AabbTree::collect(MayHold&& may_hold, ItemMayHold&& item_may_hold, std::vector<int>& out) const {
     if (nodes_.empty()) return;
     int stack[kMaxDepth * 2];
     int top = 0;
@@ -195,7 +199,8 @@ void AabbTree::collect(MayHold&& may_hold, std::vector<int>& out) const {
         const Node& n = nodes_[stack[--top]];
         if (!may_hold(n)) continue;
         if (n.left < 0) {
-            for (int i = n.first; i < n.first + n.count; ++i) out.push_back(items_[i]);
+            for (int i = n.first; i < n.first + n.count; ++i)
+                if (item_may_hold(n, i)) out.push_back(items_[i]);
             continue;
         }
         // The left child first (pushed last): along a contour drawn left to right its items come
@@ -238,11 +243,7 @@ double AabbTree::nearest_distance(Vec2 p, ItemDistance&& item_distance) const {
 template <typename ItemDistance>
 double AabbTree::nearest_pad_item(Vec2 p, double r, bool inner, const Vec2* ends, int end_count,
                                   const NormalCone& outer_normals, ItemDistance&& item_distance) const {
-    // A hair wider than the pad: its tests accept a little past the threshold (cspace.cpp).
-    constexpr double kMargin = 1e-6;  // rad
-    PadNormals normals;
-    normals.outer = {wrap_2pi(outer_normals.start - kMargin), outer_normals.width + 2.0 * kMargin};
-    normals.inner = {wrap_2pi(normals.outer.start + kPi), normals.outer.width};
+    const PadNormals normals = pad_normals(outer_normals);
     double best = std::numeric_limits<double>::infinity();
     if (nodes_.empty()) return best;
     // Bounds and exact distances are computed differently, so a bound may exceed an exact

@@ -368,13 +368,13 @@ void Proxy::gather_near(Vec2 finger, double phi_from, double phi_to, double reac
     // dense slope when hovering 1 cm above it.)
     const FingerShape& shape = def_.finger;
     const bool ends = pad_has_endpoints(shape);
+    const double h = pad_half_angle(shape);  // rad
     Vec2 end_centres[2];
     double half_chord = 0.0;  // m
     if (phi_from == phi_to) {
         const PadFrame& pad = pad_frame(phi_to);  // the ends' directions, computed once per angle
         for (int k = 0; k < 2; ++k) end_centres[k] = finger + shape.radius * pad.end_dir[k];
     } else {
-        const double h = pad_half_angle(shape);
         for (int k = 0; k < 2; ++k) {
             const double side = k == 0 ? -1.0 : 1.0;
             const Vec2 e0 = finger + shape.radius * unit_at(pad_mid_angle(phi_from) + side * h);
@@ -383,8 +383,14 @@ void Proxy::gather_near(Vec2 finger, double phi_from, double phi_to, double reac
             half_chord = 0.5 * glm::length(e1 - e0);
         }
     }
+    // Offset and inner pieces press along normals opposite the pad's span (turned by pi); while
+    // the pad turns, those of every angle between (the span swept by the shortest turn).
+    const double turn = wrap_pi(phi_to - phi_from);  // rad
+    const NormalCone outer_normals = h >= kPi ? NormalCone{0.0, kTwoPi}
+                                              : NormalCone{wrap_2pi(pad_mid_angle(phi_from) - h + std::min(turn, 0.0) + kPi),
+                                                           2.0 * h + std::abs(turn)};
     env_->tree.query_pad_reach(finger, shape.radius, reach, ends, end_centres, ends ? 2 : 0, reach + half_chord,
-                               segment_ids_);
+                               outer_normals, segment_ids_);
     // Sorted, so the pieces' order (and thus tie-breaks) does not depend on the tree. (Along a
     // contour the tree's order usually is sorted already: checking is linear, sorting is not.)
     if (!std::is_sorted(segment_ids_.begin(), segment_ids_.end())) std::sort(segment_ids_.begin(), segment_ids_.end());
