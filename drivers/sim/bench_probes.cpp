@@ -5,6 +5,7 @@
 #include "drivers/sim/sim_rig.hpp"
 #include "drivers/sim/stability_probes.hpp"
 #include "drivers/tasks.hpp"
+#include "haptics/servo_scene.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -136,7 +137,8 @@ AboveBoundProbe above_bound_probe(double rate, double ratio, double seconds) {
     return p;
 }
 
-BlockTracking block_task_tracking(double speed, double rate, const RollerGains& gains, double stiffness) {
+BlockTracking block_task_tracking(double speed, double rate, const RollerGains& gains, double stiffness,
+                                  const SimCldParams& sp) {
     Scene scene = block_scene();
     if (stiffness > 0.0) scene.force.stiffness = stiffness;
     BlockTaskParams bp;
@@ -144,7 +146,7 @@ BlockTracking block_task_tracking(double speed, double rate, const RollerGains& 
     bp.speed = speed;
     ServoParams params;
     params.roller = gains;
-    SimRig rig(scene, contour_block_task(bp), rate, {}, params);
+    SimRig rig(scene, contour_block_task(bp), rate, sp, params);
     BlockTracking tr;
     tr.opened = rig.opened;
     if (!rig.opened) return tr;
@@ -159,9 +161,31 @@ BlockTracking block_task_tracking(double speed, double rate, const RollerGains& 
     // The whole run, for the jump analysis afterwards (it looks kJumpRateWindow ahead).
     std::vector<double> target(ticks, 0.0), measured(ticks, 0.0);  // m
     std::vector<char> sampled(ticks, 0);                             // engaged and in contact
+    // What the finger feels: the same proxy code (a second ServoScene of the same scene) fed the
+    // simulated finger's true pose (arm endpoint and finger angle before the encoders) gives the
+    // true contact location, against which the element (after the wires) is compared. Both are
+    // taken at the instant the servo's read samples, so the only difference from `target` is the
+    // encoders' quantisation.
+    ServoScene truth(scene);
+    const RollerTravel travel = rig.servo.config().roller_travel;  // params.roller_travel = 0: all of it
+    std::vector<double> true_target(ticks, 0.0), element(ticks, 0.0);  // m
+    std::vector<char> true_contact(ticks, 0);
     for (std::uint64_t k = 0; k < ticks; ++k) {
+        const Vec2 finger_true = rig.device.arm().endpoint();  // m, unquantised
+        const double phi_true = rig.device.hand().phi();       // rad, unquantised
+        element[k] = rig.device.roller().element();            // m
         rig.loop.step(T, true);
         const ServoSnapshot s = rig.servo.snapshot();
+        // Every tick, as the servo's own proxy (its history is the point); first tick: reset at the
+        // finger, as ServoTick::swap_scene does for a first scene.
+        if (k == 0) truth.proxy.reset(finger_true, phi_true);
+        ProxyDef def = truth.proxy.def();
+        def.stiffness = s.stiffness;
+        def.max_force = s.max_force;
+        truth.proxy.set_def(def);
+        const ProxyOutput& o = truth.proxy.update(finger_true, phi_true);
+        true_target[k] = std::clamp(o.l_d, travel.min, travel.max);
+        true_contact[k] = o.contact ? 1 : 0;
         // In free space l_d is the anticipation's and the roller is not felt: only contact counts.
         if (s.state != ServoState::engaged || !s.contact) {
             recent.clear();
@@ -204,7 +228,7 @@ BlockTracking block_task_tracking(double speed, double rate, const RollerGains& 
         const double after = (target[k + w] - target[k]) / (w * T);    // m/s
         jump[k] = std::abs(after - before) > kJumpRateChange;
     }
-    double track_sq = 0.0;  // m^2
+    double track_sq = 0.0, true_sq = 0.0;  // m^2
     std::int64_t since_jump = settle + 1;  // ticks since the last jump tick
     for (std::int64_t k = 0; k < n; ++k) {
         if (jump[k] && (k == 0 || !jump[k - 1])) ++tr.jumps;
@@ -217,9 +241,21 @@ BlockTracking block_task_tracking(double speed, double rate, const RollerGains& 
             tr.max_tracking = std::max(tr.max_tracking, e);
             track_sq += e * e;
             ++tr.tracking_samples;
+            // The true measure over the same ticks (the jumps are l_d's, found on the target the
+            // servo had); the true proxy is in contact there too unless the finger grazes an edge
+            // within an encoder count of it, which is a jump's window anyway.
+            if (!true_contact[k]) continue;
+            const double et = std::abs(true_target[k] - element[k]);  // m
+            tr.max_true_tracking = std::max(tr.max_true_tracking, et);
+            true_sq += et * et;
+            ++tr.true_samples;
+            tr.max_staircase = std::max(tr.max_staircase, std::abs(target[k] - true_target[k]));
+            tr.max_true_encoder = std::max(tr.max_true_encoder, std::abs(true_target[k] - measured[k]));
+            tr.max_wire = std::max(tr.max_wire, std::abs(element[k] - measured[k]));
         }
     }
     tr.rms_tracking = tr.tracking_samples > 0 ? std::sqrt(track_sq / static_cast<double>(tr.tracking_samples)) : 0.0;
+    tr.rms_true_tracking = tr.true_samples > 0 ? std::sqrt(true_sq / static_cast<double>(tr.true_samples)) : 0.0;
     return tr;
 }
 
@@ -301,6 +337,11 @@ std::vector<RollerTrackingRow> roller_tracking_table(bool quick) {
             row.rms_tracking_error = tr.opened && tr.tracking_samples > 0 ? tr.rms_tracking : nan;
             row.max_jump_error = tr.opened ? tr.max_jump : nan;
             row.jumps = tr.jumps;
+            const bool truth = tr.opened && tr.true_samples > 0;
+            row.max_true_tracking_error = truth ? tr.max_true_tracking : nan;
+            row.rms_true_tracking_error = truth ? tr.rms_true_tracking : nan;
+            row.max_target_staircase = truth ? tr.max_staircase : nan;
+            row.max_true_encoder_error = truth ? tr.max_true_encoder : nan;
             row.pole_rad_s = 400.0 * scale;
             row.max_element_error = tr.max_element;
             row.target_range = tr.l_range;

@@ -12,6 +12,7 @@
 
 #include "drivers/sim/cld_roller.hpp"
 #include "drivers/sim/planar_arm.hpp"
+#include "drivers/sim/sim_cld_device.hpp"
 #include "haptics/roller_controller.hpp"
 #include "haptics/servo_tick.hpp"
 
@@ -97,6 +98,15 @@ struct RollerTrackingRow {
     double rms_tracking_error = 0;  // m
     double max_jump_error = 0;   // m, inside them
     int jumps = 0;               // jumps of l_d found
+    // What the finger feels, over the same tracking ticks: the contact element (after the wires)
+    // against the *true* contact location, l_d from the simulated finger's unquantised pose through
+    // the same proxy code. The target above is computed from the encoders (finger angle: R 2 pi /
+    // 4096 = 0.040 mm of l per count; arm: ~0.02 mm of finger position per joint count), a
+    // staircase no continuous roller can follow to better than half its step.
+    double max_true_tracking_error = 0;  // m, |l_d true - l_element|
+    double rms_true_tracking_error = 0;  // m
+    double max_target_staircase = 0;     // m, |l_d (encoders) - l_d true|: the quantisation alone
+    double max_true_encoder_error = 0;   // m, |l_d true - l_encoder|: the nut, as seed 000 measured it
     // Beyond the bench's interface:
     double pole_rad_s = 0;       // rad/s, the placed closed-loop pole (triple), 400 x gain_scale
     double max_element_error = 0;  // m, contact element (after the wires: what the finger feels) vs target
@@ -190,6 +200,14 @@ struct BlockTracking {
     double max_element = 0.0;   // m, |l_target - l_element| (what the finger feels)
     double l_range = 0.0;       // m, how far l_d travelled
     double max_rate = 0.0;      // m/s, fastest l_d over 10 ms windows (encoder steps averaged out)
+    // Against the true contact location (the proxy fed the simulated finger's unquantised pose),
+    // over the tracking ticks (outside the jumps' windows) where that proxy is in contact too:
+    double max_true_tracking = 0.0;  // m, |l_d true - l_element|: what the finger feels
+    double rms_true_tracking = 0.0;  // m
+    double max_staircase = 0.0;      // m, |l_d (from the encoders) - l_d true|: the quantisation itself
+    double max_true_encoder = 0.0;   // m, |l_d true - l_encoder|: the nut, as seed 000 measured it
+    double max_wire = 0.0;           // m, |l_element - l_encoder|: the wires' stretch and ringing
+    std::uint64_t true_samples = 0;  // ticks in those
     std::uint64_t samples = 0;  // ticks sampled (engaged and in contact)
     bool opened = false;        // the device opened
 };
@@ -198,8 +216,10 @@ struct BlockTracking {
 // servo rate `rate` (Hz) with roller gains `gains`, sampled while engaged and in contact.
 // `stiffness` (N/m) replaces the scene's 1000 N/m when > 0: below ~1.5 kHz 1000 N/m is past the
 // arm's 2 b / T and the loop (rightly) faults, so the low rates run a softer block.
+// `rig` replaces the simulated device's parameters (e.g. finer encoders, to see what the
+// quantisation costs).
 BlockTracking block_task_tracking(double speed, double rate = 1000.0, const RollerGains& gains = RollerGains{},
-                                  double stiffness = 0.0);
+                                  double stiffness = 0.0, const SimCldParams& rig = SimCldParams{});
 
 // The least error (m) any controller can have on a target that starts moving at v (m/s) from
 // rest, with the roller at rest: it learns of the motion up to one period T (s) late, and then

@@ -101,7 +101,9 @@ nlohmann::json results_json(const BenchResults& r) {
                                   {"k_ideal_no_fault", s.k_ideal_no_fault}, {"above_bound", above}});
     }
     // max_error / rms_error: every tick in contact (as before the split); max_tracking_error /
-    // rms_tracking_error: outside the jumps of l_d and the window after each (bench_probes.hpp).
+    // rms_tracking_error: outside the jumps of l_d and the window after each (bench_probes.hpp);
+    // *_true_*: over those ticks against the true (unquantised) contact location, and
+    // max_target_staircase what the encoders' quantisation alone puts into l_d.
     for (const RollerTrackingRow& t : r.roller)
         j["roller_tracking"].push_back({{"gain_scale", t.gain_scale}, {"finger_speed", t.finger_speed},
                                         {"rate_hz", t.rate_hz}, {"feed_forward", t.feed_forward},
@@ -109,7 +111,11 @@ nlohmann::json results_json(const BenchResults& r) {
                                         {"max_tracking_error", t.max_tracking_error},
                                         {"rms_tracking_error", t.rms_tracking_error},
                                         {"max_jump_error", t.max_jump_error}, {"jumps", t.jumps},
-                                        {"jump_window_s", kJumpSettleWindow}});
+                                        {"jump_window_s", kJumpSettleWindow},
+                                        {"max_true_tracking_error", t.max_true_tracking_error},
+                                        {"rms_true_tracking_error", t.rms_true_tracking_error},
+                                        {"max_true_encoder_error", t.max_true_encoder_error},
+                                        {"max_target_staircase", t.max_target_staircase}});
     for (const RollerJumpRow& t : r.roller_jump)
         j["roller_jump"].push_back({{"jump", t.jump}, {"jump_settle_s", t.jump_settle_s},
                                     {"force_limited_s", t.force_limited_s}, {"band", t.band},
@@ -213,15 +219,20 @@ std::string results_markdown(const BenchResults& r, const ReportPlots* plots) {
               "Tracking: |l_d - l| while l_d moves continuously, i.e. outside the jumps of l_d (its 10 ms "
               "mean rate changing by more than %.0f mm/s, or contact made or lost) and the ", kJumpRateChange * 1e3) +
           fmt("%.0f ms after each; jumps: inside those windows; all: every tick in contact. Feed-forward off is "
-              "seed 000's eq. 2 alone (the \"before\"); on is the default (kff = Kd + back-EMF).\n\n",
+              "seed 000's eq. 2 alone (the \"before\"); on is the default (kff = Kd + back-EMF). True: over the "
+              "tracking ticks, the contact element (what the finger feels) against l_d from the finger's true, "
+              "unquantised pose; staircase: |l_d from the encoders - true l_d| there.\n\n",
               kJumpSettleWindow * 1e3) +
-          "| pole scale | feed-forward | finger speed | rate | tracking max | tracking RMS | jumps | jump max | all max | all RMS |\n"
-          "| ---: | :---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+          "| pole scale | feed-forward | finger speed | rate | tracking max | tracking RMS | jumps | jump max | all max | all RMS "
+          "| true max | true RMS | staircase max |\n"
+          "| ---: | :---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
     for (const RollerTrackingRow& t : r.roller)
         md += fmt("| %.2g", t.gain_scale) + (t.feed_forward ? " | on" : " | off") +
               fmt(" | %.0f mm/s", t.finger_speed * 1e3) + fmt(" | %.0f Hz", t.rate_hz) + " | " +
               metres(t.max_tracking_error) + " | " + metres(t.rms_tracking_error) + " | " + std::to_string(t.jumps) +
-              " | " + metres(t.max_jump_error) + " | " + metres(t.max_error) + " | " + metres(t.rms_error) + " |\n";
+              " | " + metres(t.max_jump_error) + " | " + metres(t.max_error) + " | " + metres(t.rms_error) + " | " +
+              metres(t.max_true_tracking_error) + " | " + metres(t.rms_true_tracking_error) + " | " +
+              metres(t.max_target_staircase) + " |\n";
     md += figure(plots, "roller_tracking.png");
     if (!r.roller_jump.empty()) {
         md += "\nRoller alone, a jump of l_d at 1 kHz (default gains): settling into the band, against the least time "

@@ -82,6 +82,10 @@ BenchResults made_up_results() {
             t.rms_tracking_error = v * 0.1e-3 / g;
             t.max_jump_error = t.max_error;
             t.jumps = 2;
+            t.max_true_tracking_error = v * 0.6e-3 / g;
+            t.rms_true_tracking_error = v * 0.2e-3 / g;
+            t.max_true_encoder_error = v * 0.5e-3 / g;
+            t.max_target_staircase = 0.04e-3;
             r.roller.push_back(t);
         }
     r.render.device = "made-up device";
@@ -180,14 +184,18 @@ TEST_CASE("bench report: the JSON splits the roller's tracking from its jumps, o
     REQUIRE(j["roller_tracking"].size() == r.roller.size());
     const nlohmann::json& t = j["roller_tracking"][0];
     for (const char* key : {"max_error", "rms_error", "max_tracking_error", "rms_tracking_error", "max_jump_error",
-                            "jumps", "jump_window_s", "feed_forward"})
+                            "jumps", "jump_window_s", "feed_forward", "max_true_tracking_error",
+                            "rms_true_tracking_error", "max_true_encoder_error", "max_target_staircase"})
         CHECK_MESSAGE(t.contains(key), key);
     CHECK(t["max_tracking_error"].get<double>() == doctest::Approx(r.roller[0].max_tracking_error));
+    CHECK(t["max_true_tracking_error"].get<double>() == doctest::Approx(r.roller[0].max_true_tracking_error));
+    CHECK(t["max_target_staircase"].get<double>() == doctest::Approx(0.04e-3));
     REQUIRE(j["roller_jump"].size() == 1);
     CHECK(j["roller_jump"][0]["jump_settle_s"].get<double>() == doctest::Approx(0.081));
     CHECK(j["roller_jump"][0]["force_limited_s"].get<double>() == doctest::Approx(0.059));
     const std::string md = results_markdown(r);
     CHECK(md.find("tracking max") != std::string::npos);
+    CHECK(md.find("staircase max") != std::string::npos);
     CHECK(md.find("force-limited") != std::string::npos);
 }
 
