@@ -226,8 +226,7 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
     // The summed force law looks for every surface the finger has entered (apply_force_law),
     // anywhere within reach: it keeps the full gather.
     // (A small scene gathers everything anyway: nothing to gain, a second walk to lose.)
-    const bool local_allowed = def_.use_index && def_.law.contacts != ContactForce::sum &&
-                               static_cast<int>(env_->segments.size()) > kSmallScene;
+    const bool local_allowed = def_.use_index && def_.law.contacts != ContactForce::sum && !gathers_all(phi_, phi);
     const WarmDisc warm = local_allowed ? warm_start_disc(finger, max_push) : WarmDisc{start, reach};
     if (warm.radius < reach) {
         gather_near(warm.center, phi_, phi, warm.radius);
@@ -356,7 +355,9 @@ void Proxy::gather_within_reach(Vec2 finger, double phi, double reach) {
 
 void Proxy::gather_near(Vec2 finger, double phi_from, double phi_to, double reach) {
     segment_ids_.clear();
-    if (!def_.use_index || static_cast<int>(env_->segments.size()) <= kSmallScene) {
+    // A small scene at an unchanged angle: all of it (see kSmallScene). While the finger turns
+    // every piece is built anew, and then the index's few are cheaper.
+    if (!def_.use_index || gathers_all(phi_from, phi_to)) {
         for (int i = 0; i < static_cast<int>(env_->segments.size()); ++i) segment_ids_.push_back(i);
         return;
     }

@@ -116,6 +116,10 @@ private:
     // segment_ids_: segments whose R-offset can come within `reach` of the finger, or that lie
     // within `reach` of the pad's ends between the two angles.
     void gather_near(Vec2 finger, double phi_from, double phi_to, double reach);
+    // A small scene at the angle of the last build (pieces kept) gathers every segment.
+    bool gathers_all(double phi_from, double phi_to) const {
+        return static_cast<int>(env_->segments.size()) <= kProxySmallScene && phi_from == phi_to && phi_to == built_phi_;
+    }
     void build_pieces(double phi);                         // pieces_ of segment_ids_ at phi
     void build_substep_pieces(double phi);                 // the same, for a re-projection sub-step
     const PadFrame& pad_frame(double phi);

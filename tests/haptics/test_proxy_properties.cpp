@@ -298,13 +298,11 @@ TEST_CASE("in contact the index gathers every piece that matters: the same proxy
         CAPTURE(scene_index++);
         CAPTURE(pair.env.segments.size());
         CHECK(contacts > 1000);
-        if (static_cast<int>(pair.env.segments.size()) > kProxySmallScene) {
-            // Both paths are exercised: most ticks in contact keep to the warm start, the jumps miss it.
-            CHECK(warm > contacts / 2);
-            CHECK(cold > 20);
-        } else {
-            CHECK(warm == 0);  // a small scene gathers every segment every tick
-        }
+        // Both paths are exercised: most ticks in contact keep to the warm start, the jumps miss
+        // it. (A small scene at an unchanged angle gathers everything instead: not here, where
+        // the finger rocks every tick.)
+        CHECK(warm > contacts / 2);
+        CHECK(cold > 20);
     }
 }
 

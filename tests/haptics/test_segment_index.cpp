@@ -106,3 +106,31 @@ TEST_CASE("index: a pad smaller or larger than the scene's gathers every piece t
     MESSAGE(rows, " rows, ", contact_rows, " in contact");
     CHECK(contact_rows > rows / 4);
 }
+
+TEST_CASE("index: a small scene at an unchanged angle gathers every segment, a turning finger only those near") {
+    // kProxySmallScene: below it the tree costs more than it saves while the pieces are kept
+    // from tick to tick; while the finger turns every piece is rebuilt, and the index's few are
+    // cheaper. A 10-segment floor, the pad 1 mm in, sliding 0.1 mm a tick.
+    std::vector<Vec2> pts;
+    for (int i = 0; i <= 10; ++i) pts.push_back({-0.25 + 0.05 * i, 0.0});
+    Scene scene;
+    Contour floor;
+    for (int i = 0; i < 10; ++i) floor.segments.push_back(LineSegment{pts[i], pts[i + 1]});
+    scene.contours.push_back(floor);
+    const Environment env = build_environment(scene);
+    REQUIRE(static_cast<int>(env.segments.size()) <= kProxySmallScene);
+    Proxy proxy(env, proxy_def_of(scene));
+    proxy.reset({0.0, 0.03}, 0.0);
+    int all = 0, fewer = 0;
+    for (int k = 0; k < 200; ++k) {
+        const double phi = k < 100 ? 0.0 : 0.002 * (k - 99);  // still, then turning
+        const ProxyOutput& o = proxy.update({0.0001 * k, 0.025}, phi);
+        REQUIRE(o.contact);
+        CHECK(std::abs(o.proxy.y - 0.026) < 1e-12);  // on the floor's offset, R = 26 mm above it
+        if (k < 2) continue;
+        if (k < 100) all += o.work.segments == 10 ? 1 : 0;
+        else fewer += o.work.segments < 10 ? 1 : 0;
+    }
+    CHECK(all == 98);
+    CHECK(fewer == 100);
+}
