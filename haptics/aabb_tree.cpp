@@ -19,12 +19,6 @@ NormalCone merge_cones(const NormalCone& a, const NormalCone& b) {
     return c;
 }
 
-bool cones_meet(const NormalCone& a, const NormalCone& b) {
-    if (a.width < 0.0 || b.width < 0.0) return false;
-    if (a.width >= kTwoPi || b.width >= kTwoPi) return true;
-    return wrap_2pi(b.start - a.start) <= a.width || wrap_2pi(a.start - b.start) <= b.width;
-}
-
 AabbTree::AabbTree(const std::vector<Aabb>& item_boxes) {
     items_.resize(item_boxes.size());
     std::iota(items_.begin(), items_.end(), 0);
@@ -218,8 +212,9 @@ void AabbTree::query_pad_reach(Vec2 p, double r, double reach, bool inner, const
     const double reach2 = reach * reach;              // m^2
     collect(
         [&](const Node& n) {
-            if (cones_meet(n.normals, normals.outer) && offset_may_reach(n, p, r, reach, 1.0)) return true;
-            if (inner && cones_meet(n.normals, normals.inner) && offset_may_reach(n, p, r, reach, -1.0)) return true;
+            // (Boxes first: most nodes fail there, and the cone test costs more.)
+            if (offset_may_reach(n, p, r, reach, 1.0) && cones_meet(n.normals, normals.outer)) return true;
+            if (inner && offset_may_reach(n, p, r, reach, -1.0) && cones_meet(n.normals, normals.inner)) return true;
             for (int k = 0; k < end_count; ++k)
                 if (n.box.distance_squared_to(ends[k]) <= end_reach2) return true;
             return false;
@@ -228,11 +223,11 @@ void AabbTree::query_pad_reach(Vec2 p, double r, double reach, bool inner, const
             // The leaf's test with each item's own boxes and cone (a leaf spans several items).
             if (!has_offsets_) return true;
             const auto pos = static_cast<std::size_t>(position);
-            if (cones_meet(item_normals_[pos], normals.outer) &&
-                moved_offset(leaf, item_offsets_[pos], r, 1.0).distance_squared_to(p) <= reach2)
+            if (moved_offset(leaf, item_offsets_[pos], r, 1.0).distance_squared_to(p) <= reach2 &&
+                cones_meet(item_normals_[pos], normals.outer))
                 return true;
-            if (inner && cones_meet(item_normals_[pos], normals.inner) &&
-                moved_offset(leaf, item_offsets_[pos], r, -1.0).distance_squared_to(p) <= reach2)
+            if (inner && moved_offset(leaf, item_offsets_[pos], r, -1.0).distance_squared_to(p) <= reach2 &&
+                cones_meet(item_normals_[pos], normals.inner))
                 return true;
             for (int k = 0; k < end_count; ++k)
                 if (item_boxes_[pos].distance_squared_to(ends[k]) <= end_reach2) return true;

@@ -61,7 +61,11 @@ struct NormalCone {
 // The smallest cone holding both.
 NormalCone merge_cones(const NormalCone& a, const NormalCone& b);
 // Whether the two cones share a direction.
-bool cones_meet(const NormalCone& a, const NormalCone& b);
+inline bool cones_meet(const NormalCone& a, const NormalCone& b) {
+    if (a.width < 0.0 || b.width < 0.0) return false;
+    if (a.width >= kTwoPi || b.width >= kTwoPi) return true;
+    return wrap_2pi(b.start - a.start) <= a.width || wrap_2pi(a.start - b.start) <= b.width;
+}
 
 // An item's offset at a reference pad radius rho (m): `outer` bounds every point q + rho n and
 // `inner` every q - rho n, over the item's points q and the free-side normals n its c-space
