@@ -9,6 +9,7 @@
 #include "haptics/verify/contact_fuzz.hpp"
 #include "haptics/verify/random_contact_scenes.hpp"
 #include "haptics/verify/solid_reference.hpp"
+#include "against_every_segment.hpp"
 #include "scene_builders.hpp"
 
 #include <doctest/doctest.h>
@@ -126,35 +127,19 @@ TEST_CASE("warm start: on seeded random scenes the proxy is bit for bit the one 
     // Checked against a proxy with use_index = false (every segment's pieces, every tick) on the
     // soak's own scenes: stars of lines, arcs and curves, thin walls, terrains, hands pushed
     // centimetres in, sliding and turning.
-    int rows = 0, contact_rows = 0, warm_rows = 0, cold_rows = 0;
+    contactlab::test::AgainstEverySegment counts;
     for (std::uint64_t index = 0; index < 6; ++index) {
         const ContactCase c = make_contact_case(case_seed(3, index));
         const Environment env = build_environment(c.scene);
-        ProxyDef def = proxy_def_of(c.scene);
-        Proxy warm(env, def);
-        def.use_index = false;
-        Proxy brute(env, def);
         CAPTURE(c.seed);
         CAPTURE(c.summary);
-        warm.reset(c.path.front().finger, c.path.front().phi);
-        brute.reset(c.path.front().finger, c.path.front().phi);
-        for (const HandSample& h : c.path) {
-            const ProxyOutput a = warm.update(h.finger, h.phi);
-            const ProxyOutput& b = brute.update(h.finger, h.phi);
-            ++rows;
-            REQUIRE(a.proxy == b.proxy);
-            REQUIRE(a.force == b.force);
-            REQUIRE(a.l_d == b.l_d);
-            REQUIRE(a.contact_count == b.contact_count);
-            if (!a.contact) continue;
-            ++contact_rows;
-            (a.work.warm_start ? warm_rows : cold_rows) += 1;
-        }
+        contactlab::test::replay_against_every_segment(env, proxy_def_of(c.scene), c.path, counts);
     }
-    MESSAGE(rows, " rows, ", contact_rows, " in contact: ", warm_rows, " by the warm start, ", cold_rows, " again in full");
-    CHECK(contact_rows > rows / 3);
-    CHECK(warm_rows > contact_rows / 2);
-    CHECK(cold_rows > 0);
+    MESSAGE(counts.rows, " rows, ", counts.contact_rows, " in contact: ", counts.warm_rows, " by the warm start, ",
+            counts.cold_rows, " again in full");
+    CHECK(counts.contact_rows > counts.rows / 3);
+    CHECK(counts.warm_rows > counts.contact_rows / 2);
+    CHECK(counts.cold_rows > 0);
 }
 
 // The generator's scenes are simple: no contour crosses itself. Two neighbouring segments that

@@ -10,6 +10,7 @@
 #include "haptics/environment.hpp"
 #include "haptics/proxy.hpp"
 #include "haptics/verify/random_contact_scenes.hpp"
+#include "against_every_segment.hpp"
 
 #include <doctest/doctest.h>
 
@@ -76,7 +77,7 @@ TEST_CASE("index: a pad smaller or larger than the scene's gathers every piece t
     // The index holds offset boxes at the scene's R; a device or a live edit may give the proxy
     // another radius. Against use_index = false (every segment, every tick) on the soak's scenes,
     // with the pad 0.6 and 1.5 times the scene's.
-    int rows = 0, contact_rows = 0;
+    contactlab::test::AgainstEverySegment counts;
     for (const double scale : {0.6, 1.5}) {
         for (std::uint64_t index = 0; index < 4; ++index) {
             const ContactCase c = make_contact_case(case_seed(9, index));
@@ -84,27 +85,13 @@ TEST_CASE("index: a pad smaller or larger than the scene's gathers every piece t
             ProxyDef def = proxy_def_of(c.scene);
             def.finger.radius *= scale;
             def.finger.length *= scale;  // the same pad angle
-            Proxy indexed(env, def);
-            def.use_index = false;
-            Proxy brute(env, def);
             CAPTURE(scale);
             CAPTURE(c.seed);
-            indexed.reset(c.path.front().finger, c.path.front().phi);
-            brute.reset(c.path.front().finger, c.path.front().phi);
-            for (const HandSample& h : c.path) {
-                const ProxyOutput a = indexed.update(h.finger, h.phi);
-                const ProxyOutput& b = brute.update(h.finger, h.phi);
-                ++rows;
-                REQUIRE(a.proxy == b.proxy);
-                REQUIRE(a.force == b.force);
-                REQUIRE(a.l_d == b.l_d);
-                REQUIRE(a.contact_count == b.contact_count);
-                contact_rows += a.contact ? 1 : 0;
-            }
+            contactlab::test::replay_against_every_segment(env, def, c.path, counts);
         }
     }
-    MESSAGE(rows, " rows, ", contact_rows, " in contact");
-    CHECK(contact_rows > rows / 4);
+    MESSAGE(counts.rows, " rows, ", counts.contact_rows, " in contact");
+    CHECK(counts.contact_rows > counts.rows / 4);
 }
 
 TEST_CASE("index: a small scene at an unchanged angle gathers every segment, a turning finger only those near") {
