@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <utility>
 
 namespace contactlab {
 
@@ -103,6 +104,56 @@ int AabbTree::build(const std::vector<Aabb>& boxes, const std::vector<NormalCone
     nodes_[index].left = left;
     nodes_[index].right = right;
     return index;
+}
+
+namespace {
+bool box_holds(const Aabb& outer, const Aabb& inner) {
+    return inner.lo.x > inner.hi.x || inner.lo.y > inner.hi.y ||  // an empty box fits anywhere
+           (outer.lo.x <= inner.lo.x && outer.lo.y <= inner.lo.y && outer.hi.x >= inner.hi.x && outer.hi.y >= inner.hi.y);
+}
+bool cone_holds(const NormalCone& outer, const NormalCone& inner) {
+    if (inner.width < 0.0 || outer.width >= kTwoPi) return true;
+    if (outer.width < 0.0) return false;
+    constexpr double kRounding = 1e-12;  // rad: merge_cones' wraps
+    return wrap_2pi(inner.start - outer.start + kRounding) + inner.width <= outer.width + 2.0 * kRounding;
+}
+}  // namespace
+
+bool AabbTree::consistent(const std::vector<Aabb>& item_boxes) const {
+    if (items_.size() != item_boxes.size()) return false;
+    std::vector<char> seen(items_.size(), 0);
+    for (const int i : items_) {
+        if (i < 0 || i >= static_cast<int>(seen.size()) || seen[static_cast<std::size_t>(i)]) return false;
+        seen[static_cast<std::size_t>(i)] = 1;
+    }
+    if (items_.empty()) return nodes_.empty();
+    // Each node against every item below it (a subtree's items are one run of items_). Cones are
+    // checked against the items, not the children: merge_cones is not associative, so a child
+    // merged in another order may hold a wider cone than its parent, both holding every item.
+    bool ok = true;
+    auto check = [&](auto&& self, int index, int depth) -> std::pair<int, int> {  // [first, end) of items_
+        if (index < 0 || index >= static_cast<int>(nodes_.size()) || depth > 64) {
+            ok = false;
+            return {0, 0};
+        }
+        const Node& n = nodes_[static_cast<std::size_t>(index)];
+        std::pair<int, int> range{n.first, n.first + n.count};
+        if (n.left >= 0) {
+            const auto l = self(self, n.left, depth + 1), r = self(self, n.right, depth + 1);
+            if (l.second != r.first) ok = false;
+            range = {l.first, r.second};
+        }
+        for (int k = range.first; k < range.second && ok; ++k) {
+            const auto at = static_cast<std::size_t>(k);
+            ok = box_holds(n.box, item_boxes[static_cast<std::size_t>(items_[at])]);
+            if (has_offsets_)  // the per-item arrays are in leaf order
+                ok = ok && box_holds(n.box, item_boxes_[at]) && box_holds(n.offset.outer, item_offsets_[at].outer) &&
+                     box_holds(n.offset.inner, item_offsets_[at].inner) && cone_holds(n.normals, item_normals_[at]);
+        }
+        return range;
+    };
+    const auto all = check(check, 0, 0);
+    return ok && all.first == 0 && all.second == static_cast<int>(items_.size());
 }
 
 void AabbTree::query(const Aabb& box, std::vector<int>& out) const {

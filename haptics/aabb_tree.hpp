@@ -135,6 +135,11 @@ public:
 
     int size() const { return static_cast<int>(items_.size()); }
 
+    // Whether the tree bounds what it was built from (validation.hpp): every item once, each
+    // node's box (and offset boxes and normal cone, where it has them) holding its children's and
+    // its items'. O(N); called after a build when validation is on.
+    bool consistent(const std::vector<Aabb>& item_boxes) const;
+
 private:
     struct Node {
         Aabb box;

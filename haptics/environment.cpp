@@ -2,6 +2,8 @@
 #include "haptics/environment.hpp"
 
 #include "haptics/bezier.hpp"
+#include "haptics/cspace.hpp"
+#include "haptics/validation.hpp"
 
 #include <algorithm>
 
@@ -62,6 +64,34 @@ AngleSpan convex_cone(const EnvSegment& a, const EnvSegment& b) {
     const double from = angle_of(start_normal(b));
     const double width = reversal ? kPi : wrap_2pi(angle_of(end_normal(a)) - from);
     return {wrap_2pi(from), width};
+}
+
+// Validation: every c-space piece a pad of the scene's radius builds, at eight finger angles, lies
+// in its segment's offset boxes (outer for the pieces the pad's outer side presses, inner for the
+// concave side's), and the tree holds them. The index prunes with these boxes alone: a piece
+// outside its box would be a wall the proxy cannot find. O(N); at scene load.
+void validate_index(const Environment& env, const std::vector<Aabb>& boxes, const std::vector<OffsetBoxes>& offsets,
+                    const FingerDef& finger) {
+    if constexpr (!kValidation) return;
+    CONTACTLAB_VALIDATE(env.tree.consistent(boxes), "the segment index holds every segment's boxes and cones");
+    const FingerShape shape = finger_from_def(finger);
+    std::vector<CPiece> pieces;
+    bool inside = true;
+    for (int k = 0; k < 8 && shape.radius > 0.0; ++k) {
+        for (int i = 0; i < static_cast<int>(env.segments.size()); ++i) {
+            pieces.clear();
+            append_cspace_pieces(env, i, shape, 0.25 * kPi * k, pieces);
+            const OffsetBoxes& o = offsets[static_cast<std::size_t>(i)];
+            for (const CPiece& piece : pieces) {
+                const Aabb b = piece_box(piece);
+                const bool inner = piece.source == CPiece::Source::vertex_inner || piece.source == CPiece::Source::arc_inner;
+                const Aabb& bound = inner ? o.inner : o.outer;
+                if (piece.source == CPiece::Source::endpoint) continue;  // bounded by the pad's ends
+                inside = inside && bound.lo.x <= b.lo.x && bound.lo.y <= b.lo.y && bound.hi.x >= b.hi.x && bound.hi.y >= b.hi.y;
+            }
+        }
+    }
+    CONTACTLAB_VALIDATE(inside, "every segment's c-space pieces lie in its offset boxes at the scene's pad radius");
 }
 
 }  // namespace
@@ -206,6 +236,7 @@ Environment build_environment(const Scene& scene) {
         offsets.push_back(offset_boxes(e, rho));
     }
     env.tree = AabbTree(boxes, normals, offsets, rho);
+    validate_index(env, boxes, offsets, scene.finger);
     return env;
 }
 

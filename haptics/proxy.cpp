@@ -214,6 +214,17 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
     // piece lies within R of its segment: those segments are all we need (the full gather).
     const double reach = glm::length(proxy_ - finger) + max_push;
     const Vec2 start = proxy_;
+    // Validation: the tick the slow way first (every segment within reach, every scan over all
+    // pieces), the reference the shortcuts below must match bit for bit.
+    Vec2 reference_proxy{0.0};
+    if constexpr (kValidation) {
+        reference_walk_ = true;
+        gather_for_motion(finger, phi, reach + kOnTolerance);
+        move_proxy(finger, phi, turn, max_push, start, start);
+        reference_walk_ = false;
+        reference_proxy = proxy_;
+        proxy_ = start;
+    }
     work_.warm_start = false;
     // Warm start (contact tracing): the proxy rarely moves far in a tick, so first gather only the
     // pieces near where it is, and move it. The motion's result depends only on pieces within a
@@ -238,6 +249,12 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
         gather_for_motion(finger, phi, reach + kOnTolerance);
         move_proxy(finger, phi, turn, max_push, start, start);
     }
+    CONTACTLAB_VALIDATE(proxy_ == reference_proxy,
+                        "the warm-start gather and the walk's local scans move the proxy where the full gather and "
+                        "full scans do");
+    CONTACTLAB_VALIDATE(std::isfinite(proxy_.x) && std::isfinite(proxy_.y), "the proxy is finite");
+    CONTACTLAB_VALIDATE(work_.walk_steps <= kProxyMaxWalkSteps && work_.rotation_steps <= kProxyMaxRotationSteps,
+                        "a tick's walk and re-projection stay within their step caps");
     last_finger_motion_ = finger - last_finger_;
     last_finger_ = finger;
     last_motion_ = proxy_ - start;
@@ -269,6 +286,11 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
         out_.anchor = finger;
         anticipate(finger, phi);
     }
+    CONTACTLAB_VALIDATE(std::isfinite(out_.force.x) && std::isfinite(out_.force.y) && std::isfinite(out_.l_d) &&
+                            std::isfinite(out_.depth) && out_.depth >= 0.0,
+                        "the proxy's force, depth and l_d are finite, the depth not negative");
+    CONTACTLAB_VALIDATE(out_.contact_count >= 0 && out_.contact_count <= static_cast<int>(out_.contacts.size()),
+                        "the contact count fits the contact array");
     return out_;
 }
 
@@ -594,7 +616,7 @@ bool Proxy::handed_over(int i, Vec2 at, Vec2 t, int ended) const {
         if (!piece_param_inside(other, piece_param(other, at), slack)) return false;
         return !leaves_range(other, at, t);
     };
-    if (local_near(at, kLocalAcceptRadius)) {  // every box holding `at` is among the last scan's
+    if (local_scans_allowed() && local_near(at, kLocalAcceptRadius)) {  // every box holding `at` is among the last scan's
         for (const int j : local_)
             if (continues(j)) return true;
         return false;
@@ -647,7 +669,7 @@ Vec2 Proxy::walk(Vec2 p, Vec2 goal) {
             // Off a piece's end the move usually enters the next piece at once: asked first of
             // the pieces the last scan kept near here, and of all only if none is entered there.
             Hit hit;
-            if (excluded >= 0 && local_near(proxy_, kLocalAcceptRadius)) {
+            if (excluded >= 0 && local_scans_allowed() && local_near(proxy_, kLocalAcceptRadius)) {
                 hit = first_entry_line(proxy_, goal, excluded, -1, excluded, /*among_local=*/true);
                 if (!(hit.found && glm::length(hit.point - proxy_) <= kLocalAcceptRadius)) hit = Hit{};
             }
@@ -1307,6 +1329,7 @@ void Proxy::anticipate(Vec2 finger, double phi) {
             }
             return least;
         });
+        if constexpr (kValidation) validate_anticipation(finger, pad, best_segment, best_foot);
         out_.anticipating = best_segment >= 0;
         if (out_.anticipating) {
             out_.l_d = piece_contact_location(anticipated_piece_, def_.finger, phi, best_foot);
@@ -1361,6 +1384,31 @@ void Proxy::anticipate(Vec2 finger, double phi) {
         }
         if (best <= reach) return;
     }
+}
+
+// ---- validation ---------------------------------------------------------------------------------
+// Every segment's pieces, nearest first in (segment, piece) order: what the index's nearest-first
+// search must return (its lower bounds may only skip segments that cannot win). Scenes up to
+// kValidateAnticipationSegments only: the search is the index's point at 100,000 segments, and
+// every tick of a test there would take milliseconds.
+void Proxy::validate_anticipation(Vec2 finger, const PadFrame& pad, int best_segment, Vec2 best_foot) {
+    constexpr int kValidateAnticipationSegments = 4096;
+    const int count = static_cast<int>(env_->segments.size());
+    if (count > kValidateAnticipationSegments) return;
+    double best = std::numeric_limits<double>::infinity();  // m
+    int segment = -1;
+    Vec2 foot{0.0};
+    for (int id = 0; id < count; ++id) {
+        nearest_pieces_.clear();
+        append_cspace_pieces(*env_, id, pad, nearest_pieces_);
+        for (const CPiece& piece : nearest_pieces_) {
+            const Vec2 point = piece_foot(piece, finger).point;
+            const double d = glm::length(point - finger);
+            if (d < best) best = d, segment = id, foot = point;
+        }
+    }
+    CONTACTLAB_VALIDATE(segment == best_segment && foot == best_foot,
+                        "anticipation's nearest-first search finds the piece a search of every segment finds");
 }
 
 }  // namespace contactlab

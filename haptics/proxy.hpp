@@ -13,6 +13,7 @@
 #include "haptics/cspace.hpp"
 #include "haptics/environment.hpp"
 #include "haptics/finger.hpp"
+#include "haptics/validation.hpp"
 
 #include <array>
 #include <vector>
@@ -202,6 +203,14 @@ private:
     std::vector<int> local_;
     Aabb local_box_;
     bool local_valid_ = false;
+    // Validation (haptics/validation.hpp): true while update() moves the proxy the slow way (the
+    // full gather, every scan over all pieces), the reference its shortcuts are held to.
+    bool reference_walk_ = false;
+    // Whether the walk may answer from local_: always, unless validation's reference walk runs.
+    bool local_scans_allowed() const { return !kValidation || !reference_walk_; }
+    // Validation: every segment's pieces searched for the one nearest the finger, as the index's
+    // nearest-first search must find it.
+    void validate_anticipation(Vec2 finger, const PadFrame& pad, int best_segment, Vec2 best_foot);
 };
 
 }  // namespace contactlab
