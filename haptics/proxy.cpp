@@ -214,6 +214,7 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
     // piece lies within R of its segment: those segments are all we need (the full gather).
     const double reach = glm::length(proxy_ - finger) + max_push;
     const Vec2 start = proxy_;
+    clock_.start(def_.profile);
     // Validation: the tick the slow way first (every segment within reach, every scan over all
     // pieces), the reference the shortcuts below must match bit for bit.
     Vec2 reference_proxy{0.0};
@@ -224,7 +225,9 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
         reference_walk_ = false;
         reference_proxy = proxy_;
         proxy_ = start;
+        clock_.skip();  // not the tick's own work
     }
+    stages_ = ProxyStages{};
     work_.warm_start = false;
     // Warm start (contact tracing): the proxy rarely moves far in a tick, so first gather only the
     // pieces near where it is, and move it. The motion's result depends only on pieces within a
@@ -241,12 +244,14 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
     const WarmDisc warm = local_allowed ? warm_start_disc(finger, max_push) : WarmDisc{start, reach};
     if (warm.radius < reach) {
         gather_near(warm.center, phi_, phi, warm.radius);
+        clock_.lap(stages_.gather);
         move_proxy(finger, phi, turn, max_push, start, warm.center);
         work_.warm_start = path_extent_ + 2.0 * max_push + kWarmStartMargin <= warm.radius;
         if (!work_.warm_start) proxy_ = start;
     }
     if (!work_.warm_start) {
         gather_for_motion(finger, phi, reach + kOnTolerance);
+        clock_.lap(stages_.gather);
         move_proxy(finger, phi, turn, max_push, start, start);
     }
     CONTACTLAB_VALIDATE(proxy_ == reference_proxy,
@@ -280,12 +285,15 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
         out_.depth = glm::length(out_.proxy - finger);
         apply_force_law(finger, dt);
         out_.l_d = contact_location_of_contacts(previous_l_d);
+        clock_.lap(stages_.contact);
     } else {
         has_stiction_ = false;
         previous_depth_ = 0.0;
         out_.anchor = finger;
         anticipate(finger, phi);
+        clock_.lap(stages_.anticipate);
     }
+    out_.stages = stages_;
     CONTACTLAB_VALIDATE(std::isfinite(out_.force.x) && std::isfinite(out_.force.y) && std::isfinite(out_.l_d) &&
                             std::isfinite(out_.depth) && out_.depth >= 0.0,
                         "the proxy's force, depth and l_d are finite, the depth not negative");
@@ -348,7 +356,9 @@ void Proxy::move_proxy(Vec2 finger, double phi, double turn, double max_push, Ve
             run_boxes_.back().grow(piece_boxes_[i]);
         }
     }
+    clock_.lap(stages_.pieces);
     proxy_ = walk(proxy_, finger);
+    clock_.lap(stages_.walk);
 }
 
 void Proxy::note_path(Vec2 p) { path_extent_ = std::max(path_extent_, glm::length(p - path_center_)); }

@@ -13,6 +13,7 @@
 #include "haptics/cspace.hpp"
 #include "haptics/environment.hpp"
 #include "haptics/finger.hpp"
+#include "haptics/stage_clock.hpp"
 #include "haptics/validation.hpp"
 
 #include <array>
@@ -32,6 +33,9 @@ struct ProxyDef {
     // bounding-volume tree. Only `contactlab bench` sets it, as the brute-force baseline the
     // index is measured against; results are identical, the cost grows with the scene.
     bool use_index = true;
+    // Time the tick's named stages into ProxyOutput::stages (stage_clock.hpp): one clock read per
+    // stage, about 0.1 us a tick on the development machine. Off: no clock is read.
+    bool profile = false;
 };
 
 inline constexpr double kDefaultServoPeriod = 1e-3;  // s: seed 000's 1 kHz
@@ -64,6 +68,17 @@ struct ProxyWork {
     bool warm_start = false;
 };
 
+// Where one update's time went, ns (ProxyDef::profile; all 0 when off). Each stage is the wall
+// time of its work in this tick, a warm start redone with the full gather counted in both passes.
+struct ProxyStages {
+    double gather = 0.0;      // the index's queries: the segments near the motion
+    double pieces = 0.0;      // c-space pieces built (or copied) for them, re-projection after a turn
+    double walk = 0.0;        // the constrained motion: scans, slides, corners
+    double contact = 0.0;     // contacts, exact curve refinement, the force law, l_d
+    double anticipate = 0.0;  // free space: the nearest piece and its l_d (seed 000 §3.2)
+    double total() const { return gather + pieces + walk + contact + anticipate; }
+};
+
 struct ProxyOutput {
     Vec2 finger{0.0};         // x_f as measured, m
     double phi = 0.0;         // rad
@@ -80,6 +95,7 @@ struct ProxyOutput {
     bool anticipating = false;
     Vec2 anticipated_point{0.0};  // on the contour, m
     ProxyWork work;
+    ProxyStages stages;
 };
 
 class Proxy {
@@ -192,6 +208,8 @@ private:
     Vec2 stiction_{0.0};          // m
     double previous_depth_ = 0.0; // m, for damping
     ProxyWork work_;              // this tick's, copied into out_
+    StageClock clock_;            // ProxyDef::profile
+    ProxyStages stages_;          // this tick's, copied into out_
     // Warm start (Proxy::update): the centre of the gathered disc, and how far from it the path went (m).
     Vec2 path_center_{0.0};
     double path_extent_ = 0.0;

@@ -46,6 +46,10 @@ int run_trace_timing(const BenchArgs& a) {
                 t.samples, t.passes, 100.0 * t.contact_fraction);
     std::printf("ns per tick: median %.0f, p99 %.0f, max %.0f  (a 1 kHz servo has 1,000,000)\n", t.stats.median_ns,
                 t.stats.p99_ns, t.stats.max_ns);
+    const ProxyStages& s = t.stages;
+    std::printf("stages, mean ns per tick (a second pass, timed by stage; its median %.0f ns): gather %.0f, "
+                "pieces %.0f, walk %.0f, contact %.0f, anticipate %.0f\n",
+                t.profiled.median_ns, s.gather, s.pieces, s.walk, s.contact, s.anticipate);
     if (!a.json.empty()) write(a.json, bench::trace_json(t).dump(2) + "\n", "JSON");
     return 0;
 }

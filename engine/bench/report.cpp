@@ -153,7 +153,11 @@ nlohmann::json results_json(const BenchResults& r) {
 
 nlohmann::json trace_json(const TraceTiming& t) {
     return {{"samples", t.samples}, {"passes", t.passes}, {"contact_fraction", t.contact_fraction},
-            {"tick_ns", stats_json(t.stats)}};
+            {"tick_ns", stats_json(t.stats)},
+            {"stages_ns",
+             {{"gather", t.stages.gather}, {"pieces", t.stages.pieces}, {"walk", t.stages.walk},
+              {"contact", t.stages.contact}, {"anticipate", t.stages.anticipate}}},
+            {"profiled_tick_ns", stats_json(t.profiled)}};
 }
 
 std::string results_markdown(const BenchResults& r, const ReportPlots* plots) {

@@ -33,6 +33,7 @@ constexpr double kStartAbove = 0.003;  // m: each pass starts this far above its
 struct Measured {
     TickStats stats;
     double contact_fraction = 0.0;
+    ProxyStages stages;  // mean ns per tick in each stage (def.profile; zero otherwise)
 };
 
 // One Google Benchmark run of `passes` x the stroke, one iteration per tick. Each pass starts
@@ -45,6 +46,7 @@ Measured measure(const std::string& name, const Environment& env, const ProxyDef
         Proxy proxy(env, def);
         TickTimer timer(static_cast<std::size_t>(iterations));
         std::size_t k = 0, contacts = 0, ticks = 0;
+        ProxyStages sum;
         proxy.reset(path[0].x + Vec2{0.0, start_above}, path[0].phi);
         for (auto _ : state) {
             const FingerSample& s = path[k];
@@ -53,6 +55,11 @@ Measured measure(const std::string& name, const Environment& env, const ProxyDef
             benchmark::DoNotOptimize(o->force);
             contacts += o->contact ? 1 : 0;
             ++ticks;
+            sum.gather += o->stages.gather;
+            sum.pieces += o->stages.pieces;
+            sum.walk += o->stages.walk;
+            sum.contact += o->stages.contact;
+            sum.anticipate += o->stages.anticipate;
             if (++k == path.size()) {  // lift the finger back to the start
                 k = 0;
                 proxy.reset(path[0].x + Vec2{0.0, start_above}, path[0].phi);
@@ -60,6 +67,9 @@ Measured measure(const std::string& name, const Environment& env, const ProxyDef
         }
         result.stats = timer.stats();
         result.contact_fraction = ticks ? static_cast<double>(contacts) / static_cast<double>(ticks) : 0.0;
+        const double per_tick = ticks ? 1.0 / static_cast<double>(ticks) : 0.0;
+        result.stages = {sum.gather * per_tick, sum.pieces * per_tick, sum.walk * per_tick, sum.contact * per_tick,
+                         sum.anticipate * per_tick};
         state.counters["median_ns"] = result.stats.median_ns;
         state.counters["p99_ns"] = result.stats.p99_ns;
         state.counters["contact"] = result.contact_fraction;
@@ -249,6 +259,13 @@ TraceTiming time_trace(const Scene& scene, const std::vector<FingerSample>& samp
     const Measured m = measure("trace", env, proxy_def_of(scene), samples, passes, 0.0);
     t.stats = m.stats;
     t.contact_fraction = m.contact_fraction;
+    // Where the time goes: the same again with the stages timed (their clock reads cost a little,
+    // so the plain pass above stays the figure to budget with).
+    ProxyDef profiled = proxy_def_of(scene);
+    profiled.profile = true;
+    const Measured p = measure("trace_profiled", env, profiled, samples, passes, 0.0);
+    t.stages = p.stages;
+    t.profiled = p.stats;
     return t;
 }
 

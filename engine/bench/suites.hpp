@@ -11,6 +11,7 @@
 #include "engine/bench/servo_beside_renderer.hpp"
 #include "engine/bench/tick_stats.hpp"
 #include "drivers/sim/bench_probes.hpp"
+#include "haptics/proxy.hpp"
 #include "haptics/scene.hpp"
 
 #include <optional>
@@ -75,6 +76,10 @@ BenchResults run_suites(const BenchOptions& options);
 // tick timed (I/O and set-up excluded).
 struct TraceTiming {
     TickStats stats;
+    // A second pass with ProxyDef::profile: mean ns per tick in each named stage, and that pass's
+    // own tick statistics (the stages' clock reads included).
+    ProxyStages stages;
+    TickStats profiled;
     std::size_t samples = 0;
     int passes = 0;
     double contact_fraction = 0.0;

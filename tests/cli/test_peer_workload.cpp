@@ -54,6 +54,9 @@ TEST_CASE("generate peer-workload: N line segments on the sinusoid, a 4000-tick 
     REQUIRE(b.exit_code == 0);
     CHECK(b.out.find("4001 samples x 1 passes, 100 % in contact") != std::string::npos);
     CHECK(b.out.find("ns per tick: median") != std::string::npos);
+    // ... and where the time goes, by named stage (a second, profiled pass).
+    CHECK(b.out.find("stages, mean ns per tick") != std::string::npos);
+    CHECK(b.out.find(", walk ") != std::string::npos);
 }
 
 TEST_CASE("generate peer-workload: a segment count below 1 is refused, naming the option") {
