@@ -228,6 +228,7 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
         clock_.skip();  // not the tick's own work
     }
     stages_ = ProxyStages{};
+    work_.built_segments = 0;
     work_.warm_start = false;
     // Warm start (contact tracing): the proxy rarely moves far in a tick, so first gather only the
     // pieces near where it is, and move it. The motion's result depends only on pieces within a
@@ -485,6 +486,7 @@ void Proxy::build_pieces(double phi) {
         }
         const std::size_t from = next_pieces_.size();
         append_cspace_pieces(*env_, id, pad, next_pieces_);
+        ++work_.built_segments;
         for (std::size_t k = from; k < next_pieces_.size(); ++k)
             next_boxes_.push_back(piece_box(next_pieces_[k]).grown(kBoxSlack));
     }
@@ -509,6 +511,7 @@ void Proxy::build_substep_pieces(double phi) {
     pieces_.clear();
     piece_boxes_.clear();
     for (const int id : segment_ids_) append_cspace_pieces(*env_, id, pad, pieces_);
+    work_.built_segments += static_cast<int>(segment_ids_.size());
     built_valid_ = false;
     cache_aside_ = false;
 }

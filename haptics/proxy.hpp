@@ -63,6 +63,9 @@ struct ProxyWork {
     int rotation_steps = 0;  // re-projection sub-steps for a change of phi (<= kProxyMaxRotationSteps)
     int segments = 0;        // scene segments gathered near the motion
     int pieces = 0;          // c-space pieces built from them at the final angle
+    // Segments whose pieces the motion built afresh this tick (re-projection sub-steps included),
+    // rather than copied or kept from the last build at the same angle.
+    int built_segments = 0;
     // The warm-start gather about the last proxy sufficed (Proxy::update); false when the full
     // gather about the finger was used (the proxy went further than guessed, or summed forces).
     bool warm_start = false;
@@ -116,9 +119,14 @@ public:
     const ProxyOutput& update(Vec2 finger, double phi, double dt = kDefaultServoPeriod);
     const ProxyOutput& output() const { return out_; }
     const ProxyDef& def() const { return def_; }
+    // The built pieces depend on the finger's shape only: a new stiffness, force clamp or force
+    // law keeps them. (The servo passes its slewed Ke and clamp every tick; dropping the pieces
+    // each time made a 10-segment servo tick cost 3x the proxy's own.)
     void set_def(const ProxyDef& def) {
+        if (def.finger.kind != def_.finger.kind || def.finger.radius != def_.finger.radius ||
+            def.finger.length != def_.finger.length)
+            built_valid_ = false;
         def_ = def;
-        built_valid_ = false;  // the pieces depend on the finger
     }
 
 private:

@@ -8,12 +8,15 @@
 // cross vertices. One benchmark iteration = one tick; the path is precomputed.
 #include "haptics/environment.hpp"
 #include "haptics/proxy.hpp"
+#include "haptics/servo_scene.hpp"
+#include "haptics/servo_tick.hpp"
 #include "haptics/stimuli.hpp"
 
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <vector>
 
 namespace {
@@ -130,6 +133,64 @@ void BM_ProxyTickDense(benchmark::State& state) {
 BENCHMARK(BM_ProxyTickDense)
     ->Args({10, 4000})->Args({100, 4000})->Args({1000, 4000})->Args({10000, 4000})->Args({100000, 4000})
     ->Args({10, 1000})->Args({100000, 1000});
+
+// The same stroke through the whole servo tick (ServoTick: parameter slew, proxy, safety, roller
+// PID, snapshot), as the live loop runs it at 1 kHz: what a user's servo spends, next to the
+// proxy's own cost above. (The servo hands the proxy its slewed Ke every tick; that used to drop
+// the proxy's pieces each time.)
+void BM_ServoTickDense(benchmark::State& state) {
+    const int segments = static_cast<int>(state.range(0));
+    Scene scene;
+    Contour c;
+    for (int i = 0; i < segments; ++i) {
+        const double x0 = 0.4 * i / segments, x1 = 0.4 * (i + 1) / segments;
+        c.segments.push_back(LineSegment{{x0, dense_height(x0)}, {x1, dense_height(x1)}});
+    }
+    scene.contours.push_back(c);
+    ServoTick servo(ServoConfig{}, ServoParams{});
+    servo.scenes().publish(std::make_unique<ServoScene>(scene));
+    std::vector<Vec2> path;
+    constexpr int kStrokeTicks = 4000;  // 5 cm/s
+    for (int k = 0; k < kStrokeTicks; ++k) {
+        const double x = 0.1 + 0.2 * k / kStrokeTicks;
+        const Vec2 n = glm::normalize(Vec2{-dense_slope(x), 1.0});
+        path.push_back(Vec2{x, dense_height(x)} + (0.026 - 0.001) * n);
+    }
+    ServoInput in;
+    in.finger = path[0] + Vec2{0.0, 0.05};
+    servo.connect(0.0);
+    for (int k = 0; k < 300; ++k) {  // engage in free space, then past the force ramp-in
+        in.t += 1e-3;
+        if (k == 10) in.finger = path[0];
+        servo.tick(in);
+    }
+    std::size_t k = 0;
+    double contact = 0.0, ticks = 0.0;
+    for (auto _ : state) {
+        in.t += 1e-3;
+        in.finger = path[k];
+        const ServoCommand& cmd = servo.tick(in);
+        benchmark::DoNotOptimize(cmd.force);
+        contact += servo.proxy_output().contact ? 1.0 : 0.0;
+        ticks += 1.0;
+        if (++k == path.size()) {
+            // Lift, move back over the start and press again, untimed (as BM_ProxyTickDense's
+            // reset: sliding 0.2 m back in one tick would cost a long walk once per stroke).
+            state.PauseTiming();
+            k = 0;
+            for (const Vec2 at : {path.back() + Vec2{0.0, 0.05}, path[0] + Vec2{0.0, 0.05}, path[0]}) {
+                in.t += 1e-3;
+                in.finger = at;
+                servo.tick(in);
+            }
+            state.ResumeTiming();
+        }
+    }
+    state.counters["contact"] = contact / ticks;
+    state.counters["engaged"] = servo.state() == ServoState::engaged ? 1.0 : 0.0;
+    state.SetLabel(std::to_string(segments) + " segments on 0.4 m, whole servo tick, 50 um per tick");
+}
+BENCHMARK(BM_ServoTickDense)->Arg(10)->Arg(1000)->Arg(100000);
 
 // Curves: a generated seed 002 stimulus (seed 1: 2 small bumps, 1 large, 89 quads + 2 lines),
 // traced left to right 1 mm under its envelope at 0.035 mm per tick, in exact mode and flattened
