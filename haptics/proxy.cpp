@@ -215,6 +215,7 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
     const double reach = glm::length(proxy_ - finger) + max_push;
     const Vec2 start = proxy_;
     clock_.start(def_.profile);
+    work_.built_segments = 0;  // (with validation on, its reference run's builds count too)
     // Validation: the tick the slow way first (every segment within reach, every scan over all
     // pieces), the reference the shortcuts below must match bit for bit.
     Vec2 reference_proxy{0.0};
@@ -228,7 +229,6 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
         clock_.skip();  // not the tick's own work
     }
     stages_ = ProxyStages{};
-    work_.built_segments = 0;
     work_.warm_start = false;
     // Warm start (contact tracing): the proxy rarely moves far in a tick, so first gather only the
     // pieces near where it is, and move it. The motion's result depends only on pieces within a
