@@ -15,6 +15,7 @@ struct HapioDevice::Counters {
     std::atomic<std::uint64_t> rtt_count{0};
     std::atomic<double> rtt_min{0.0}, rtt_max{0.0}, rtt_sum{0.0};
     std::atomic<std::uint16_t> board_rejected{0};
+    std::atomic<std::uint64_t> faults{0};
 };
 
 }  // namespace contactlab::drivers::hapio

@@ -42,7 +42,14 @@ DeviceFault HapioDevice::fault() const noexcept {
     return {fault_code_.load(std::memory_order_acquire), fault_detail_.load(std::memory_order_acquire)};
 }
 
+DeviceFault HapioDevice::last_fault() const noexcept {
+    return {last_fault_code_.load(std::memory_order_acquire), last_fault_detail_.load(std::memory_order_acquire)};
+}
+
 void HapioDevice::set_fault(DeviceFaultCode code, const char* detail) noexcept {
+    last_fault_detail_.store(detail, std::memory_order_release);
+    last_fault_code_.store(code, std::memory_order_release);
+    counters_->faults.fetch_add(1, std::memory_order_acq_rel);
     fault_detail_.store(detail, std::memory_order_release);
     fault_code_.store(code, std::memory_order_release);
     state_.store(DeviceState::fault, std::memory_order_release);
@@ -122,6 +129,7 @@ HapioStats HapioDevice::stats() const noexcept {
     s.rtt_max = c.rtt_max.load();
     s.rtt_mean = s.rtt_count ? c.rtt_sum.load() / static_cast<double>(s.rtt_count) : 0.0;
     s.board_rejected_commands = c.board_rejected.load();
+    s.faults = c.faults.load(std::memory_order_acquire);
     return s;
 }
 

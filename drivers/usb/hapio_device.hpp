@@ -53,6 +53,9 @@ struct HapioStats {
     std::uint64_t rtt_count = 0;         // command -> acknowledging state frame round trips
     double rtt_min = 0.0, rtt_mean = 0.0, rtt_max = 0.0;  // s
     std::uint16_t board_rejected_commands = 0;  // as the board reports it
+    // Faults raised, each counted however briefly it lasted: most clear on the next clean frame
+    // (a millisecond), too fast for a reader polling state() to be sure of seeing them.
+    std::uint64_t faults = 0;
 };
 
 class HapioDevice final : public Device {
@@ -77,6 +80,8 @@ public:
     const std::shared_ptr<usb::UsbContext>& context() const noexcept { return ctx_; }
     // The last valid frame (tests, diagnostics).
     State last_state() const noexcept { return latest_.load().state; }
+    // The last fault raised, kept after it clears (tests, diagnostics; stats().faults counts them).
+    DeviceFault last_fault() const noexcept;
     // True once a model 2 board (the wearable platform) has been opened.
     bool is_wearable() const noexcept { return board_model_.load(std::memory_order_acquire) == 2; }
 
@@ -120,6 +125,8 @@ private:
     std::atomic<DeviceState> state_{DeviceState::disconnected};
     std::atomic<DeviceFaultCode> fault_code_{DeviceFaultCode::none};
     std::atomic<const char*> fault_detail_{""};
+    std::atomic<DeviceFaultCode> last_fault_code_{DeviceFaultCode::none};
+    std::atomic<const char*> last_fault_detail_{""};
     std::atomic<bool> wanted_{false};      // opened by the user: hot-plug may bring it back
     std::atomic<bool> want_engaged_{false};
 
