@@ -88,8 +88,8 @@ BENCHMARK(BM_ProxyTick)->Arg(10)->Arg(1000)->Arg(100000);
 double dense_height(double x) { return 0.01 * std::sin(2.0 * 3.141592653589793 * x / 0.1); }
 double dense_slope(double x) { return 0.01 * 2.0 * 3.141592653589793 / 0.1 * std::cos(2.0 * 3.141592653589793 * x / 0.1); }
 
-void BM_ProxyTickDense(benchmark::State& state) {
-    const int segments = static_cast<int>(state.range(0));
+// The sinusoid over 0.4 m in `segments` lines.
+Scene dense_scene(int segments) {
     Scene scene;
     Contour c;
     for (int i = 0; i < segments; ++i) {
@@ -97,15 +97,27 @@ void BM_ProxyTickDense(benchmark::State& state) {
         c.segments.push_back(LineSegment{{x0, dense_height(x0)}, {x1, dense_height(x1)}});
     }
     scene.contours.push_back(c);
-    const Environment env = build_environment(scene);
-    Proxy proxy(env, ProxyDef{});
+    return scene;
+}
+
+// The finger centre 1 mm deep (R = 2.6 cm) along the profile's normal over its middle 0.2 m, in
+// `ticks` samples.
+std::vector<Vec2> dense_stroke(int ticks) {
     std::vector<Vec2> path;
-    const int stroke_ticks = static_cast<int>(state.range(1));  // over the 0.2 m stroke
-    for (int k = 0; k < stroke_ticks; ++k) {
-        const double x = 0.1 + 0.2 * k / stroke_ticks;
+    for (int k = 0; k < ticks; ++k) {
+        const double x = 0.1 + 0.2 * k / ticks;
         const Vec2 n = glm::normalize(Vec2{-dense_slope(x), 1.0});
         path.push_back(Vec2{x, dense_height(x)} + (0.026 - 0.001) * n);
     }
+    return path;
+}
+
+void BM_ProxyTickDense(benchmark::State& state) {
+    const int segments = static_cast<int>(state.range(0));
+    const Environment env = build_environment(dense_scene(segments));
+    Proxy proxy(env, ProxyDef{});
+    const int stroke_ticks = static_cast<int>(state.range(1));  // over the 0.2 m stroke
+    const std::vector<Vec2> path = dense_stroke(stroke_ticks);
     proxy.reset(path[0] + Vec2{0.0, 0.05}, 0.0);
     std::size_t k = 0;
     double warm = 0.0, gathered = 0.0, pieces = 0.0, steps = 0.0, ticks = 0.0;
@@ -140,22 +152,9 @@ BENCHMARK(BM_ProxyTickDense)
 // the proxy's pieces each time.)
 void BM_ServoTickDense(benchmark::State& state) {
     const int segments = static_cast<int>(state.range(0));
-    Scene scene;
-    Contour c;
-    for (int i = 0; i < segments; ++i) {
-        const double x0 = 0.4 * i / segments, x1 = 0.4 * (i + 1) / segments;
-        c.segments.push_back(LineSegment{{x0, dense_height(x0)}, {x1, dense_height(x1)}});
-    }
-    scene.contours.push_back(c);
     ServoTick servo(ServoConfig{}, ServoParams{});
-    servo.scenes().publish(std::make_unique<ServoScene>(scene));
-    std::vector<Vec2> path;
-    constexpr int kStrokeTicks = 4000;  // 5 cm/s
-    for (int k = 0; k < kStrokeTicks; ++k) {
-        const double x = 0.1 + 0.2 * k / kStrokeTicks;
-        const Vec2 n = glm::normalize(Vec2{-dense_slope(x), 1.0});
-        path.push_back(Vec2{x, dense_height(x)} + (0.026 - 0.001) * n);
-    }
+    servo.scenes().publish(std::make_unique<ServoScene>(dense_scene(segments)));
+    const std::vector<Vec2> path = dense_stroke(4000);  // 5 cm/s
     ServoInput in;
     in.finger = path[0] + Vec2{0.0, 0.05};
     servo.connect(0.0);
