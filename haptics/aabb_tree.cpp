@@ -107,10 +107,6 @@ int AabbTree::build(const std::vector<Aabb>& boxes, const std::vector<NormalCone
 }
 
 namespace {
-bool box_holds(const Aabb& outer, const Aabb& inner) {
-    return inner.lo.x > inner.hi.x || inner.lo.y > inner.hi.y ||  // an empty box fits anywhere
-           (outer.lo.x <= inner.lo.x && outer.lo.y <= inner.lo.y && outer.hi.x >= inner.hi.x && outer.hi.y >= inner.hi.y);
-}
 bool cone_holds(const NormalCone& outer, const NormalCone& inner) {
     if (inner.width < 0.0 || outer.width >= kTwoPi) return true;
     if (outer.width < 0.0) return false;
@@ -145,10 +141,10 @@ bool AabbTree::consistent(const std::vector<Aabb>& item_boxes) const {
         }
         for (int k = range.first; k < range.second && ok; ++k) {
             const auto at = static_cast<std::size_t>(k);
-            ok = box_holds(n.box, item_boxes[static_cast<std::size_t>(items_[at])]);
+            ok = n.box.contains(item_boxes[static_cast<std::size_t>(items_[at])]);
             if (has_offsets_)  // the per-item arrays are in leaf order
-                ok = ok && box_holds(n.box, item_boxes_[at]) && box_holds(n.offset.outer, item_offsets_[at].outer) &&
-                     box_holds(n.offset.inner, item_offsets_[at].inner) && cone_holds(n.normals, item_normals_[at]);
+                ok = ok && n.box.contains(item_boxes_[at]) && n.offset.outer.contains(item_offsets_[at].outer) &&
+                     n.offset.inner.contains(item_offsets_[at].inner) && cone_holds(n.normals, item_normals_[at]);
         }
         return range;
     };

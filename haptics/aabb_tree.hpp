@@ -44,6 +44,10 @@ struct Aabb {
         return glm::dot(d, d);
     }
     bool contains(Vec2 p) const { return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y; }
+    // Whether b lies inside this box (an empty b lies anywhere).
+    bool contains(const Aabb& b) const {
+        return b.lo.x > b.hi.x || b.lo.y > b.hi.y || (lo.x <= b.lo.x && lo.y <= b.lo.y && hi.x >= b.hi.x && hi.y >= b.hi.y);
+    }
     // The box grown by `by` (m) on every side.
     Aabb grown(double by) const { return {lo - Vec2(by), hi + Vec2(by)}; }
 };

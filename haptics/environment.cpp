@@ -87,7 +87,7 @@ void validate_index(const Environment& env, const std::vector<Aabb>& boxes, cons
                 const bool inner = piece.source == CPiece::Source::vertex_inner || piece.source == CPiece::Source::arc_inner;
                 const Aabb& bound = inner ? o.inner : o.outer;
                 if (piece.source == CPiece::Source::endpoint) continue;  // bounded by the pad's ends
-                inside = inside && bound.lo.x <= b.lo.x && bound.lo.y <= b.lo.y && bound.hi.x >= b.hi.x && bound.hi.y >= b.hi.y;
+                inside = inside && bound.contains(b);
             }
         }
     }

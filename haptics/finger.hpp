@@ -22,6 +22,7 @@ struct FingerShape {
     FingerKind kind = FingerKind::arc_pad;
     double radius = 0.026;  // R, m
     double length = 0.020;  // L, m (arc_pad only)
+    bool operator==(const FingerShape&) const = default;
 };
 
 inline FingerShape finger_from_def(const FingerDef& d) {

@@ -434,8 +434,7 @@ void Proxy::gather_near(Vec2 finger, double phi_from, double phi_to, double reac
 // cosines and arctangents were a tenth of a small scene's tick, and a device that does not turn
 // the finger keeps phi fixed.
 const PadFrame& Proxy::pad_frame(double phi) {
-    if (!(pad_frame_valid_ && pad_frame_.phi == phi && pad_frame_.finger.kind == def_.finger.kind &&
-          pad_frame_.finger.radius == def_.finger.radius && pad_frame_.finger.length == def_.finger.length)) {
+    if (!(pad_frame_valid_ && pad_frame_.phi == phi && pad_frame_.finger == def_.finger)) {
         pad_frame_ = make_pad_frame(def_.finger, phi);
         pad_frame_valid_ = true;
     }

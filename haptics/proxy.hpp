@@ -80,6 +80,10 @@ struct ProxyStages {
     double contact = 0.0;     // contacts, exact curve refinement, the force law, l_d
     double anticipate = 0.0;  // free space: the nearest piece and its l_d (seed 000 §3.2)
     double total() const { return gather + pieces + walk + contact + anticipate; }
+    ProxyStages& operator+=(const ProxyStages& o) {
+        gather += o.gather, pieces += o.pieces, walk += o.walk, contact += o.contact, anticipate += o.anticipate;
+        return *this;
+    }
 };
 
 struct ProxyOutput {
@@ -123,9 +127,7 @@ public:
     // law keeps them. (The servo passes its slewed Ke and clamp every tick; dropping the pieces
     // each time made a 10-segment servo tick cost 3x the proxy's own.)
     void set_def(const ProxyDef& def) {
-        if (def.finger.kind != def_.finger.kind || def.finger.radius != def_.finger.radius ||
-            def.finger.length != def_.finger.length)
-            built_valid_ = false;
+        if (def.finger != def_.finger) built_valid_ = false;
         def_ = def;
     }
 

@@ -55,11 +55,7 @@ Measured measure(const std::string& name, const Environment& env, const ProxyDef
             benchmark::DoNotOptimize(o->force);
             contacts += o->contact ? 1 : 0;
             ++ticks;
-            sum.gather += o->stages.gather;
-            sum.pieces += o->stages.pieces;
-            sum.walk += o->stages.walk;
-            sum.contact += o->stages.contact;
-            sum.anticipate += o->stages.anticipate;
+            sum += o->stages;
             if (++k == path.size()) {  // lift the finger back to the start
                 k = 0;
                 proxy.reset(path[0].x + Vec2{0.0, start_above}, path[0].phi);

@@ -53,11 +53,7 @@ TEST_CASE("profile: stages are timed only when asked, change nothing, and fit in
         over_wall += b.stages.total() > wall ? 1 : 0;
         ProxyStages& sum = b.contact ? contact_sum : free_sum;
         (b.contact ? contact_ticks : free_ticks) += 1;
-        sum.gather += b.stages.gather;
-        sum.pieces += b.stages.pieces;
-        sum.walk += b.stages.walk;
-        sum.contact += b.stages.contact;
-        sum.anticipate += b.stages.anticipate;
+        sum += b.stages;
     }
     CHECK(free_ticks == 200);
     CHECK(contact_ticks == 2000);
