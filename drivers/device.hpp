@@ -56,6 +56,9 @@ struct DeviceLimits {
     Vec2 axis_max_force{1.5, 1.5};      // N, per-axis saturation (after the magnitude clamp)
     double max_stable_stiffness = 2000; // N/m at 1 kHz (2 b / T for the declared damping)
     double damping = 1.0;               // N s/m, physical damping b at the finger (lower bound)
+    // kg, the lightest effective mass at the finger (lower bound); 0: not declared. A damper
+    // sampled at period T rings past 2 m / T: the passivity controller adds at most m / T.
+    double mass = 0.0;
     Aabb workspace;                     // m, where the finger centre can be
     double roller_min = -0.010;         // m, roller travel (if any)
     double roller_max = 0.010;          // m

@@ -57,9 +57,12 @@ void RecordWriter::write(const TickRecord& r) {
     const int state = static_cast<int>(r.state);
     if (out_.f) {
         std::fprintf(out_.f,
-                     "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d\n",
+                     "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d,",
                      r.t, r.finger.x, r.finger.y, r.phi, r.proxy.x, r.proxy.y, r.contact ? 1 : 0, r.depth, r.force.x,
                      r.force.y, r.l_d, r.roller_l, r.roller_target, r.period, r.roller_drive, state);
+        const EnergyTerms& e = r.energy;
+        std::fprintf(out_.f, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", e.hold, e.field, e.turn,
+                     e.edit, e.proxy, e.friction, e.damping, e.generated(), r.observer_energy, r.observer_margin);
     }
     if (rec_.f) {
         std::fprintf(rec_.f, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d,%d\n", r.t, r.finger.x, r.finger.y,

@@ -4,7 +4,8 @@
 //      t,x,y,phi,proxy_x,proxy_y,contact,depth,fx,fy,l_d
 //    then roller_l,roller_target,period,roller_drive,state
 //    (fx,fy: the force commanded to the device after safety; state: 0 idle, 1 arming, 2 ramping,
-//    3 engaged, 4 fault);
+//    3 engaged, 4 fault), then the tick's energy balance (J, haptics/energy_balance.hpp)
+//      e_hold,e_field,e_turn,e_edit,e_proxy,e_friction,e_damping,e_generated,observer_energy,observer_margin;
 //  * the recording (`--record`), format "contactlab recording v1": CSV with the header
 //      t,x,y,phi,roller_l,fx,fy,roller_drive,state,fault
 //    one row per tick: the device reading (t s, x y m, phi rad, roller_l m) and the command sent
@@ -25,7 +26,8 @@
 namespace contactlab::drivers {
 
 inline constexpr const char* kSimulateHeader =
-    "t,x,y,phi,proxy_x,proxy_y,contact,depth,fx,fy,l_d,roller_l,roller_target,period,roller_drive,state";
+    "t,x,y,phi,proxy_x,proxy_y,contact,depth,fx,fy,l_d,roller_l,roller_target,period,roller_drive,state,"
+    "e_hold,e_field,e_turn,e_edit,e_proxy,e_friction,e_damping,e_generated,observer_energy,observer_margin";
 inline constexpr const char* kRecordingHeader = "t,x,y,phi,roller_l,fx,fy,roller_drive,state,fault";
 
 struct RecordSummary {

@@ -17,6 +17,7 @@ ServoConfig servo_config_for(const Device& dev, double rate) {
     c.device_max_force = lim.max_force;
     c.axis_max = lim.axis_max_force;
     c.device_damping = lim.damping;
+    c.max_damping = lim.mass / c.period;  // N s/m: half a sampled damper's ringing bound 2 m / T
     c.has_roller = dev.capabilities().roller;
     c.roller_travel = {lim.roller_min, lim.roller_max};
     return c;
@@ -73,6 +74,9 @@ void ServoLoop::step(double wall_period, bool wait_for_ring) noexcept {
         rec.l_d = o.l_d;
         rec.roller_target = c.roller_target;
         rec.roller_drive = c.roller_drive;
+        rec.energy = tick_.energy_terms();
+        rec.observer_energy = tick_.observer().energy();
+        rec.observer_margin = tick_.observer().margin();
         rec.state = tick_.state();
         rec.fault = tick_.fault();
         if (!ring_->try_push(rec)) {

@@ -1,6 +1,7 @@
 // tick_record.hpp — one servo tick as recorded (plain data, pushed through an SPSC ring).
 #pragma once
 
+#include "haptics/energy_balance.hpp"
 #include "haptics/safety.hpp"
 #include "haptics/vec2.hpp"
 
@@ -22,6 +23,9 @@ struct TickRecord {
     double l_d = 0.0;            // m
     double roller_target = 0.0;  // m
     double roller_drive = 0.0;   // V (sim) or device units
+    EnergyTerms energy;          // J, the tick's energy balance (haptics/energy_balance.hpp)
+    double observer_energy = 0.0;  // J, the passivity observer's sum after this tick
+    double observer_margin = 0.0;  // J, what the loop may still generate before a report
     ServoState state = ServoState::idle;
     ServoFault fault = ServoFault::none;
 };

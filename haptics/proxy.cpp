@@ -279,6 +279,8 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
     out_.finger = finger;
     out_.phi = phi;
     out_.proxy = proxy_;
+    out_.start = start;
+    out_.turned = turned_;
     if (proxy_ != finger) {
         collect_contacts(finger);
         refine_on_curves(finger);  // may move out_.proxy onto the exact curve
@@ -344,6 +346,7 @@ void Proxy::move_proxy(Vec2 finger, double phi, double turn, double max_push, Ve
         work_.rotation_steps = 0;
         build_pieces(phi);
     }
+    turned_ = proxy_;
     // Group and run boxes of the final pieces only: the walk is the one user. A finger resting
     // or sliding slowly on a small scene keeps last tick's pieces, and their boxes.
     if (pieces_changed_) {

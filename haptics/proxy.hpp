@@ -90,6 +90,13 @@ struct ProxyOutput {
     Vec2 finger{0.0};         // x_f as measured, m
     double phi = 0.0;         // rad
     Vec2 proxy{0.0};          // x_fd, m
+    // Where this update moved the proxy from (m): its position at the start of the tick, and
+    // after the finger angle's re-projection, before the walk toward the finger. With phi
+    // unchanged `turned` is `start`. The servo's energy balance (haptics/energy_balance.hpp)
+    // charges the spring energy the turn adds to the hand that turned the finger, and holds the
+    // walk (turned -> proxy) to the god-object's promise: it never raises that energy.
+    Vec2 start{0.0};
+    Vec2 turned{0.0};
     bool contact = false;
     double depth = 0.0;       // |x_fd - x_f| in contact, else 0 (m)
     Vec2 force{0.0};          // on the finger, N (clamped)
@@ -185,6 +192,7 @@ private:
     const Environment* env_;
     ProxyDef def_;
     Vec2 proxy_{0.0};
+    Vec2 turned_{0.0};  // m: the proxy after the last move_proxy's re-projection (ProxyOutput::turned)
     double phi_ = 0.0;
     bool initialised_ = false;
     int active_[2] = {-1, -1};

@@ -90,36 +90,16 @@ double SafetySupervisor::step(double t) noexcept {
     return 0.0;
 }
 
-bool PassivityObserver::step(Vec2 x, Vec2 f_prev, double stored, double dt, bool linear) noexcept {
-    if (!is_finite(x) || !is_finite(f_prev) || !std::isfinite(stored) || !(dt > 0.0)) {
+bool PassivityObserver::step(double generated, double dt, bool linear) noexcept {
+    if (!std::isfinite(generated) || !(dt > 0.0)) {
         reset();
         return false;
     }
-    if (primed_) {
-        const Vec2 dx = x - prev_x_;
-        // Energy delivered to the finger by the held force, plus energy released by the spring:
-        // for an ideal continuous spring these cancel; sampling makes their sum positive.
-        const double delivered = glm::dot(f_prev, dx);
-        const double generated = delivered + (stored - prev_stored_);
-        // The device's damping b (N s/m) dissipates b v^2 (W) in every direction, but only the
-        // motion along the spring's line of action can pay for what the spring generates: motion
-        // across it (sliding, driven by the hand) would credit the loop with dissipation the hand
-        // pays for and hide a bounce along the normal (seen at 100 Hz while sliding at 0.19 m/s:
-        // -8 mJ of credit against a 1.5 N bounce). So dx is taken along the last force's
-        // direction n (kept through free flight between contacts); before any force, whole.
-        if (glm::dot(f_prev, f_prev) > 0.0) normal_ = f_prev / glm::length(f_prev);
-        const double along = glm::dot(normal_, dx);  // m
-        const double dx2 = glm::dot(normal_, normal_) > 0.0 ? along * along : glm::dot(dx, dx);  // m^2
-        const double dissipated = p_.device_damping * dx2 / dt;
-        const double keep = std::exp(-dt / std::max(p_.leak, dt));
-        energy_ = energy_ * keep + generated - dissipated;
-        linear_energy_ *= keep;
-        if (linear && prev_linear_) linear_energy_ += generated - dissipated;
-    }
-    prev_x_ = x;
-    prev_stored_ = stored;
+    const double keep = std::exp(-dt / std::max(p_.leak, dt));
+    energy_ = energy_ * keep + generated;
+    linear_energy_ *= keep;
+    if (linear && prev_linear_) linear_energy_ += generated;
     prev_linear_ = linear;
-    primed_ = true;
     return energy_ > p_.threshold || linear_energy_ > p_.threshold;
 }
 

@@ -75,13 +75,14 @@ private:
     bool clear_requested_ = false;
 };
 
-// Passivity observer (after Hannaford & Ryu) for a sampled virtual environment rendered through a
-// device with physical damping b (N s/m). Per tick it adds the energy the zero-order-held force
-// delivered to the finger, F_{k-1} . (x_k - x_{k-1}), plus the drop in the spring's stored energy,
-// and subtracts what the device's damping dissipated over the interval along the spring's line of
-// action n, b (n . dx)^2 / T (motion across it is the hand's, see safety.cpp). A passive
-// loop keeps the sum at or below zero; a loop above the discrete bound K < 2b/T makes it grow
-// every oscillation. The sum leaks with time constant `leak` so slow numerical drift is forgotten.
+// Passivity observer (after Hannaford & Ryu 2002) for a sampled virtual environment rendered
+// through a device with physical damping b (N s/m). Per tick it adds the energy the loop itself
+// generated (haptics/energy_balance.hpp: the zero-order hold, the anisotropic field, the proxy's
+// walk and friction, less what the device's damping dissipated along the spring's line of
+// action; the hand's work through the finger angle and the user's scene edits are not the loop's
+// and are left out). A passive loop keeps the sum at or below zero; a loop above the discrete bound
+// K < 2b/T makes it grow every oscillation. The sum leaks with time constant `leak` so slow
+// numerical drift is forgotten.
 //
 // A second sum counts only the intervals spent wholly in the spring's linear range (in contact,
 // force below the clamp). Past the bound a loop can settle into a limit cycle that bounces between
@@ -89,7 +90,6 @@ private:
 // it elsewhere, so the whole-cycle sum stays near zero and cannot see it; the linear-range sum
 // grows by (K T / 2 - b) v^2 T a tick in those crossings and does.
 struct PassivityParams {
-    double device_damping = 1.0;   // b, N s/m (from the device's declared limits)
     double threshold = 2e-3;       // J of net generated energy that counts as unstable
     double leak = 0.5;             // s
 };
@@ -97,32 +97,31 @@ struct PassivityParams {
 class PassivityObserver {
 public:
     void set_params(const PassivityParams& p) noexcept { p_ = p; }
+    const PassivityParams& params() const noexcept { return p_; }
     void reset() noexcept {
         energy_ = linear_energy_ = 0.0;
-        primed_ = prev_linear_ = false;
-        normal_ = Vec2{0.0};
+        prev_linear_ = false;
     }
-    // x: finger position (m) now; f_prev: force (N) applied since the last tick; stored: the
-    // spring's stored energy (J) now; dt: period (s); linear: in contact with the force below the
-    // clamp now. Returns true once either sum passes the threshold.
-    bool step(Vec2 x, Vec2 f_prev, double stored, double dt, bool linear = false) noexcept;
-    // The spring's stored energy was scaled by `factor` without any motion (the safety ramp turning
-    // the force up on a finger at rest): rescales the previous tick's value so the rise is not
-    // counted as energy the loop generated. Without it a ramp into a finger resting 5 mm deep
-    // (6 mJ at 1.5 N) read as an instability and faulted the servo it was bringing back.
-    void rescale_stored(double factor) noexcept { prev_stored_ *= factor; }
+    // generated: the energy (J) the loop generated over the last period dt (s) (negative when it
+    // dissipated); linear: in contact with the force below the clamp now. Returns true once either
+    // sum passes the threshold. Non-finite input resets the sums and returns false.
+    bool step(double generated, double dt, bool linear = false) noexcept;
+    // Takes `dissipated` (J, >= 0) off both sums: what a passivity controller's added damping
+    // dissipated this tick (haptics/passivity_controller.hpp).
+    void credit(double dissipated) noexcept {
+        energy_ -= dissipated;
+        if (prev_linear_) linear_energy_ -= dissipated;
+    }
     double energy() const noexcept { return energy_; }  // J
     double linear_energy() const noexcept { return linear_energy_; }  // J
+    // J: how much more the loop may generate before either sum reports (the observer's budget).
+    double margin() const noexcept { return p_.threshold - (energy_ > linear_energy_ ? energy_ : linear_energy_); }
 
 private:
     PassivityParams p_;
     double energy_ = 0.0;
     double linear_energy_ = 0.0;  // J
     bool prev_linear_ = false;
-    Vec2 prev_x_{0.0};
-    Vec2 normal_{0.0};         // unit: the spring's line of action (last non-zero force's direction)
-    double prev_stored_ = 0.0;
-    bool primed_ = false;
 };
 
 }  // namespace contactlab

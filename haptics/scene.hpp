@@ -6,6 +6,7 @@
 #pragma once
 
 #include "haptics/force_law.hpp"
+#include "haptics/passivity_controller.hpp"
 #include "haptics/vec2.hpp"
 
 #include <array>
@@ -76,6 +77,9 @@ struct ForceDef {
     double stiffness = 1000.0;  // Ke, N/m (spring)
     double max_force = 1.5;     // N; the magnitude is clamped here, direction kept (seed 000)
     ForceLaw law;               // model, ellipsoid stiffnesses, damping, friction (force_law.hpp)
+    // A loop that generates energy (too stiff for the device and rate): fault and ramp back, or
+    // the passivity controller's damping (haptics/passivity_controller.hpp). "passivity" in JSON.
+    PassivityMode passivity = PassivityMode::fault;
 };
 
 // Switches the force model keeping the stiffness the user feels pressing straight in: to the

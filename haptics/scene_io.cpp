@@ -193,13 +193,13 @@ Scene read_scene(const json& root) {
         expect_object(f, "force");
         const std::string model = read_string(f, "force", "model");
         if (model == "spring") {
-            reject_unknown_keys(f, "force", {"model", "stiffness", "max_force", "damping", "friction", "contacts"});
+            reject_unknown_keys(f, "force", {"model", "stiffness", "max_force", "damping", "friction", "contacts", "passivity"});
             s.force.law.model = ForceModel::spring;
             s.force.stiffness = read_number(f, "force", "stiffness");
         } else if (model == "ellipsoid") {
             // Either the two stiffnesses, or seed 004's eccentricity and total stiffness.
             reject_unknown_keys(f, "force", {"model", "k_tangential", "k_normal", "eccentricity", "total_stiffness",
-                                             "total_stiffness_formula", "field_angle", "max_force", "damping", "friction",
+                                             "total_stiffness_formula", "field_angle", "max_force", "damping", "friction", "passivity",
                                              "contacts"});
             if (f.contains("field_angle")) s.force.law.field_angle = read_number(f, "force", "field_angle");
             s.force.law.model = ForceModel::ellipsoid;
@@ -237,6 +237,14 @@ Scene read_scene(const json& root) {
                 s.force.law.contacts = ContactForce::sum;
             } else if (contacts != "proxy") {
                 fail("force.contacts", "unknown contact force \"" + contacts + "\" (expected \"proxy\" or \"sum\")");
+            }
+        }
+        if (f.contains("passivity")) {
+            const std::string mode = read_string(f, "force", "passivity");
+            if (mode == "control") {
+                s.force.passivity = PassivityMode::control;
+            } else if (mode != "fault") {
+                fail("force.passivity", "unknown passivity mode \"" + mode + "\" (expected \"fault\" or \"control\")");
             }
         }
         if (auto fr = f.find("friction"); fr != f.end()) {
@@ -571,6 +579,7 @@ std::string scene_to_json_text(const Scene& s) {
     }
     if (law.damping != 0.0) root["force"]["damping"] = law.damping;
     if (law.contacts == ContactForce::sum) root["force"]["contacts"] = "sum";
+    if (s.force.passivity == PassivityMode::control) root["force"]["passivity"] = "control";
     if (law.mu_static != 0.0 || law.mu_dynamic != 0.0)
         root["force"]["friction"] = {{"static", law.mu_static}, {"dynamic", law.mu_dynamic}};
     root["contact_location"] = {

@@ -25,13 +25,6 @@ bool finite_input(const ServoInput& in, bool roller) {
 
 }  // namespace
 
-double spring_energy(double depth, double k, double max_force) noexcept {
-    if (!(depth > 0.0) || !(k > 0.0)) return 0.0;
-    const double d_clamp = max_force / k;  // m: depth where the clamp starts
-    if (depth <= d_clamp) return 0.5 * k * depth * depth;
-    return 0.5 * k * d_clamp * d_clamp + max_force * (depth - d_clamp);
-}
-
 namespace {
 // The part of the device's roller travel (m) the servo may use: `length` (m) centred in it, or
 // all of it when length is 0 or longer than the device's.
@@ -69,6 +62,8 @@ std::string ServoTick::publish_params(const ServoParams& p) {
 void ServoTick::connect(double t) noexcept {
     safety_.connect(t);
     observer_.reset();
+    balance_.reset();
+    controller_.reset();
     limit_cycle_.reset();
     applied_ = Vec2{0.0};
 }
@@ -76,6 +71,8 @@ void ServoTick::connect(double t) noexcept {
 void ServoTick::disconnect() noexcept {
     safety_.disconnect();
     observer_.reset();
+    balance_.reset();
+    controller_.reset();
     limit_cycle_.reset();
     applied_ = Vec2{0.0};
     cmd_ = ServoCommand{};
@@ -95,6 +92,7 @@ void ServoTick::apply_params(double dt) noexcept {
         current_.roller = target_.roller;
         current_.safety = target_.safety;
         current_.passivity_threshold = target_.passivity_threshold;
+        current_.passivity = target_.passivity;
         current_.limit_cycle = target_.limit_cycle;
         limit_cycle_.set_params(target_.limit_cycle);
         current_.stiffness_slew = target_.stiffness_slew;
@@ -106,7 +104,7 @@ void ServoTick::apply_params(double dt) noexcept {
     const double linear_energy = current_.stiffness > 0.0
                                      ? current_.max_force * current_.max_force / (2.0 * current_.stiffness)
                                      : 0.0;
-    observer_.set_params({config_.device_damping, current_.passivity_threshold * linear_energy, 0.5});
+    observer_.set_params({current_.passivity_threshold * linear_energy, 0.5});
 }
 
 void ServoTick::seed_proxy(Vec2 proxy, double phi) noexcept {
@@ -139,6 +137,8 @@ void ServoTick::swap_scene(const ServoInput& in) noexcept {
 void ServoTick::fault_tick(const ServoInput& in, double dt, ServoFault f) noexcept {
     safety_.raise(f, std::isfinite(in.t) ? in.t : (std::isfinite(last_t_) ? last_t_ + dt : 0.0));
     observer_.reset();
+    balance_.reset();
+    controller_.reset();
     limit_cycle_.reset();
     roller_.reset(std::numeric_limits<double>::quiet_NaN());
     applied_ = Vec2{0.0};
@@ -165,6 +165,7 @@ const ServoCommand& ServoTick::tick(const ServoInput& in) noexcept {
     snap.roller_l = in.roller_l;
 
     const bool finite = finite_input(in, config_.has_roller);
+    const std::uint32_t swaps_before = scene_swaps_;
     if (finite) swap_scene(in);
 
     if (!finite) {
@@ -181,7 +182,9 @@ const ServoCommand& ServoTick::tick(const ServoInput& in) noexcept {
         def.stiffness = current_.stiffness;
         def.max_force = current_.max_force;
         proxy.set_def(def);
-        proxy_out_ = proxy.update(in.finger, in.phi);
+        // dt: the virtual damper's velocity is the change of depth over the real period (at the
+        // proxy's 1 ms default a 10 kHz servo rendered a tenth of the damping asked for).
+        proxy_out_ = proxy.update(in.finger, in.phi, dt);
 
         const Vec2 rendered = proxy_out_.force;
         const double rendered_mag = is_finite(rendered) ? glm::length(rendered) : 0.0;
@@ -199,17 +202,29 @@ const ServoCommand& ServoTick::tick(const ServoInput& in) noexcept {
             // loop generating energy (the spring "stores" what the motors never pushed).
             const double asked = scale * rendered_mag;  // N
             const double kept = asked > 0.0 ? std::min(1.0, glm::length(f) / asked) : 1.0;
-            const double stored = scale * kept * spring_energy(proxy_out_.depth, current_.stiffness, current_.max_force);
             const bool linear = proxy_out_.contact && proxy_out_.depth > 0.0 && kept > 1.0 - 1e-9 &&
                                 current_.stiffness * proxy_out_.depth < current_.max_force;
-            // The ramp scales the stored energy with the finger at rest: not the loop's doing.
-            if (last_scale_ > 0.0 && scale != last_scale_) observer_.rescale_stored(scale / last_scale_);
-            last_scale_ = scale;
-            const bool energy_grew = observer_.step(in.finger, applied_, stored, dt, linear);
+            // Where this tick's energy came from; the observer sums what the loop generated. The
+            // ramp's scale and the saturation's share weigh the spring's energy (both ticks' at
+            // this tick's share: a ramp turning the force up on a finger at rest is not the
+            // loop's doing; without that a ramp into a finger resting 5 mm deep, 6 mJ at 1.5 N,
+            // read as an instability and faulted the servo it was bringing back).
+            const EnergySample sample{in.finger, proxy_out_.start, proxy_out_.turned, proxy_out_.proxy,
+                                      proxy_out_.anchor, applied_, scale * kept, dt, scene_swaps_ != swaps_before};
+            energy_terms_ = balance_.step(sample, {def.law, current_.stiffness, current_.max_force, config_.device_damping});
+            const bool energy_grew = observer_.step(energy_terms_.generated(), dt, linear);
             // Armed where the sampled spring's hold outdoes the device's damping along its
             // weakest direction: K T / 2 > b (N s/m both), T the nominal period (s).
             const bool past_bound = 0.5 * current_.stiffness * config_.period > config_.device_damping;
             const bool cycling = limit_cycle_.step(in.t, glm::length(f), current_.max_force, past_bound);
+            // The passivity controller (an option): damp what the loop generated, along the
+            // spring's line, within the device's limit; the clamp still holds |F| <= max_force.
+            controller_.reset();
+            if (current_.passivity == PassivityMode::control && !energy_grew && !cycling) {
+                const double excess = std::max(observer_.energy(), observer_.linear_energy());  // J
+                const Vec2 damp = controller_.step(excess, balance_.motion(), balance_.line(), dt, config_.max_damping);
+                if (controller_.damping() > 0.0) f = clamp_then_saturate(f + damp, current_.max_force, config_.axis_max);
+            }
             if (energy_grew || cycling) {
                 instability_cause_ = energy_grew ? InstabilityCause::energy : InstabilityCause::limit_cycle;
                 fault_tick(in, dt, ServoFault::instability);
@@ -217,8 +232,10 @@ const ServoCommand& ServoTick::tick(const ServoInput& in) noexcept {
             }
         } else {
             observer_.reset();
+            balance_.reset();
+            controller_.reset();
+            energy_terms_ = EnergyTerms{};
             limit_cycle_.reset();
-            last_scale_ = 0.0;
         }
 
         cmd_.force = f;
@@ -257,6 +274,11 @@ const ServoCommand& ServoTick::tick(const ServoInput& in) noexcept {
     snap.stiffness = current_.stiffness;
     snap.max_force = current_.max_force;
     snap.observer_energy = observer_.energy();
+    snap.observer_linear_energy = observer_.linear_energy();
+    snap.observer_threshold = observer_.params().threshold;
+    snap.energy = energy_terms_;
+    snap.passivity_damping = controller_.damping();
+    snap.passivity_saturated = controller_.saturated();
     snap.oscillation_half_cycles = limit_cycle_.half_cycles();
     snap.instability_cause = instability_cause_;
     snap.state = safety_.state();

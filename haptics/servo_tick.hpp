@@ -11,7 +11,9 @@
 // or do I/O (tests/servo/test_no_alloc.cpp counts allocations over 100,000 ticks).
 #pragma once
 
+#include "haptics/energy_balance.hpp"
 #include "haptics/limit_cycle_detector.hpp"
+#include "haptics/passivity_controller.hpp"
 #include "haptics/roller_controller.hpp"
 #include "haptics/safety.hpp"
 #include "haptics/servo_scene.hpp"
@@ -39,6 +41,10 @@ struct ServoParams {
     // Net energy the loop may generate before it is called unstable, as a multiple of the most
     // the spring holds in its linear range, max_force^2 / (2 Ke) (1.1 mJ at 1.5 N, 1000 N/m).
     double passivity_threshold = 2.0;
+    // What a loop that generates energy gets: a fault (force to zero, ramp back; the default), or
+    // the passivity controller's added damping (haptics/passivity_controller.hpp), with a fault
+    // only when the device's damping limit (ServoConfig::max_damping) cannot hold the budget.
+    PassivityMode passivity = PassivityMode::fault;
     // Sustained force oscillation past the discrete bound (haptics/limit_cycle_detector.hpp): what
     // the energy sums cannot resolve when the spring's linear range is about one encoder count.
     LimitCycleParams limit_cycle;
@@ -57,6 +63,9 @@ struct ServoConfig {
     double device_max_force = 1.5;              // N, magnitude clamp
     Vec2 axis_max{1.5, 1.5};                    // N, per-axis saturation (after the clamp)
     double device_damping = 1.0;                // N s/m, for the passivity observer
+    // N s/m: the most damping the passivity controller may add (a sampled damper past about m / T
+    // rings; drivers/ derives it from the device's effective mass). 0: the controller cannot act.
+    double max_damping = 0.0;
     bool has_roller = true;
     RollerTravel roller_travel;                 // m
 };
@@ -95,7 +104,12 @@ struct ServoSnapshot {
     double roller_drive = 0.0;
     double stiffness = 0.0;         // N/m, Ke in effect (after slew)
     double max_force = 0.0;         // N in effect
-    double observer_energy = 0.0;   // J
+    double observer_energy = 0.0;   // J, the observer's whole-loop sum
+    double observer_linear_energy = 0.0;  // J, its linear-range sum
+    double observer_threshold = 0.0;      // J: either sum above this is an instability
+    EnergyTerms energy;             // J, this tick's balance (haptics/energy_balance.hpp)
+    double passivity_damping = 0.0; // N s/m the passivity controller added this tick
+    bool passivity_saturated = false;  // ... and it was capped at ServoConfig::max_damping
     int oscillation_half_cycles = 0;  // consecutive fast force half-cycles (limit-cycle detector)
     InstabilityCause instability_cause = InstabilityCause::none;  // of the last instability fault
     ServoState state = ServoState::idle;
@@ -118,6 +132,9 @@ public:
     void disconnect() noexcept;
     const ServoCommand& tick(const ServoInput& in) noexcept;
     const ProxyOutput& proxy_output() const noexcept { return proxy_out_; }
+    // This tick's energy balance (all zero while no force is applied).
+    const EnergyTerms& energy_terms() const noexcept { return energy_terms_; }
+    const PassivityObserver& observer() const noexcept { return observer_; }
     ServoState state() const noexcept { return safety_.state(); }
     ServoFault fault() const noexcept { return safety_.fault(); }
 
@@ -154,6 +171,9 @@ private:
     RollerController roller_;
     SafetySupervisor safety_;
     PassivityObserver observer_;
+    EnergyBalance balance_;
+    PassivityController controller_;
+    EnergyTerms energy_terms_;
     LimitCycleDetector limit_cycle_;
     InstabilityCause instability_cause_ = InstabilityCause::none;
     Seqlock<ServoSnapshot> snapshot_;
@@ -161,16 +181,11 @@ private:
     ProxyOutput proxy_out_;
     ServoCommand cmd_;
     Vec2 applied_{0.0};  // N, force commanded on the previous tick (held until now)
-    double last_scale_ = 0.0;  // the safety scale on the previous watched tick (0..1)
     double last_t_ = std::numeric_limits<double>::quiet_NaN();
     std::uint64_t ticks_ = 0;
     bool seeded_ = false;  // seed_proxy() was called: the first scene's proxy starts at seed_
     Vec2 seed_{0.0};
     double seed_phi_ = 0.0;
 };
-
-// Energy (J) stored in the rendered spring at penetration `depth` (m) with stiffness k (N/m) and
-// the force clamped at max_force (N): quadratic up to the clamp, linear beyond.
-double spring_energy(double depth, double k, double max_force) noexcept;
 
 }  // namespace contactlab

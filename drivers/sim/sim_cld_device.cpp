@@ -25,6 +25,8 @@ SimCldDevice::SimCldDevice(const SimCldParams& p, HandPath path)
     for (const PathSample& s : hand_.path().samples()) box.grow(s.x);
     limits_.damping = arm_.min_cartesian_damping(box.lo - Vec2{0.01}, box.hi + Vec2{0.01});
     limits_.max_stable_stiffness = 2.0 * limits_.damping / 1e-3;
+    // The endpoint's own mass bounds every direction's effective mass from below (the links add to it).
+    limits_.mass = p_.arm.endpoint_mass;
     limits_.roller_min = -roller_.half_travel();
     limits_.roller_max = roller_.half_travel();
 }

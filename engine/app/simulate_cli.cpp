@@ -32,7 +32,8 @@ void register_simulate_command(CLI::App& app, int& rc) {
     auto* r = cmd->add_flag("--realtime", real_time, "Real time: a servo thread at the rate, with period statistics");
     v->excludes(r);
     cmd->add_option("--output,-o", o.output,
-                    "Per-tick CSV: t,x,y,phi,proxy_x,proxy_y,contact,depth,fx,fy,l_d,roller_l,roller_target,period,roller_drive,state")
+                    "Per-tick CSV: t,x,y,phi,proxy_x,proxy_y,contact,depth,fx,fy,l_d,roller_l,roller_target,period,roller_drive,state,"
+                    "e_hold,e_field,e_turn,e_edit,e_proxy,e_friction,e_damping,e_generated,observer_energy,observer_margin (J)")
         ->required();
     cmd->add_option("--record", o.record, "Also record every tick (contactlab recording v1) for --device replay:FILE");
     cmd->add_option("--json", o.json, "Wearable tasks: write the summary (rise_time_s, steady_error_pct, bandwidth_hz, "

@@ -189,6 +189,7 @@ int run_simulate(const SimulateOptions& o) {
     ServoParams params;
     params.stiffness = scene.force.stiffness;
     params.max_force = scene.force.max_force;
+    params.passivity = scene.force.passivity;
     params.safety.watchdog_timeout = watchdog_timeout_for(o.rate);
     ServoConfig config = servo_config_for(*dev, o.rate);
     if (o.roller_travel_set) config.roller_travel = software_roller_travel(*dev, config, o.roller_travel);

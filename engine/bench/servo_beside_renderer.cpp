@@ -37,6 +37,7 @@ ServoPeriodFigures run_servo(int core, double seconds, std::string& scheduling, 
     ServoParams params;
     params.stiffness = scene.force.stiffness;
     params.max_force = scene.force.max_force;
+    params.passivity = scene.force.passivity;
     ServoTick tick(servo_config_for(dev, kRate), params);
     tick.scenes().publish(std::make_unique<ServoScene>(scene));
     ServoLoop loop(dev, tick, 1.0 / kRate, nullptr);

@@ -19,6 +19,8 @@ CursorCldDevice::CursorCldDevice(const CursorCldParams& p, const MousePose& star
     // declares it over its hand path's box: it bounds the stable stiffness 2 b / T at 1 kHz.
     limits_.damping = arm_.min_cartesian_damping(start.finger - Vec2{0.05}, start.finger + Vec2{0.05});
     limits_.max_stable_stiffness = 2.0 * limits_.damping / 1e-3;
+    // The endpoint's own mass bounds every direction's effective mass from below (the links add to it).
+    limits_.mass = arm_.params().endpoint_mass;
     limits_.roller_min = -roller_.half_travel();
     limits_.roller_max = roller_.half_travel();
 }

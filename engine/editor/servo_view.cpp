@@ -30,12 +30,14 @@ ServoParams servo_params_for(const Scene& scene, const RollerGains& roller, doub
     p.safety.watchdog_timeout = watchdog_timeout;  // s
     p.stiffness = scene.force.stiffness;  // N/m
     p.max_force = scene.force.max_force;  // N
+    p.passivity = scene.force.passivity;
     p.roller = roller;
     return p;
 }
 
 bool same_params(const ServoParams& a, const ServoParams& b) {
-    return a.stiffness == b.stiffness && a.max_force == b.max_force && a.roller.kp == b.roller.kp &&
+    return a.stiffness == b.stiffness && a.max_force == b.max_force && a.passivity == b.passivity &&
+           a.roller.kp == b.roller.kp &&
            a.roller.ki == b.roller.ki && a.roller.kd == b.roller.kd && a.roller.max_drive == b.roller.max_drive &&
            a.roller.d_cutoff_hz == b.roller.d_cutoff_hz && a.roller.kff == b.roller.kff &&
            a.roller.ff_cutoff_hz == b.roller.ff_cutoff_hz &&

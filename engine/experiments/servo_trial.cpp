@@ -19,6 +19,7 @@ TrialTrace run_servo_trial(const Scene& scene, const drivers::HandPath& path, bo
     ServoParams params;
     params.stiffness = scene.force.stiffness;
     params.max_force = scene.force.max_force;
+    params.passivity = scene.force.passivity;
     if (!contact_location) params.roller_travel = 1e-9;  // m: the element held at the pad's centre
     const ServoConfig config = drivers::servo_config_for(dev, kTrialRate);
     ServoTick tick(config, params);

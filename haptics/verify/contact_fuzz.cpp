@@ -1,6 +1,7 @@
 // contact_fuzz.cpp — the proxy against the brute-force reference (see contact_fuzz.hpp).
 #include "haptics/verify/contact_fuzz.hpp"
 
+#include "haptics/bezier.hpp"
 #include "haptics/environment.hpp"
 #include "haptics/proxy.hpp"
 #include "haptics/verify/solid_reference.hpp"
@@ -18,6 +19,7 @@ const char* to_string(Violation v) {
         case Violation::contact_lost: return "contact_lost";
         case Violation::too_shallow: return "too_shallow";
         case Violation::force_mismatch: return "force_mismatch";
+        case Violation::energy_raised: return "energy_raised";
     }
     return "?";
 }
@@ -38,6 +40,8 @@ void merge(FuzzReport& into, const FuzzReport& r, int keep) {
     for (int k = 0; k < kViolationKinds; ++k) into.violations[static_cast<std::size_t>(k)] += r.violations[static_cast<std::size_t>(k)];
     into.max_proxy_penetration = std::max(into.max_proxy_penetration, r.max_proxy_penetration);
     into.max_hand_depth = std::max(into.max_hand_depth, r.max_hand_depth);
+    into.max_walk_distance_gain = std::max(into.max_walk_distance_gain, r.max_walk_distance_gain);
+    into.same_angle_rows += r.same_angle_rows;
     for (const FuzzFailure& f : r.failures)
         if (static_cast<int>(into.failures.size()) < keep) into.failures.push_back(f);
 }
@@ -52,9 +56,22 @@ FuzzReport run_contact_case(const ContactCase& c, int rows, int keep_failures) {
     const double R = c.scene.finger.radius, L = c.scene.finger.length;  // m
     const double ke = c.scene.force.stiffness;                          // N/m
     const int n = std::min(rows, static_cast<int>(c.path.size()));
+    Vec2 last_proxy{0.0};
+    double last_phi = 0.0;
+    const bool exact_curves = !env.curves.empty() && c.scene.curves.mode == CurveMode::exact;
+    const double energy_slack = kEnergyDistanceSlack + (exact_curves ? 2.0 * kExactCurveTolerance : 0.0);  // m
     for (int row = 0; row < n; ++row) {
         const HandSample& h = c.path[static_cast<std::size_t>(row)];
         const ProxyOutput& out = proxy.update(h.finger, h.phi);
+        // The walk's energy: the previous proxy (the same angle) or the turn's (a new one) is the
+        // walk's start; the spring's energy is monotone in |x - x_fd|.
+        const bool same_angle = row > 0 && h.phi == last_phi;
+        const Vec2 walk_start = same_angle ? last_proxy : out.turned;
+        const double gain = glm::length(h.finger - out.proxy) - glm::length(h.finger - walk_start);  // m
+        rep.same_angle_rows += same_angle ? 1 : 0;
+        if (row > 0) rep.max_walk_distance_gain = std::max(rep.max_walk_distance_gain, gain);
+        last_proxy = out.proxy;
+        last_phi = h.phi;
         ++rep.rows;
         const double hand = ref.pad_depth(h.finger, h.phi, R, L, kReferenceResolution).depth;  // m
         rep.max_hand_depth = std::max(rep.max_hand_depth, hand);
@@ -81,6 +98,7 @@ FuzzReport run_contact_case(const ContactCase& c, int rows, int keep_failures) {
         }
         if (out.contact && glm::length(out.force - ke * (out.proxy - h.finger)) > 1e-9 * ke * std::max(out.depth, 1e-3))
             fail(Violation::force_mismatch);
+        if (row > 0 && gain > energy_slack) fail(Violation::energy_raised);
     }
     return rep;
 }

@@ -8,7 +8,15 @@
 //                    not in contact (the surface was lost: the finger fell through);
 //   too_shallow      ... in contact, but the proxy is nearer the hand than the hand's pad is deep
 //                    (the reference's depth minus the proxy's allowance): the proxy sits inside;
-//   force_mismatch   in contact, the force is not Ke (x_fd - x_f) (the frictionless spring).
+//   force_mismatch   in contact, the force is not Ke (x_fd - x_f) (the frictionless spring);
+//   energy_raised    the proxy's walk raised the spring's energy at the new finger position: a
+//                    god-object moves along the constraint toward the finger, so with the finger
+//                    angle unchanged |x_k - x_fd,k| <= |x_k - x_fd,k-1| (the previous row's proxy),
+//                    and after a turn no further than where the turn's re-projection left it
+//                    (ProxyOutput::turned). Tolerance kEnergyDistanceSlack, plus on exact curves
+//                    twice kExactCurveTolerance: the walk runs on the curve's arc spline and each
+//                    tick's output is then refined onto the true curve (Proxy::refine_on_curves),
+//                    so two outputs each sit up to that far from the spline the walk minimised on.
 #pragma once
 
 #include "haptics/verify/random_contact_scenes.hpp"
@@ -25,8 +33,13 @@ inline constexpr double kMaxProxyPenetration = 1e-7;  // m: the proxy's pad may 
 inline constexpr double kHandInside = 1e-5;           // m: a hand pad deeper than this must be in contact
 inline constexpr double kReferenceResolution = 1e-8;  // m: the pad search's resolution
 
-enum class Violation : int { pad_inside, contact_lost, too_shallow, force_mismatch };
-inline constexpr int kViolationKinds = 4;
+// m: how much further from the finger than before the walk may leave the proxy: the proxy's own
+// "on a piece" tolerance (kOnTolerance in proxy.cpp), far below any force a hand feels (1e-6 N at
+// 1000 N/m).
+inline constexpr double kEnergyDistanceSlack = 1e-9;
+
+enum class Violation : int { pad_inside, contact_lost, too_shallow, force_mismatch, energy_raised };
+inline constexpr int kViolationKinds = 5;
 const char* to_string(Violation v);
 
 struct FuzzFailure {
@@ -50,6 +63,10 @@ struct FuzzReport {
     std::array<std::int64_t, kViolationKinds> violations{};
     double max_proxy_penetration = 0.0;  // m, over every row in contact
     double max_hand_depth = 0.0;         // m, the deepest the hands went
+    // m: the largest amount the walk moved the proxy further from the finger (energy_raised's
+    // measure; <= 0 when every walk moved it closer or kept it).
+    double max_walk_distance_gain = -1.0;
+    std::int64_t same_angle_rows = 0;    // rows checked against the previous proxy (phi unchanged)
     std::vector<FuzzFailure> failures;   // the first failure of the first few failing cases, in case order
     std::int64_t total_violations() const;
 };
