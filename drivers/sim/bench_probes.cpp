@@ -11,6 +11,8 @@
 #include <cmath>
 #include <deque>
 #include <limits>
+#include <memory>
+#include <utility>
 
 namespace contactlab::drivers::sim {
 
@@ -75,22 +77,87 @@ PressResult press_floor(double stiffness, double rate, double hand_damping, doub
     return r;
 }
 
+bool ripple_settled(double pp_third, double pp_fourth) {
+    return pp_fourth < kSettledRipple || pp_fourth < 0.9 * pp_third;
+}
+
 double largest_stable_k(double rate, double lo, double hi, bool settled, bool ideal, double resolution) {
-    auto holds = [&](double k) {
+    return bisect_largest(lo, hi, resolution, [&](double k) {
         const PressResult r = ideal ? press_floor(k, rate, 0.0, 1.0, 1 << 24, 0.0, false) : press_floor(k, rate, 0.0, 1.0);
         // Settled: what oscillation is left is small, or dying out (a loop past the bound grows
         // into a limit cycle at the force clamp and stays there).
-        const bool dying = r.pp_fourth < kSettledRipple || r.pp_fourth < 0.9 * r.pp_third;
-        return r.opened && !r.faulted && r.finite && r.max_speed < kRunawaySpeed && (!settled || dying);
-    };
-    if (!holds(lo)) return 0.0;
-    if (holds(hi)) return hi;
-    // On log K: the bound spans decades across rates, and a ratio is what the table reports.
-    while (hi / lo > resolution) {
-        const double mid = std::sqrt(lo * hi);
-        (holds(mid) ? lo : hi) = mid;
+        return r.opened && !r.faulted && r.finite && r.max_speed < kRunawaySpeed &&
+               (!settled || ripple_settled(r.pp_third, r.pp_fourth));
+    });
+}
+
+DamperResponse damper_response(double damping, double rate) {
+    const double T = 1.0 / rate;  // s
+    const double K = 100.0;       // N/m: soft, so the spring's part stays far under the clamp
+    const double d1 = 0.002, d2 = 0.00201;  // m, depths: held, then 10 um deeper in one tick
+    Scene scene = floor_scene(K);
+    scene.force.law.damping = damping;
+    ServoConfig config;
+    config.period = T;
+    config.has_roller = false;
+    ServoParams params;
+    params.stiffness = K;
+    params.stiffness_slew = 1e9;
+    params.safety.watchdog_timeout = SimRig::watchdog_for(rate);
+    ServoTick servo(config, params);
+    servo.scenes().publish(std::make_unique<ServoScene>(scene));
+    servo.connect(0.0);
+    const double R = scene.finger.radius;  // m
+    // Free space; first contact (a contact's first tick has no previous depth: no damping); held
+    // at d1; moved to d2; held at d2.
+    const double ys[] = {R + 0.005, R - d1, R - d1, R - d2, R - d2};
+    double damper[5] = {};  // N along the normal (+y): the force less the spring's K d
+    for (int k = 0; k < 5; ++k) {
+        ServoInput in;
+        in.t = k * T;
+        in.finger = {0.0, ys[k]};
+        servo.tick(in);
+        damper[k] = servo.snapshot().rendered_force.y - K * (R - ys[k]);
     }
-    return lo;
+    return {damper[3] * T / (d2 - d1), damper[4]};
+}
+
+double effective_damping(double damping, double rate) { return damper_response(damping, rate).applied; }
+
+ZWidthRow zwidth_row(double rate, double damping, double resolution) {
+    ZWidthRow row;
+    row.rate_hz = rate;
+    row.damping = damping;
+    row.resolution = resolution;
+    row.damping_applied = effective_damping(damping, rate);
+    // The arm's damping along the normal and the declared one, read as the stability table does.
+    const PressResult probe = press_floor(100.0, rate, 0.0, 0.4);
+    row.b_normal = probe.b_normal;
+    row.b_declared = probe.b_declared;
+    row.bound_normal = 2.0 * (row.b_normal - std::abs(row.damping_applied)) * rate;
+    row.bound_declared = 2.0 * (row.b_declared - std::abs(row.damping_applied)) * rate;
+    // The stability table's bracket at this rate, so that at B = 0 the press repeats its bisection.
+    row.search_lo = 0.05 * 2.0 * row.b_normal * rate;
+    row.search_hi = 4.0 * 2.0 * row.b_normal * rate;
+    auto largest = [&](ContactScenario scenario, bool settled) {
+        return bisect_largest(row.search_lo, row.search_hi, resolution, [&](double k) {
+            ScenarioOptions opt;
+            opt.seconds = 1.0;
+            opt.damping = damping;
+            const ScenarioRun r = run_contact_scenario(scenario, rate, k, opt);
+            // Settled: held still, the stability table's test on |F| itself; sliding, the force
+            // follows the stroke, so the ripple about its 20 ms mean, and only its size (the last
+            // quarter's stroke is not the third's: a smaller ripple would not mean a dying one).
+            const bool calm = scenario == ContactScenario::press ? ripple_settled(r.pp_third, r.pp_fourth)
+                                                                 : r.ripple_fourth < kSettledRipple;
+            return r.opened && !r.faulted && r.finite && r.max_speed < kRunawaySpeed && (!settled || calm);
+        });
+    };
+    row.k_press = largest(ContactScenario::press, true);
+    row.k_slide = largest(ContactScenario::slide, true);
+    row.k_press_no_fault = largest(ContactScenario::press, false);
+    row.k_slide_no_fault = largest(ContactScenario::slide, false);
+    return row;
 }
 
 StabilityRow stability_row(double rate, double resolution) {
@@ -309,6 +376,22 @@ std::vector<StabilityRow> stability_table(bool quick) {
     std::vector<StabilityRow> rows;
     rows.reserve(rates.size());
     for (double rate : rates) rows.push_back(drivers::sim::stability_row(rate, resolution));
+    return rows;
+}
+
+std::vector<ZWidthRow> zwidth_table(bool quick) {
+    // N s/m. Full: finer where the passivity bound falls to 0 (B = b, 1.1-1.7 N s/m here), then on
+    // to 5. Quick keeps what shows the shape at 1 kHz (B = 0 for the stability table's figure, the
+    // fall of the settled K, and past b) and three at 10 kHz, where a bisection costs ten times as
+    // many ticks: 10 kHz rows are ~85 % of the table's time.
+    const std::vector<double> full = {0.0, 0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 5.0};
+    const std::vector<std::pair<double, std::vector<double>>> plan =
+        quick ? std::vector<std::pair<double, std::vector<double>>>{{1000.0, {0.0, 0.5, 1.0, 2.0, 5.0}},
+                                                                    {10000.0, {0.0, 1.0, 2.0}}}
+              : std::vector<std::pair<double, std::vector<double>>>{{1000.0, full}, {10000.0, full}};
+    std::vector<ZWidthRow> rows;
+    for (const auto& [rate, dampings] : plan)
+        for (const double b : dampings) rows.push_back(drivers::sim::zwidth_row(rate, b));
     return rows;
 }
 

@@ -16,6 +16,7 @@
 #include "haptics/roller_controller.hpp"
 #include "haptics/servo_tick.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -66,6 +67,56 @@ struct StabilityRow {
 // quick: 250 and 1000 Hz (the same rows as full's); full: 100, 250, 1000, 4000, 10000, 20000 Hz.
 // Bisection on log K to 2 %, bracket [0.05, 4] x passivity_bound at every rate.
 std::vector<StabilityRow> stability_table(bool quick);
+
+// ---- Z-width: largest stable K against the virtual damping B ----------------------------------
+// The stable region of the rig over the scene's stiffness K (N/m) and normal damping B (N s/m,
+// `force.damping`). The proxy (haptics/proxy.cpp) adds B (d_k - d_{k-1}) / dt along the contact
+// normal while in contact, d the depth under the sampled (encoder) finger position: a backward-
+// difference damper, as Colgate and Schenkel model it, but one-sided (it may cancel the spring's
+// push, never pull) and with dt = the proxy's default 1 ms whatever the rate, because the servo
+// tick does not pass its period: at rate R the damping applied is B x 1000 / R (`damping_applied`,
+// measured by damper_response(), so the rows follow if that changes).
+//
+// Theory, b the device's damping, T the period, B_a the damping applied: the loop is passive iff
+// b > K T / 2 + |B_a| (Colgate and Schenkel), K_max = 2 (b - |B_a|) / T, 0 from |B_a| = b; drawn
+// with b along the press's normal (`bound_normal`) and the declared b (`bound_declared`). Passivity
+// is sufficient, not necessary: to first order in T the held spring adds K T / 2 of negative
+// damping and the delayed damper B_a of positive, so the loop is *stable* up to 2 (b + B_a) / T
+// (Gil, Avello, Rubio and Florez 2004): the no-fault K at 1 kHz follows that. From 4 kHz up the
+// no-fault K sits at the declared 2 b / T, where the limit-cycle detector arms (its arming does
+// not count B) and reports the encoders' quantisation limit cycle.
+//
+// For each (rate, B) K is bisected (as in the stability table: on log K, bracket [0.05, 4] x
+// 2 b_normal / T, to `resolution`) in two contacts of drivers/sim/stability_probes.hpp, 1 s each,
+// no hand damping: `press` (2 mm into a floor and held) and `slide` (pressed 2 mm, then a 6 cm
+// stroke along the floor, up to 0.19 m/s). K holds with *no fault* when the device opened, every
+// force and position stayed finite, the finger under 1 m/s (no runaway) and the servo raised no
+// fault (its instability detectors: passivity observer and limit-cycle detector). It is *stable*
+// when it also settled: pressed, the commanded |F|'s peak-to-peak over the run's last quarter
+// below 0.1 N or below 0.9 x that over the quarter before (the stability table's "settles", so at
+// B = 0 k_press is its k_settles); sliding, the force follows the stroke, so the peak-to-peak of
+// |F| less its 20 ms centred mean over the last quarter below 0.1 N. The 0.1 N is also what the
+// encoders' counts (~18 um) put into the force through K and, as velocity steps of a count per
+// damper dt, through B: past B ~ 0.5 N s/m the settled K falls by 2 / dt per N s/m.
+struct ZWidthRow {
+    double rate_hz = 0;          // servo rate
+    double damping = 0;          // B, N s/m: the scene's force.damping
+    double damping_applied = 0;  // B_a, N s/m: the servo's force per m/s of sampled normal velocity
+    double k_press = 0;          // N/m, largest stable K pressed (search_hi: held even there;
+    double k_slide = 0;          //   0: not even search_lo), and sliding
+    double k_press_no_fault = 0; // N/m, largest K with no fault (settling not asked), pressed
+    double k_slide_no_fault = 0; //   and sliding
+    double b_normal = 0;         // N s/m, the arm's damping along the floor normal at the press point
+    double b_declared = 0;       // N s/m, what the device declares (its lowest over the press's box)
+    double bound_normal = 0;     // N/m, 2 (b_normal - |B_a|) / T; <= 0: no K is passive
+    double bound_declared = 0;   // N/m, 2 (b_declared - |B_a|) / T
+    double search_lo = 0;        // N/m, bisection bracket
+    double search_hi = 0;
+    double resolution = 0;       // ratio the bisection stops at (hi / lo)
+};
+// Rows per rate (1 kHz, then 10 kHz), B ascending. Full: B in {0, 0.25, 0.5, 0.75, 1, 1.5, 2, 3,
+// 5} N s/m at both rates; quick: {0, 0.5, 1, 2, 5} at 1 kHz and {0, 1, 2} at 10 kHz. 2 % bisection.
+std::vector<ZWidthRow> zwidth_table(bool quick);
 
 // ---- Roller tracking error vs PID gains and finger speed -------------------------------------
 // Seed 000's block task (drivers/tasks.hpp: along the top, over the corner, down the far face) on
@@ -188,6 +239,42 @@ StabilityRow stability_row(double rate, double resolution = 1.02);
 // A press held for `seconds` (s) at `ratio` x the passivity bound (along the normal) at `rate`
 // (Hz), classified (see AboveBoundOutcome).
 AboveBoundProbe above_bound_probe(double rate, double ratio, double seconds = 3.0);
+
+// Largest K in [lo, hi] (N/m) for which `holds` is true, by bisection on log K to a ratio of
+// `resolution`, `holds` assumed monotone: hi when even hi holds, 0 when lo does not (the bracket
+// was wrong: no answer rather than a wrong one).
+template <class Holds>
+double bisect_largest(double lo, double hi, double resolution, Holds&& holds) {
+    if (!holds(lo)) return 0.0;
+    if (holds(hi)) return hi;
+    // On log K: the bound spans decades across rates, and a ratio is what the tables report.
+    while (hi / lo > resolution) {
+        const double mid = std::sqrt(lo * hi);
+        (holds(mid) ? lo : hi) = mid;
+    }
+    return lo;
+}
+
+// A contact's force ripple has settled (N, peak-to-peak of the commanded force over a run's third
+// and last quarter): small (< 0.1 N, above the quantisation limit cycle of a stable spring: K
+// times a few encoder counts of ~18 um), or dying out (the last quarter's under 0.9 x the third's).
+bool ripple_settled(double pp_third, double pp_fourth);
+
+// What the servo's damper does, measured on a ServoTick at `rate` (Hz) with the scene's
+// force.damping = `damping` (N s/m): a soft floor (100 N/m), the finger held 2 mm in, moved 10 um
+// deeper in one tick, then held there; the proxy's force before safety.
+struct DamperResponse {
+    double applied = 0.0;    // N s/m: the force's damper part per m/s of sampled normal velocity,
+                             //   (x_k - x_{k-1}) / T; `damping` when it divides by the period
+    double after_stop = 0.0; // N: the damper part one tick after the finger stopped; 0 for a
+                             //   backward difference of the last two samples (a filter remembers)
+};
+DamperResponse damper_response(double damping, double rate);
+// damper_response(damping, rate).applied.
+double effective_damping(double damping, double rate);
+
+// One Z-width row at `rate` (Hz) and damping `damping` (N s/m); see ZWidthRow.
+ZWidthRow zwidth_row(double rate, double damping, double resolution = 1.02);
 
 struct BlockTracking {
     double max_measured = 0.0;  // m, |l_target - l_encoder|

@@ -32,6 +32,10 @@ struct ScenarioRun {
     double max_force_after_fault = 0.0;  // N, largest commanded after the fault (0: output zeroed)
     double max_speed = 0.0;       // m/s, fastest true finger speed
     double late_force_pp = 0.0;   // N, peak-to-peak of the commanded |F| over the last 0.5 s
+    double pp_third = 0.0;        // N, peak-to-peak of the commanded |F| over the run's third quarter
+    double pp_fourth = 0.0;       // N, and over its last quarter (is a ripple dying out?)
+    double ripple_fourth = 0.0;   // N, peak-to-peak over the last quarter of |F| less its 20 ms
+                                  //   centred mean (what the hand's motion does to |F| left out)
     bool finite = true;           // every force and finger reading finite
     double b_declared = 0.0;      // N s/m, the device's declared (lowest) damping
     double b_normal = 0.0;        // N s/m, the arm's damping along +y where the press ends
@@ -42,6 +46,7 @@ struct ScenarioOptions {
     double hand_damping = 0.0;    // N s/m: none, so the arm's b is all the damping there is
     double jitter = 0.0;          // each period T (1 + jitter u), u uniform in [-1, 1], seeded
     std::uint32_t seed = 1;
+    double damping = 0.0;         // B, N s/m: the scene's force.damping (the proxy's normal damper)
 };
 
 // Runs `scenario` with spring stiffness `stiffness` (N/m) at servo rate `rate` (Hz).

@@ -124,6 +124,75 @@ Chart stability_chart(const BenchResults& r) {
     return c;
 }
 
+// Z-width (Colgate and Brown's figure): the largest stable K against the virtual damping B, one
+// colour per servo rate. Measured (markers): pressed and sliding, stable (no fault and settled),
+// and no fault alone (the detectors quiet: where the loop itself is stable). Theory (lines, no
+// markers): Colgate and Schenkel's passivity bound 2 (b - |B_a|) / T with b along the normal
+// (dashed) and the declared b (thin dashed), and the first-order stability limit 2 (b + B_a) / T
+// (thin solid), B_a the damping the servo applies for the scene's B (ZWidthRow::damping_applied).
+// On the log K axis a bound is drawn down to kZWidthFloor, where it dives to 0 at |B_a| = b.
+constexpr double kZWidthFloor = 100.0;  // N/m
+
+Chart zwidth_chart(const BenchResults& r) {
+    Chart c = base_chart("Z-width: largest stable stiffness against virtual damping (simulated arm, 2 mm press)",
+                         "virtual damping B, scene force.damping (N s/m)", AxisScale::linear, "K (N/m)",
+                         AxisScale::log10);
+    c.x.include_zero = true;
+    std::vector<double> rates;
+    for (const ZWidthRow& z : r.zwidth)
+        if (std::find(rates.begin(), rates.end(), z.rate_hz) == rates.end()) rates.push_back(z.rate_hz);
+    int colour = 0;
+    for (const double rate : rates) {
+        char tag[32];
+        std::snprintf(tag, sizeof tag, rate >= 1000.0 ? "%g kHz" : "%g Hz", rate >= 1000.0 ? rate / 1000.0 : rate);
+        const std::string t = tag;
+        ChartSeries press = series(t + " press: stable", colour, Marker::disc);
+        ChartSeries slide = series(t + " slide: stable", colour, Marker::square);
+        ChartSeries no_fault = series(t + " press: no fault", colour, Marker::triangle, true, 1.5f);
+        ChartSeries passive = series(t + " passive: 2(b_n - B_a)/T", colour, Marker::none, true);
+        ChartSeries declared = series(t + " passive: 2(b_d - B_a)/T", colour, Marker::none, true, 1.0f);
+        ChartSeries stable = series(t + " stable: 2(b_n + B_a)/T", colour, Marker::none, false, 1.0f);
+        double b_max = 0.0, applied_per_b = 1.0, b_normal = 0.0, b_declared = 0.0;  // N s/m
+        for (const ZWidthRow& z : r.zwidth) {
+            if (z.rate_hz != rate) continue;
+            // 0: not even the bracket's low end held (drawn nowhere; the table says "<").
+            auto add = [&](ChartSeries& s, double k) {
+                if (k > 0.0) {
+                    s.x.push_back(z.damping);
+                    s.y.push_back(k);
+                }
+            };
+            add(press, z.k_press);
+            add(slide, z.k_slide);
+            add(no_fault, z.k_press_no_fault);
+            b_max = std::max(b_max, z.damping);
+            if (z.damping > 0.0) applied_per_b = z.damping_applied / z.damping;
+            b_normal = z.b_normal;
+            b_declared = z.b_declared;
+        }
+        // The lines, sampled finely (straight in B, curved on the log axis).
+        const int n = 200;
+        for (int i = 0; i <= n; ++i) {
+            const double b = b_max * i / n, ba = std::abs(applied_per_b * b);
+            const double k_passive = 2.0 * (b_normal - ba) * rate, k_declared = 2.0 * (b_declared - ba) * rate;
+            if (k_passive >= kZWidthFloor) {
+                passive.x.push_back(b);
+                passive.y.push_back(k_passive);
+            }
+            if (k_declared >= kZWidthFloor) {
+                declared.x.push_back(b);
+                declared.y.push_back(k_declared);
+            }
+            stable.x.push_back(b);
+            stable.y.push_back(2.0 * (b_normal + ba) * rate);
+        }
+        for (ChartSeries* s : {&press, &slide, &no_fault, &passive, &declared, &stable})
+            if (!s->x.empty()) c.series.push_back(std::move(*s));
+        ++colour;
+    }
+    return c;
+}
+
 // One colour per pole scale and feed-forward: the tracking max (outside the jumps of l_d) solid,
 // the max over every tick in contact (jumps included) dashed.
 Chart roller_chart(const BenchResults& r) {
@@ -183,6 +252,7 @@ std::vector<ReportChart> report_charts(const BenchResults& r) {
     }
     if (!r.pareto.empty()) charts.push_back({"pareto.png", pareto_chart(r)});
     if (!r.stability.empty()) charts.push_back({"stability.png", stability_chart(r)});
+    if (!r.zwidth.empty()) charts.push_back({"zwidth.png", zwidth_chart(r)});
     if (!r.roller.empty()) charts.push_back({"roller_tracking.png", roller_chart(r)});
     if (!r.render.rows.empty()) charts.push_back({"render_frame.png", render_chart(r)});
     return charts;

@@ -4,6 +4,8 @@
 //                                    the brute-force and point-finger baselines
 //   pareto.png                       error against ns per tick for the curve modes
 //   stability.png                    largest stable Ke against servo rate, next to 2b/T
+//   zwidth.png                       largest stable K against virtual damping B (Z-width), pressed
+//                                    and sliding, 1 and 10 kHz, next to 2 (b - |B|) / T
 //   roller_tracking.png              roller error against finger speed, per pole scale
 //   render_frame.png                 offscreen frame time against segments
 #pragma once

@@ -1,6 +1,8 @@
 // report.cpp — JSON and Markdown renderings of the bench results (report.hpp).
 #include "engine/bench/report.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <map>
 
@@ -55,6 +57,21 @@ std::string figure(const ReportPlots* plots, const std::string& file) {
     return md;
 }
 
+// How the damping the servo applies compares with the scene's, per rate, from the Z-width rows.
+std::string applied_note(const std::vector<ZWidthRow>& rows) {
+    std::string off;
+    std::vector<double> seen;
+    for (const ZWidthRow& z : rows) {
+        if (z.damping <= 0.0 || std::find(seen.begin(), seen.end(), z.rate_hz) != seen.end()) continue;
+        seen.push_back(z.rate_hz);
+        const double ratio = z.damping_applied / z.damping;
+        if (std::abs(ratio - 1.0) > 1e-6)
+            off += (off.empty() ? "" : ", ") + fmt("%.3g B", ratio) + fmt(" at %.0f Hz", z.rate_hz) +
+                   fmt(" (the damper divides the depth's one-tick step by %.3g ms, not by T)", 1e3 / (ratio * z.rate_hz));
+    }
+    return off.empty() ? "B_a = B at every rate" : "B_a = B except " + off;
+}
+
 }  // namespace
 
 nlohmann::json results_json(const BenchResults& r) {
@@ -100,6 +117,16 @@ nlohmann::json results_json(const BenchResults& r) {
                                   {"k_settles", s.k_settles}, {"k_ideal_settles", s.k_ideal_settles},
                                   {"k_ideal_no_fault", s.k_ideal_no_fault}, {"above_bound", above}});
     }
+    // Z-width (drivers/sim/bench_probes.hpp, ZWidthRow): K in N/m, damping in N s/m; a K equal to
+    // search_hi held even there, 0 means not even search_lo held.
+    for (const ZWidthRow& z : r.zwidth)
+        j["zwidth"].push_back({{"rate_hz", z.rate_hz}, {"damping", z.damping},
+                               {"damping_applied", z.damping_applied}, {"k_press", z.k_press},
+                               {"k_slide", z.k_slide}, {"k_press_no_fault", z.k_press_no_fault},
+                               {"k_slide_no_fault", z.k_slide_no_fault}, {"b_normal", z.b_normal},
+                               {"b_declared", z.b_declared}, {"passivity_bound", z.bound_normal},
+                               {"passivity_bound_declared", z.bound_declared}, {"search_lo", z.search_lo},
+                               {"search_hi", z.search_hi}, {"resolution", z.resolution}});
     // max_error / rms_error: every tick in contact (as before the split); max_tracking_error /
     // rms_tracking_error: outside the jumps of l_d and the window after each (bench_probes.hpp);
     // *_true_*: over those ticks against the true (unquantised) contact location, and
@@ -219,6 +246,34 @@ std::string results_markdown(const BenchResults& r, const ReportPlots* plots) {
         md += " |\n";
     }
     md += figure(plots, "stability.png");
+    if (!r.zwidth.empty()) {
+        md += "\n## Z-width: largest stable K against virtual damping B (closed loop, simulated arm)\n\n"
+              "The scene's normal damping B (`force.damping`) against its stiffness K, by bisection (2 %) as "
+              "above, pressed 2 mm into the floor and held (`press`) or pressed and stroked 6 cm along it at up "
+              "to 0.19 m/s (`slide`), 1 s each. `no fault`: no detector reported, finite, no runaway; `stable`: "
+              "also settled (pressed: the force's ripple in the last 0.25 s under 0.1 N or dying; sliding: its "
+              "ripple about the 20 ms mean under 0.1 N). B_a: the damping the servo applies per m/s of sampled "
+              "normal velocity (" + applied_note(r.zwidth) + "). Against Colgate and Schenkel's "
+              "passivity bound 2 (b - |B_a|) / T with b along the normal (and declared), and the first-order "
+              "stability limit 2 (b + B_a) / T. `<` : not even the bracket's low end held; `>=`: held at its "
+              "top; bound `none`: no K is passive.\n\n"
+              "| rate | B | B_a | press: stable | slide: stable | press: no fault | slide: no fault | "
+              "2(b_n - B_a)/T | 2(b_d - B_a)/T | 2(b_n + B_a)/T |\n"
+              "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+        for (const ZWidthRow& z : r.zwidth) {
+            auto k = [&](double v) {
+                if (v <= 0.0) return fmt(" | < %.0f", z.search_lo);
+                return (v >= z.search_hi ? std::string(" | >= ") : std::string(" | ")) + fmt("%.0f", v);
+            };
+            // <= 0: no K is passive with that much damping applied.
+            auto bound = [](double v) { return v > 0.0 ? fmt(" | %.0f", v) : std::string(" | none"); };
+            md += fmt("| %.0f Hz", z.rate_hz) + fmt(" | %.2f", z.damping) + fmt(" | %.3f", z.damping_applied) +
+                  k(z.k_press) + k(z.k_slide) + k(z.k_press_no_fault) + k(z.k_slide_no_fault) +
+                  bound(z.bound_normal) + bound(z.bound_declared) +
+                  fmt(" | %.0f |\n", 2.0 * (z.b_normal + std::abs(z.damping_applied)) * z.rate_hz);
+        }
+        md += figure(plots, "zwidth.png");
+    }
     md += fmt("\n## Roller tracking (seed 000 block task)\n\n"
               "Tracking: |l_d - l| while l_d moves continuously, i.e. outside the jumps of l_d (its 10 ms "
               "mean rate changing by more than %.0f mm/s, or contact made or lost) and the ", kJumpRateChange * 1e3) +

@@ -60,6 +60,7 @@ struct ParetoRow {
 struct BenchResults {
     bool quick = false;
     std::vector<StabilityRow> stability;          // rate vs stiffness, closed loop (drivers)
+    std::vector<ZWidthRow> zwidth;                // largest stable K vs virtual damping B, press and slide
     std::vector<RollerTrackingRow> roller;        // roller error vs gains and finger speed: tracking and jumps
     std::vector<RollerJumpRow> roller_jump;       // roller alone: settling after a jump of l_d
     double roller_bandwidth_hz = 0.0;             // 1 cm sine, -3 dB, 1 kHz

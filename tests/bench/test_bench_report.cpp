@@ -27,7 +27,8 @@ using namespace contactlab::bench;
 namespace {
 
 const std::vector<std::string> kPlotFiles = {"cost_extent.png", "cost_dense.png",      "pareto.png",
-                                             "stability.png",   "roller_tracking.png", "render_frame.png"};
+                                             "stability.png",   "zwidth.png",          "roller_tracking.png",
+                                             "render_frame.png"};
 
 TickStats stats(double median_ns) { return {median_ns, 2.0 * median_ns, 3.0 * median_ns, 100}; }
 
@@ -71,6 +72,27 @@ BenchResults made_up_results() {
         s.k_ideal_settles = 1.1 * s.passivity_bound;
         r.stability.push_back(s);
     }
+    // Z-width rows shaped like the quick table's (b_normal 1.7, b_declared 1.15 N s/m; the 10 kHz
+    // damper applying B / 10; one K that not even the bracket's low end held).
+    for (const double rate : {1000.0, 10000.0})
+        for (const double b : {0.0, 1.0, 2.0}) {
+            ZWidthRow z;
+            z.rate_hz = rate;
+            z.damping = b;
+            z.damping_applied = rate > 5000.0 ? 0.1 * b : b;
+            z.b_normal = 1.7;
+            z.b_declared = 1.15;
+            z.bound_normal = 2.0 * (z.b_normal - z.damping_applied) * rate;
+            z.bound_declared = 2.0 * (z.b_declared - z.damping_applied) * rate;
+            z.search_lo = 0.05 * 2.0 * z.b_normal * rate;
+            z.search_hi = 4.0 * 2.0 * z.b_normal * rate;
+            z.resolution = 1.02;
+            z.k_press = rate > 5000.0 && b == 2.0 ? 0.0 : 4400.0 - 1500.0 * b;
+            z.k_slide = 2600.0 - 500.0 * b;
+            z.k_press_no_fault = 2.0 * (z.b_normal + z.damping_applied) * rate * 1.1;
+            z.k_slide_no_fault = z.k_press_no_fault;
+            r.zwidth.push_back(z);
+        }
     for (const double g : {1.0, 2.0})
         for (const double v : {0.02, 0.05}) {
             RollerTrackingRow t;
@@ -137,6 +159,30 @@ TEST_CASE("bench report: one chart per figure, cost charts with ContactLab and b
     CHECK(charts[3].chart.series[0].name == "2b/T, b along the normal");
     CHECK(charts[3].chart.series[0].y[1] == doctest::Approx(10000.0));
     CHECK(charts[3].chart.series[1].name == "2b/T, b declared (servo's)");
+    // Z-width: per rate (one colour each) the stable press and slide, the unreported press, and
+    // the three theory lines; K on a log axis against B.
+    const render::Chart& zw = charts[4].chart;
+    CHECK(zw.x.scale == render::AxisScale::linear);
+    CHECK(zw.y.scale == render::AxisScale::log10);
+    CHECK(zw.x.title.find("(N s/m)") != std::string::npos);
+    CHECK(zw.y.title.find("(N/m)") != std::string::npos);
+    REQUIRE(zw.series.size() == 12);
+    CHECK(zw.series[0].name == "1 kHz press: stable");
+    CHECK(zw.series[6].name == "10 kHz press: stable");
+    CHECK(zw.series[0].color.r != zw.series[6].color.r);  // distinct colours per rate
+    CHECK(zw.series[0].x.size() == 3);
+    CHECK(zw.series[6].x.size() == 2);  // the K that was not found is left out, not drawn at 0
+    // Colgate's bound 2 (b_n - B_a) / T: 3400 N/m at B = 0, 1 kHz, and down to the floor where
+    // it dives to 0 at B_a = b_n; at 10 kHz it falls with B / 10.
+    const render::ChartSeries& passive = zw.series[3];
+    CHECK(passive.name == "1 kHz passive: 2(b_n - B_a)/T");
+    CHECK(passive.dashed);
+    CHECK(passive.y.front() == doctest::Approx(3400.0));
+    CHECK(passive.x.back() < 1.7);
+    CHECK(passive.y.back() >= 100.0);
+    CHECK(zw.series[9].y.back() == doctest::Approx(2.0 * (1.7 - 0.2) * 10000.0));
+    const render::ChartLayout zl = render::layout_chart(zw);
+    CHECK(zl.skipped_points == 0);
 }
 
 TEST_CASE("bench report: PNGs written at the plot size and linked from the Markdown") {
@@ -199,6 +245,28 @@ TEST_CASE("bench report: the JSON splits the roller's tracking from its jumps, o
     CHECK(md.find("force-limited") != std::string::npos);
 }
 
+TEST_CASE("bench report: the Z-width rows in the JSON and the Markdown") {
+    const BenchResults r = made_up_results();
+    const nlohmann::json j = results_json(r);
+    REQUIRE(j["zwidth"].size() == r.zwidth.size());
+    const nlohmann::json& z = j["zwidth"][4];  // 10 kHz, B = 1
+    for (const char* key : {"rate_hz", "damping", "damping_applied", "k_press", "k_slide", "k_press_no_fault",
+                            "k_slide_no_fault", "b_normal", "b_declared", "passivity_bound",
+                            "passivity_bound_declared", "search_lo", "search_hi", "resolution"})
+        CHECK_MESSAGE(z.contains(key), key);
+    CHECK(z["rate_hz"].get<double>() == 10000.0);
+    CHECK(z["damping_applied"].get<double>() == doctest::Approx(0.1));
+    CHECK(z["passivity_bound"].get<double>() == doctest::Approx(2.0 * (1.7 - 0.1) * 10000.0));
+    const std::string md = results_markdown(r);
+    CHECK(md.find("## Z-width") != std::string::npos);
+    CHECK(md.find("| 1000 Hz | 0.00 | 0.000 | 4400 | 2600 |") != std::string::npos);
+    CHECK(md.find("| 1000 Hz | 2.00 | 2.000 | 1400 | 1600 | 8140 | 8140 | none | none | 7400 |") != std::string::npos);
+    CHECK(md.find("| 10000 Hz | 2.00 | 0.200 | < 1700 |") != std::string::npos);
+    // The damping applied, said from the rows: here 10 kHz applies B / 10 (a 1 ms divisor).
+    CHECK(md.find("B_a = B except 0.1 B at 10000 Hz (the damper divides the depth's one-tick step by 1 ms, not by T)") !=
+          std::string::npos);
+}
+
 TEST_CASE("bench report: the JSON holds render_ms.<N> in ms") {
     const nlohmann::json j = results_json(made_up_results());
     CHECK(j["render_ms"]["100000"]["median"].get<double>() == doctest::Approx(12.0));
@@ -255,6 +323,18 @@ TEST_CASE("bench --quick --report: every PNG decodes at the plot size, render_ms
         CHECK(j["render_ms"][n]["frames"].get<int>() >= 1);
     }
     CHECK_FALSE(j["render_device"].get<std::string>().empty());
+    // The Z-width: 1 kHz at B = 0, 0.5, 1, 2, 5 N s/m and 10 kHz at 0, 1, 2, each K a bisection
+    // result (in its bracket, or 0 where not even the low end held).
+    REQUIRE(j["zwidth"].size() == 8);
+    for (const nlohmann::json& z : j["zwidth"]) {
+        CAPTURE(z.dump());
+        for (const char* k : {"k_press", "k_slide", "k_press_no_fault", "k_slide_no_fault"}) {
+            const double v = z[k].get<double>();
+            CHECK((v == 0.0 || (v >= z["search_lo"].get<double>() && v <= z["search_hi"].get<double>())));
+        }
+        CHECK(z["k_press_no_fault"].get<double>() > 0.0);
+    }
+    CHECK(md.find("## Z-width") != std::string::npos);
     // What the user reads: one header, none of the library's per-run context or warnings, the
     // summary tables (issue 19: it was ~800 lines with 80 "built as DEBUG" warnings).
     const std::string out = read_text(CONTACTLAB_BENCH_QUICK_STDOUT);
