@@ -17,7 +17,12 @@ ServoConfig servo_config_for(const Device& dev, double rate) {
     c.device_max_force = lim.max_force;
     c.axis_max = lim.axis_max_force;
     c.device_damping = lim.damping;
-    c.max_damping = lim.mass / c.period;  // N s/m: half a sampled damper's ringing bound 2 m / T
+    // N s/m: no more than the device's own damping b (the controller at most doubles it, moving the
+    // sampled spring's bound from 2 b / T to about 4 b / T), and never near a sampled damper's
+    // ringing bound 2 m / T. A larger cap made the controller's damper a relay on the encoders'
+    // one-count steps (at 10 kHz one count per tick reads as 0.18 m/s): it faulted the block
+    // task well inside the bound.
+    c.max_damping = std::min(lim.mass / c.period, lim.damping);
     c.has_roller = dev.capabilities().roller;
     c.roller_travel = {lim.roller_min, lim.roller_max};
     return c;

@@ -219,8 +219,11 @@ const ServoCommand& ServoTick::tick(const ServoInput& in) noexcept {
             const bool cycling = limit_cycle_.step(in.t, glm::length(f), current_.max_force, past_bound);
             // The passivity controller (an option): damp what the loop generated, along the
             // spring's line, within the device's limit; the clamp still holds |F| <= max_force.
+            // Only past the bound: inside it the sampled spring cannot generate net energy, and
+            // what the sum sees there is the encoders' steps and the hand, which a damper driven
+            // by one-count velocity steps only excites (it faulted the block task at 10 kHz).
             controller_.reset();
-            if (current_.passivity == PassivityMode::control && !energy_grew && !cycling) {
+            if (current_.passivity == PassivityMode::control && past_bound && !energy_grew && !cycling) {
                 const double excess = std::max(observer_.energy(), observer_.linear_energy());  // J
                 const Vec2 damp = controller_.step(excess, balance_.motion(), balance_.line(), dt, config_.max_damping);
                 if (controller_.damping() > 0.0) f = clamp_then_saturate(f + damp, current_.max_force, config_.axis_max);

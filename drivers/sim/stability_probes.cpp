@@ -113,6 +113,7 @@ ScenarioRun run_contact_scenario(ContactScenario scenario, double rate, double s
     ServoParams params;
     params.stiffness = stiffness;
     params.stiffness_slew = 1e9;  // K from the first tick: the probe is about K itself
+    params.passivity = opt.passivity;
     SimRig rig(scene, std::move(path), rate, sp, params);
     ScenarioRun r;
     r.opened = rig.opened;
@@ -123,6 +124,9 @@ ScenarioRun run_contact_scenario(ContactScenario scenario, double rate, double s
     double late_min = 1e9, late_max = -1e9;  // N
     double q3[2] = {1e9, -1e9}, q4[2] = {1e9, -1e9};  // N, min and max of |F| per quarter
     std::vector<double> late_t, late_f;  // s, N: |F| over the second half, for the ripple
+    Vec2 last_force{0.0};  // N
+    double step_sum = 0.0, force_sum = 0.0;  // N
+    int late_contact = 0;
     DeviceReading reading;
     DeviceCommand command;
     ServoTick& servo = rig.servo;
@@ -159,10 +163,17 @@ ScenarioRun run_contact_scenario(ContactScenario scenario, double rate, double s
         } else if (r.faulted) {
             r.max_force_after_fault = std::max(r.max_force_after_fault, f);
         }
+        r.max_passivity_damping = std::max(r.max_passivity_damping, s.passivity_damping);
         if (s.t > seconds - 0.5) {
             late_min = std::min(late_min, f);
             late_max = std::max(late_max, f);
+            if (s.contact) {
+                step_sum += glm::length(s.force - last_force);
+                force_sum += f;
+                ++late_contact;
+            }
         }
+        last_force = s.force;
         if (s.t >= 0.5 * seconds) {
             double* q = s.t >= 0.75 * seconds ? q4 : q3;
             q[0] = std::min(q[0], f);
@@ -174,6 +185,10 @@ ScenarioRun run_contact_scenario(ContactScenario scenario, double rate, double s
         dev.advance(dt);
     }
     r.late_force_pp = late_max >= late_min ? late_max - late_min : 0.0;
+    if (late_contact > 0) {
+        r.late_mean_step = step_sum / late_contact;
+        r.late_mean_force = force_sum / late_contact;
+    }
     r.pp_third = q3[1] >= q3[0] ? q3[1] - q3[0] : 0.0;
     r.pp_fourth = q4[1] >= q4[0] ? q4[1] - q4[0] : 0.0;
     // The ripple about the force's 20 ms centred mean: what the hand's own motion makes the force

@@ -36,6 +36,11 @@ struct ScenarioRun {
     double pp_fourth = 0.0;       // N, and over its last quarter (is a ripple dying out?)
     double ripple_fourth = 0.0;   // N, peak-to-peak over the last quarter of |F| less its 20 ms
                                   //   centred mean (what the hand's motion does to |F| left out)
+    // Over the last 0.5 s, ticks in contact: the mean of |F_k - F_{k-1}| and the mean |F| (N). A
+    // loop held quiet (by the passivity controller, say) steps by a small fraction of its force.
+    double late_mean_step = 0.0;
+    double late_mean_force = 0.0;
+    double max_passivity_damping = 0.0;  // N s/m, the most the passivity controller added
     bool finite = true;           // every force and finger reading finite
     double b_declared = 0.0;      // N s/m, the device's declared (lowest) damping
     double b_normal = 0.0;        // N s/m, the arm's damping along +y where the press ends
@@ -47,6 +52,7 @@ struct ScenarioOptions {
     double jitter = 0.0;          // each period T (1 + jitter u), u uniform in [-1, 1], seeded
     std::uint32_t seed = 1;
     double damping = 0.0;         // B, N s/m: the scene's force.damping (the proxy's normal damper)
+    PassivityMode passivity = PassivityMode::fault;  // the servo's answer to a loop generating energy
 };
 
 // Runs `scenario` with spring stiffness `stiffness` (N/m) at servo rate `rate` (Hz).

@@ -52,26 +52,19 @@ double stability_limit(const ZWidthRow& z) { return 2.0 * (z.b_normal + std::abs
 
 }  // namespace
 
-TEST_CASE("the servo's damper is a backward difference of the sampled position, B per m/s at 1 kHz") {
+TEST_CASE("the servo's damper is a backward difference of the sampled position, B per m/s at every rate") {
     // What Colgate's model assumes: F = K d + B (x_k - x_{k-1}) / T, the velocity from the last two
-    // encoder samples and nothing older.
-    for (const double b : {0.5, 1.0, 2.0}) {
-        CAPTURE(b);
-        const DamperResponse r = damper_response(b, 1000.0);
-        CHECK(r.applied == doctest::Approx(b).epsilon(1e-6));
-        CHECK(std::abs(r.after_stop) < 1e-9);  // N: one tick after the motion stops, no damper force
-    }
-    CHECK(std::abs(damper_response(0.0, 1000.0).applied) < 1e-9);
-    // At other rates the damper still differences the last two samples and is linear in B, but the
-    // servo tick does not give the proxy its period: the proxy divides by its default 1 ms, so the
-    // damping applied is B x 1 ms / T. The Z-width rows (and their bounds) use what is applied.
-    for (const double rate : {250.0, 4000.0, 10000.0}) {
-        CAPTURE(rate);
-        const DamperResponse one = damper_response(1.0, rate), two = damper_response(2.0, rate);
-        CHECK(one.applied > 0.0);
-        CHECK(two.applied == doctest::Approx(2.0 * one.applied).epsilon(1e-6));
-        CHECK(std::abs(one.after_stop) < 1e-9);
-        MESSAGE(rate << " Hz: damping applied per N s/m of force.damping: " << one.applied);
+    // encoder samples and nothing older, T the servo's own period. (The servo once left the proxy
+    // at its default 1 ms: B x 1 ms / T was applied, a tenth of B at 10 kHz.)
+    for (const double rate : {250.0, 1000.0, 4000.0, 10000.0}) {
+        for (const double b : {0.5, 1.0, 2.0}) {
+            CAPTURE(rate);
+            CAPTURE(b);
+            const DamperResponse r = damper_response(b, rate);
+            CHECK(r.applied == doctest::Approx(b).epsilon(1e-6));
+            CHECK(std::abs(r.after_stop) < 1e-9);  // N: one tick after the motion stops, no damper force
+        }
+        CHECK(std::abs(damper_response(0.0, rate).applied) < 1e-9);
     }
 }
 
@@ -162,6 +155,9 @@ TEST_CASE("Z-width: the settled K falls as B grows, by 2 / dt per N s/m (the dam
     // dither is not exactly one count of each, and each figure carries the bisection's 2 %
     // (over 0.5 N s/m steps of 1000 N/m, 4 % of the slope). Falling is the passivity bound's
     // direction too (2 / T per N s/m), but here it is the encoders', not the sampling's.
+    // At 10 kHz the line leaves the bracket at once: one count (~18 um) in one 0.1 ms tick is
+    // 0.18 m/s, so B = 1 N s/m alone steps the force by 2 B Delta / dt = 0.36 N, over the 0.1 N
+    // budget; nothing settles there from B = 1 on, which the last check below holds.
     for (const double rate : {1000.0, 10000.0}) {
         CAPTURE(rate);
         const std::vector<ZWidthRow> rows = rows_at(rate);
@@ -187,7 +183,7 @@ TEST_CASE("Z-width: the settled K falls as B grows, by 2 / dt per N s/m (the dam
                 ++slopes;
             }
         }
-        CHECK(slopes >= 1);
+        if (rate == 1000.0) CHECK(slopes >= 1);
         // Enough damping leaves no K that settles in the bracket: the damper's velocity steps alone
         // (2 B Delta / dt, 0.07 N at 2 N s/m, 0.18 N at 5) fill the 0.1 N budget.
         CHECK(rows.back().k_press < rows.front().k_press / 2.0);
@@ -197,18 +193,22 @@ TEST_CASE("Z-width: the settled K falls as B grows, by 2 / dt per N s/m (the dam
     }
 }
 
-TEST_CASE("Z-width at 10 kHz: the unreported K is the declared bound, where the limit-cycle detector arms") {
+TEST_CASE("Z-width at 10 kHz: the unreported K is at most the declared bound, where the limit-cycle detector arms") {
     // K T / 2 > b_declared arms the detector whatever B is, and from 4 kHz up it then reports the
     // quantisation limit cycle (the stability table's 4-20 kHz rows): unreported K = 2 b_d / T to
-    // within the bisection, at every B of the quick table (B_a <= 0.2 N s/m).
+    // within the bisection at B = 0. With a damper the encoders' one-count steps (0.18 m/s in a
+    // 0.1 ms tick) put 2 B Delta / dt into the force, 0.36 N per N s/m: past the detector's 0.45 N
+    // swing the dither itself is reported, so the unreported K can only fall below the armed bound.
     // The stroke's rig declares its own (lower) b, over the stroke's box.
     const double slide_b = declared_damping(ContactScenario::slide);  // N s/m
     for (const ZWidthRow& z : rows_at(10000.0)) {
         CAPTURE(z.damping);
         const double armed = 2.0 * z.b_declared * z.rate_hz, slide_armed = 2.0 * slide_b * z.rate_hz;  // N/m
-        CHECK(z.k_press_no_fault >= armed / z.resolution);
+        if (z.damping == 0.0) {
+            CHECK(z.k_press_no_fault >= armed / z.resolution);
+            CHECK(z.k_slide_no_fault >= slide_armed / z.resolution);
+        }
         CHECK(z.k_press_no_fault <= 1.05 * armed);
-        CHECK(z.k_slide_no_fault >= slide_armed / z.resolution);
         CHECK(z.k_slide_no_fault <= 1.1 * slide_armed);
     }
 }
