@@ -74,8 +74,15 @@ std::vector<Piece> closed_pieces(const std::vector<Contour>& contours) {
             } else if (const auto* a = std::get_if<ArcSegment>(&seg)) {
                 out.push_back(arc_piece(*a));
             } else {
+                // Beyond 1 m the tolerance grows with the curve: chords then number about the
+                // same as for a metre-long curve of the same shape, not millions (a file may
+                // hold curves 1e6 m long).
+                const Bezier b = segment_bezier(seg);
+                Aabb hull;
+                for (int k = 0; k <= b.degree; ++k) hull.grow(b.p[k]);
+                const double size = std::max(hull.hi.x - hull.lo.x, hull.hi.y - hull.lo.y);  // m
                 chords.clear();
-                bezier_to_lines(segment_bezier(seg), kCrossingCurveTolerance, chords);
+                bezier_to_lines(b, kCrossingCurveTolerance * std::max(1.0, size), chords);
                 for (const CurvePiece& k : chords) out.push_back(line_piece(k.from, k.to));
             }
             for (std::size_t i = before; i < out.size(); ++i) {

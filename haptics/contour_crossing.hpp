@@ -41,6 +41,7 @@ namespace contactlab {
 // turns back at a vertex, two neighbouring curves can cross again a few micrometres away in a
 // sliver tens of nanometres wide (contactlab fuzz-contact found such scenes), and the proxy reads
 // that tip by its tangents as the opposite corner. A 5 cm circle of cubics is 16,000 chords.
+// For a curve larger than 1 m (its control points' box), this times its size in metres.
 inline constexpr double kCrossingCurveTolerance = 1e-9;
 // m: points closer than this are the same point (4 times the scenes' join tolerance).
 inline constexpr double kCrossingPointTolerance = 4e-9;
