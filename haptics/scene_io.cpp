@@ -10,6 +10,7 @@
 #include "haptics/atomic_file.hpp"
 
 #include "haptics/bezier.hpp"
+#include "haptics/contour_crossing.hpp"
 #include "haptics/parameter_limits.hpp"
 
 #include <nlohmann/json.hpp>
@@ -21,6 +22,7 @@
 #include <cstring>
 #include <fcntl.h>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <vector>
 #include <sys/stat.h>
@@ -414,6 +416,30 @@ void validate_contour(const Contour& c, const std::string& path) {
     }
 }
 
+// Closed contours are outlines of solids: one that crosses itself or another closed one has no
+// consistent solid side (contour_crossing.hpp). Messages print the point in mm, as the UI does.
+void check_crossings(const std::vector<Contour>& contours) {
+    const std::optional<ContourCrossing> x = find_contour_crossing(contours);
+    if (!x) return;
+    // To the micrometre; a coordinate that rounds to zero prints as 0.000, never -0.000.
+    auto mm = [](double v) { return std::abs(v) < 5e-7 ? 0.0 : v * 1e3; };
+    char at[96];
+    std::snprintf(at, sizeof at, "(%.3f, %.3f) mm", mm(x->point.x), mm(x->point.y));
+    const std::string path = index("contours", static_cast<std::size_t>(x->contour_b));
+    std::string what;
+    if (x->contour_a == x->contour_b) {
+        what = "crosses itself at " + std::string(at) +
+               (x->segment_a == x->segment_b ? " (within segment " + std::to_string(x->segment_a) + ")"
+                                             : " (segments " + std::to_string(x->segment_a) + " and " +
+                                                   std::to_string(x->segment_b) + ")");
+    } else {
+        const std::string other = index("contours", static_cast<std::size_t>(x->contour_a));
+        what = "crosses " + other + " at " + at + " (" + index(path + ".segments", static_cast<std::size_t>(x->segment_b)) +
+               " and " + index(other + ".segments", static_cast<std::size_t>(x->segment_a)) + ")";
+    }
+    throw ContourCrossingError(path + ": " + what, x->point);
+}
+
 //-------------------------------------------------------------------------------------------------
 // [SECTION] Writing
 //-------------------------------------------------------------------------------------------------
@@ -453,6 +479,7 @@ void validate_scene(const Scene& s) {
         fail("finger.length", "pad (" + fmt(f.length) + " m) is longer than its circle (2 pi R = " +
                                   fmt(kTwoPi * f.radius) + " m)");
     for (std::size_t i = 0; i < s.contours.size(); ++i) validate_contour(s.contours[i], index("contours", i));
+    check_crossings(s.contours);
     if (!std::isfinite(s.force.stiffness) || !(s.force.stiffness > 0.0) || s.force.stiffness > kMaxStiffness)
         fail("force.stiffness", "must lie in (0, " + fmt(kMaxStiffness) + "] N/m, got " + fmt(s.force.stiffness));
     if (!std::isfinite(s.force.max_force) || !(s.force.max_force > 0.0) || s.force.max_force > kMaxForceLimit)

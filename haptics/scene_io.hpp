@@ -16,6 +16,14 @@ struct SceneError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// The SceneError for closed contours that cross themselves or each other (contour_crossing.hpp),
+// e.g. "contours[0]: crosses itself at (12.300, 4.000) mm (segments 2 and 5)", with the point
+// (m), which the editor marks.
+struct ContourCrossingError : SceneError {
+    ContourCrossingError(const std::string& what, Vec2 at) : SceneError(what), point(at) {}
+    Vec2 point{0.0};
+};
+
 // Largest gap (m) allowed between the end of one segment and the start of the next.
 inline constexpr double kSceneJoinTolerance = 1e-9;
 

@@ -353,6 +353,8 @@ void draw_canvas_marks(const EditorState& s, const render::Theme& theme, render:
                 render::parts::flatten_segment(c.segments[i], view, i > 0, pts);
             if (pts.size() >= 2) out.stroke(pts, false, 2.0f, bad);
         }
+        // Closed contours that cross: a ring where, so the crossing is found in a dense drawing.
+        if (const auto& at = s.doc.problem_point()) out.stroke_circle(view.to_px(*at), 9.0f, 2.0f, bad);
     }
     if (s.tool != Tool::finger) {
         // Handles: end points as squares, Bezier control points as small discs with their arms.

@@ -32,10 +32,14 @@ std::uint64_t next_revision() {
 
 void Document::changed() {
     revision_ = next_revision();
+    problem_point_.reset();
     try {
         validate_scene(scene_);
         problem_.clear();
         last_valid_ = scene_;
+    } catch (const ContourCrossingError& e) {
+        problem_ = e.what();
+        problem_point_ = e.point;
     } catch (const SceneError& e) {
         problem_ = e.what();
     }

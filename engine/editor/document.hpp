@@ -31,6 +31,9 @@ public:
     // Validation of the current scene: empty when valid, else scene_io's message.
     const std::string& problem() const { return problem_; }
     bool valid() const { return problem_.empty(); }
+    // Where closed contours cross (m) when that is the problem (scene_io's ContourCrossingError):
+    // a shape may cross while it is being drawn, and the canvas marks the point.
+    const std::optional<Vec2>& problem_point() const { return problem_point_; }
     // The last scene that passed validation (what the servo and the drawer use meanwhile).
     const Scene& last_valid() const { return last_valid_; }
 
@@ -93,6 +96,7 @@ private:
     Scene last_valid_;
     std::string path_;
     std::string problem_;
+    std::optional<Vec2> problem_point_;
     std::vector<Entry> undo_, redo_;
     bool dirty_ = false;
     bool continuous_ = false;

@@ -73,6 +73,42 @@ TEST_CASE("invalid geometry is reported, kept out of last_valid, refused by save
     CHECK(d.valid());
 }
 
+TEST_CASE("a contour that crosses itself may be drawn, is reported with the point, and kept from the servo and the file") {
+    cli_test::TempDir dir;
+    Document d(Scene{}, dir.file("bow.json"));  // its recovery file beside it, in dir
+    // The line tool's chain: an open zig-zag that crosses itself is a terrain profile, valid.
+    const Vec2 pts[] = {{0.0, 0.0}, {0.01, 0.01}, {0.01, 0.0}, {0.0, 0.01}, {0.0, 0.0}};  // m
+    for (int i = 0; i < 3; ++i) d.edit(add_segment(d.scene(), LineSegment{pts[i], pts[i + 1]}, 1e-9), "add line");
+    REQUIRE(d.valid());
+    CHECK_FALSE(d.problem_point());
+    // Back to its start the chain closes: a bow-tie, not a solid.
+    d.edit(add_segment(d.scene(), LineSegment{pts[3], pts[4]}, 1e-9), "add line");
+    REQUIRE(d.scene().contours.size() == 1);
+    REQUIRE(d.scene().contours[0].closed);
+    CHECK_FALSE(d.valid());
+    CHECK(d.problem() == "contours[0]: crosses itself at (5.000, 5.000) mm (segments 0 and 2)");
+    REQUIRE(d.problem_point());
+    CHECK(glm::length(*d.problem_point() - Vec2{0.005, 0.005}) < 1e-15);  // m: two lines at right angles
+    // The servo and the drawer stay on the open chain.
+    CHECK_FALSE(d.last_valid().contours[0].closed);
+    CHECK(d.last_valid().contours[0].segments.size() == 3);
+    try {
+        d.save(dir.file("bow.json"));
+        FAIL("a crossing scene was saved");
+    } catch (const SceneError& e) {
+        CHECK(std::string(e.what()) == "not saved: the scene is invalid: contours[0]: crosses itself at (5.000, 5.000) mm (segments 0 and 2)");
+    }
+    CHECK_FALSE(std::filesystem::exists(dir.file("bow.json")));
+    // The recovery file keeps the drawing as it is, crossing and all.
+    const std::string rec = d.autosave();
+    REQUIRE_FALSE(rec.empty());
+    CHECK(load_work_in_progress(rec).contours[0].closed);
+    d.discard_recovery();
+    d.undo();
+    CHECK(d.valid());
+    CHECK_FALSE(d.problem_point());
+}
+
 TEST_CASE("save writes the scene atomically and round-trips and autosave writes the recovery file") {
     cli_test::TempDir dir;
     const std::string path = dir.file("scene.json");

@@ -41,6 +41,17 @@ double window_open_ms(const std::string& err) {
     return std::atof(err.c_str() + at + std::strlen("first frame presented "));
 }
 
+// `contactlab edit --script SCRIPT` on an untitled scene under Xvfb (its recovery file goes to
+// DIR), which must run every line and quit with 0.
+ProcessResult run_script_untitled(const TempDir& dir, const std::string& script) {
+    setenv("TMPDIR", dir.path().c_str(), 1);
+    const auto p = run_under_xvfb({"edit", "--script", script, "--software", "--validation", "--timeout", "100"});
+    INFO("stderr: " << p.err);
+    CHECK(p.exit_code == 0);
+    CHECK_FALSE(contains(p.err, "FAILED"));
+    return p;
+}
+
 }  // namespace
 
 TEST_CASE("no display: exit 2 with a message naming xvfb-run and the headless subcommands") {
@@ -190,11 +201,7 @@ TEST_CASE("invalid geometry is explained and not saved, undo brings the valid sc
                "expect valid 1\n"
                "expect segments 1\n"
                "quit\n");
-    setenv("TMPDIR", dir.path().c_str(), 1);  // the untitled scene's recovery file goes here
-    const auto p = run_under_xvfb({"edit", "--script", script, "--software", "--validation", "--timeout", "100"});
-    INFO("stderr: " << p.err);
-    CHECK(p.exit_code == 0);
-    CHECK_FALSE(contains(p.err, "FAILED"));
+    run_script_untitled(dir, script);
     CHECK_FALSE(std::filesystem::exists(saved));
     // Quitting with unsaved work writes it to the recovery file: the valid line after the undo.
     const std::string rec = dir.file("contactlab-untitled.recovery.json");
@@ -202,6 +209,50 @@ TEST_CASE("invalid geometry is explained and not saved, undo brings the valid sc
     const Scene r = load_scene_file(rec);
     REQUIRE(r.contours.size() == 1);
     CHECK(std::get<LineSegment>(r.contours[0].segments[0]).from.x == doctest::Approx(-0.020).epsilon(1e-12));
+}
+
+namespace {
+// Pixels drawn in the canvas's colour for invalid geometry (canvas.cpp: 235, 70, 60), within 3
+// levels: the outline of an invalid shape and the ring at a crossing are drawn in it, nothing else.
+int invalid_mark_pixels(const render::Image& img) {
+    int n = 0;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) {
+            const std::uint8_t* p = img.pixel(x, y);
+            n += std::abs(p[0] - 235) <= 3 && std::abs(p[1] - 70) <= 3 && std::abs(p[2] - 60) <= 3;
+        }
+    return n;
+}
+}  // namespace
+
+TEST_CASE("a shape that crosses itself may be drawn: marked in red, kept from the servo, not saved") {
+    TempDir dir;
+    const std::string saved = dir.file("never.json"), bad = dir.file("bad.png"), good = dir.file("good.png");
+    const std::string script = dir.file("bowtie.txt");
+    write_text(script,
+               "set snap_mm 1\n"
+               "tool line\n"
+               "# A zig-zag that crosses itself: an open chain, valid while it is being drawn.\n"
+               "click 0 0\nclick 20 20\nclick 20 0\nclick 0 20\n"
+               "expect valid 1\n"
+               "# Back to the start: the chain closes into a bow-tie, which is not a solid.\n"
+               "click 0 0\nrclick 0 0\n"
+               "expect contours 1\nexpect segments 4\nexpect valid 0\n"
+               "frames 2\nscreenshot " + bad + "\n"
+               "save " + saved + "\n"
+               "expect error 1\n"
+               "undo\n"
+               "expect valid 1\nexpect segments 3\n"
+               "frames 2\nscreenshot " + good + "\n"
+               "quit\n");
+    const auto p = run_script_untitled(dir, script);
+    CHECK(contains(p.err, "validation layers on, 0 messages"));
+    CHECK_FALSE(std::filesystem::exists(saved));
+    // The bow-tie's outline and the ring at its crossing in red; none once undone.
+    const int red = invalid_mark_pixels(render::read_png(bad)), after = invalid_mark_pixels(render::read_png(good));
+    MESSAGE(red, " red pixels with the bow-tie, ", after, " after undo");
+    CHECK(red > 100);
+    CHECK(after < 5);
 }
 
 TEST_CASE("resizing the window recreates the swapchain and the frames follow the new size") {

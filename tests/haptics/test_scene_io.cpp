@@ -379,6 +379,81 @@ TEST_CASE("scene io error: closed contour must return from its last segment to i
     CHECK_NOTHROW(parse_scene(doc("[" + open_contour(tri) + "]")));
 }
 
+//-------------------------------------------------------------------------------------------------
+// Closed contours that cross (contour_crossing.hpp): the contour, the point in mm, the segments
+//-------------------------------------------------------------------------------------------------
+
+namespace {
+std::string closed_contour(const std::string& segments) {
+    return R"({"closed": true, "segments": [)" + segments + "]}";
+}
+// A closed polyline through the points (m), back to the first.
+std::string closed_polyline(const std::vector<Vec2>& pts) {
+    std::string segs;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+        const Vec2 a = pts[i], b = pts[(i + 1) % pts.size()];
+        segs += (i ? "," : "") + line_json(a.x, a.y, b.x, b.y);
+    }
+    return closed_contour(segs);
+}
+const std::vector<Vec2> kBowTie = {{0.0, 0.0}, {0.01, 0.01}, {0.01, 0.0}, {0.0, 0.01}};  // m
+}  // namespace
+
+TEST_CASE("scene io error: a closed contour that crosses itself, with the point in mm and the segments") {
+    // The bow-tie's diagonals (segments 0 and 2) cross at (5, 5) mm.
+    CHECK(error_of(doc("[" + closed_polyline(kBowTie) + "]")) ==
+          "t.json: contours[0]: crosses itself at (5.000, 5.000) mm (segments 0 and 2)");
+    // A figure 8 of two full circles of 1 cm, tangent at the origin, wound opposite ways.
+    const std::string eight =
+        R"({"type": "arc", "center": [-0.01, 0], "radius": 0.01, "start_angle": 0, "end_angle": -6.283185307179586},)"
+        R"({"type": "arc", "center": [0.01, 0], "radius": 0.01, "start_angle": 3.141592653589793, "end_angle": 9.42477796076938})";
+    CHECK(error_of(doc("[" + kFloor + "," + closed_contour(eight) + "]")) ==
+          "t.json: contours[1]: crosses itself at (0.000, 0.000) mm (segments 0 and 1)");
+    // The same chains open are terrain profiles: they may cross themselves.
+    std::string zigzag;
+    for (std::size_t i = 0; i + 1 < kBowTie.size(); ++i)
+        zigzag += (i ? "," : "") + line_json(kBowTie[i].x, kBowTie[i].y, kBowTie[i + 1].x, kBowTie[i + 1].y);
+    CHECK_NOTHROW(parse_scene(doc("[" + open_contour(zigzag) + "]")));
+}
+
+TEST_CASE("scene io error: two closed contours that cross name both, the later one first") {
+    // Squares of 1 cm at (0,0) and (5,3) mm: the second's left side crosses the first's top.
+    auto square = [](double x, double y) {
+        return closed_polyline({{x, y}, {x, y + 0.01}, {x + 0.01, y + 0.01}, {x + 0.01, y}});
+    };
+    CHECK(error_of(doc("[" + square(0, 0) + "," + square(0.005, 0.003) + "]")) ==
+          "t.json: contours[1]: crosses contours[0] at (5.000, 10.000) mm (contours[1].segments[0] and "
+          "contours[0].segments[1])");
+    CHECK_NOTHROW(parse_scene(doc("[" + square(0, 0) + "," + square(0.012, 0) + "]")));
+    // Touching at a corner is not crossing (scenes/README.md).
+    CHECK_NOTHROW(parse_scene(doc("[" + square(0, 0) + "," + square(0.01, 0.01) + "]")));
+    // An open chain through a closed square is allowed.
+    CHECK_NOTHROW(parse_scene(doc("[" + square(0, 0) + "," + open_contour(line_json(-0.005, 0.005, 0.015, 0.005)) + "]")));
+}
+
+TEST_CASE("scene io error: a crossing scene built in memory is refused by validate_scene and by save") {
+    Scene s = parse_scene(kFloorDoc);
+    Contour bow;
+    bow.closed = true;
+    for (std::size_t i = 0; i < kBowTie.size(); ++i) bow.segments.push_back(LineSegment{kBowTie[i], kBowTie[(i + 1) % 4]});
+    s.contours.push_back(bow);
+    CHECK(validate_error_of(s) == "contours[1]: crosses itself at (5.000, 5.000) mm (segments 0 and 2)");
+    // The error carries the point (m) for the editor's mark.
+    try {
+        validate_scene(s);
+    } catch (const ContourCrossingError& e) {
+        CHECK(glm::length(e.point - Vec2{0.005, 0.005}) < 1e-15);
+    }
+    TempDir dir;
+    const fs::path path = dir.path / "bow.json";
+    CHECK_THROWS_AS(save_scene_file(s, path.string()), SceneError);
+    CHECK(dir.names().empty());
+    // Work in progress (an editor recovery file) may cross: it is the user's drawing.
+    write_text(path, scene_to_json_text(s));
+    CHECK(load_work_in_progress(path.string()).contours.size() == 2);
+    CHECK_THROWS_AS(load_scene_file(path.string()), SceneError);
+}
+
 TEST_CASE("scene io error: numbers that overflow a double are not finite, with their path") {
     // JSON has no inf; 1e999 is how one arrives. The parser refuses it, naming where it was.
     check_error(doc(R"([{"closed": false, "segments": [{"type": "line", "from": [0, 0], "to": [1, 1e999]}]}])"),
