@@ -26,6 +26,7 @@ struct TickRecord {
     EnergyTerms energy;          // J, the tick's energy balance (haptics/energy_balance.hpp)
     double observer_energy = 0.0;  // J, the passivity observer's sum after this tick
     double observer_margin = 0.0;  // J, what the loop may still generate before a report
+    double observer_used = 0.0;    // the share of the observer's budget used (1: a report)
     ServoState state = ServoState::idle;
     ServoFault fault = ServoFault::none;
 };

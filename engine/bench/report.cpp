@@ -127,6 +127,14 @@ nlohmann::json results_json(const BenchResults& r) {
                                {"b_declared", z.b_declared}, {"passivity_bound", z.bound_normal},
                                {"passivity_bound_declared", z.bound_declared}, {"search_lo", z.search_lo},
                                {"search_hi", z.search_hi}, {"resolution", z.resolution}});
+    // The energy balance on the seeds' trials (energy_table.hpp): J per trial, peaks in J.
+    for (const EnergyRow& e : r.energy)
+        j["energy_terms"].push_back({{"task", e.task}, {"speed", e.speed}, {"trials", e.trials},
+                                     {"hold", e.mean.hold}, {"field", e.mean.field}, {"turn", e.mean.turn},
+                                     {"edit", e.mean.edit}, {"proxy", e.mean.proxy}, {"friction", e.mean.friction},
+                                     {"damping", e.mean.damping}, {"generated", e.mean.generated()},
+                                     {"peak_observer", e.peak_observer}, {"peak_with_turn", e.peak_with_turn},
+                                     {"threshold", e.threshold}, {"faulted", e.faulted}, {"would_fault", e.would_fault}});
     // max_error / rms_error: every tick in contact (as before the split); max_tracking_error /
     // rms_tracking_error: outside the jumps of l_d and the window after each (bench_probes.hpp);
     // *_true_*: over those ticks against the true (unquantised) contact location, and
@@ -273,6 +281,26 @@ std::string results_markdown(const BenchResults& r, const ReportPlots* plots) {
                   fmt(" | %.0f |\n", 2.0 * (z.b_normal + std::abs(z.damping_applied)) * z.rate_hz);
         }
         md += figure(plots, "zwidth.png");
+    }
+    if (!r.energy.empty()) {
+        md += "\n## Where the energy comes from (the seeds' trials, sim-cld, 1 kHz)\n\n"
+              "Each tick's energy balance at the finger (haptics/energy_balance.hpp), summed over a trial and "
+              "averaged over the trials, in mJ: `hold` the zero-order hold (K |dx|^2 / 2 a tick), `turn` the "
+              "spring energy the hand's turn of the finger put in (not the loop's), `proxy` the god-object's "
+              "walk (never positive on lines and arcs), `damping` the device's b along the spring's line. "
+              "`generated` = hold + field + proxy + friction + damping is what the observer sums (with a 0.5 s "
+              "leak); its peak over the trials against the report threshold, and the peak had `turn` been "
+              "counted, as the observer once did.\n\n"
+              "| task | speed | trials | hold | turn | proxy | friction | damping | generated | peak | peak with turn | "
+              "threshold | faulted | would fault with turn |\n"
+              "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+        for (const EnergyRow& e : r.energy)
+            md += "| " + e.task + fmt(" | %.0f mm/s", e.speed * 1e3) + fmt(" | %.0f", static_cast<double>(e.trials)) +
+                  fmt(" | %.3f", e.mean.hold * 1e3) + fmt(" | %.3f", e.mean.turn * 1e3) +
+                  fmt(" | %.3f", e.mean.proxy * 1e3) + fmt(" | %.3f", e.mean.friction * 1e3) +
+                  fmt(" | %.3f", e.mean.damping * 1e3) + fmt(" | %.3f", e.mean.generated() * 1e3) +
+                  fmt(" | %.3f", e.peak_observer * 1e3) + fmt(" | %.3f", e.peak_with_turn * 1e3) +
+                  fmt(" | %.3f", e.threshold * 1e3) + fmt(" | %.0f", static_cast<double>(e.faulted)) + fmt(" | %.0f |\n", static_cast<double>(e.would_fault));
     }
     md += fmt("\n## Roller tracking (seed 000 block task)\n\n"
               "Tracking: |l_d - l| while l_d moves continuously, i.e. outside the jumps of l_d (its 10 ms "

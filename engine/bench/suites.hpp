@@ -7,6 +7,7 @@
 #pragma once
 
 #include "engine/bench/cost_scenes.hpp"
+#include "engine/bench/energy_table.hpp"
 #include "engine/bench/render_frames.hpp"
 #include "engine/bench/servo_beside_renderer.hpp"
 #include "engine/bench/tick_stats.hpp"
@@ -61,6 +62,7 @@ struct BenchResults {
     bool quick = false;
     std::vector<StabilityRow> stability;          // rate vs stiffness, closed loop (drivers)
     std::vector<ZWidthRow> zwidth;                // largest stable K vs virtual damping B, press and slide
+    std::vector<EnergyRow> energy;                // the energy balance's terms on the seeds' trials
     std::vector<RollerTrackingRow> roller;        // roller error vs gains and finger speed: tracking and jumps
     std::vector<RollerJumpRow> roller_jump;       // roller alone: settling after a jump of l_d
     double roller_bandwidth_hz = 0.0;             // 1 cm sine, -3 dB, 1 kHz

@@ -367,6 +367,22 @@ void status_window(EditorState& s, const FrameInfo& info, const EditorLayout& la
                     std::hypot(snap.force.x, snap.force.y), snap.depth * 1e3);
         ImGui::Text("l_d %.2f mm  roller %.2f mm", snap.l_d * 1e3, snap.roller_l * 1e3);
         ImGui::Text("Ke in effect %.0f N/m, max %.2f N", snap.stiffness, snap.max_force);
+        // The passivity observer's budget (haptics/safety.hpp): the energy the loop generated, net
+        // of what the device dissipated, against the threshold of a report. A user raising Ke sees
+        // the margin shrink here before anything faults.
+        const double used = snap.observer_threshold > 0.0
+                                ? std::max(snap.observer_energy, snap.observer_linear_energy) / snap.observer_threshold
+                                : 0.0;
+        ImGui::TextColored(used > 0.5 ? ImVec4(1, 0.6f, 0.3f, 1) : ImVec4(0.7f, 0.9f, 0.7f, 1),
+                           "passivity budget used %.0f %% (%.0f of %.0f uJ)%s", 100.0 * std::max(0.0, used),
+                           std::max(snap.observer_energy, snap.observer_linear_energy) * 1e6, snap.observer_threshold * 1e6,
+                           snap.passivity_damping > 0.0 ? ", damping added" : "");
+        {
+            const auto& v = s.history.column(PlotHistory::budget_pct);
+            ImGui::SetNextItemWidth(-1.0f);
+            ImGui::PlotLines("##budget", v.data(), static_cast<int>(v.size()), 0, "budget used, % (5 s)", 0.0f, 100.0f,
+                             ImVec2(0.0f, 30.0f));
+        }
         const auto ps = s.history.period_stats(s.servo->period());
         ImGui::Text("servo %.0f Hz (T = %.0f us)", s.servo->rate(), s.servo->period() * 1e6);
         ImGui::Text("period p50 %.0f us  p99 %.0f us  max %.0f us", ps.p50 * 1e6, ps.p99 * 1e6, ps.max * 1e6);

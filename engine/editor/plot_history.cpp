@@ -1,6 +1,7 @@
 // plot_history.cpp — rolling columns and period statistics (see plot_history.hpp).
 #include "engine/editor/plot_history.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace contactlab::editor {
@@ -13,6 +14,7 @@ void PlotHistory::push(const drivers::TickRecord& r) {
         static_cast<float>(r.l_d * 1e3),
         static_cast<float>((r.roller_target - r.roller_l) * 1e3),
         static_cast<float>(r.period * 1e6),
+        static_cast<float>(std::max(0.0, r.observer_used) * 100.0),
     };
     for (int c = 0; c < kColumns; ++c) {
         auto& col = columns_[c];

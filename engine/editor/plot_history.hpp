@@ -1,5 +1,6 @@
 // plot_history.hpp — the last few seconds of servo ticks for the rolling plots, as float columns
-// ImGui can plot directly (|F| in N, depth in mm, l and l_d in mm, period in us).
+// ImGui can plot directly (|F| in N, depth in mm, l and l_d in mm, period in us, the passivity
+// observer's budget used in %).
 #pragma once
 
 #include "drivers/tick_record.hpp"
@@ -12,7 +13,7 @@ namespace contactlab::editor {
 
 class PlotHistory {
 public:
-    enum Column { force_n, depth_mm, l_mm, l_d_mm, roller_error_mm, period_us, kColumns };
+    enum Column { force_n, depth_mm, l_mm, l_d_mm, roller_error_mm, period_us, budget_pct, kColumns };
 
     explicit PlotHistory(std::size_t capacity = 5000) : capacity_(capacity) {
         for (auto& c : columns_) c.reserve(capacity);

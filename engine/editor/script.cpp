@@ -9,6 +9,7 @@
 #include "engine/editor/experiment_mode.hpp"
 #include "engine/editor/recovery.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -299,6 +300,11 @@ bool Script::run(EditorState& s, const Line& line, double now) {
             else if (n == "depth") v = snap.depth * 1e3;        // mm
             else if (n == "l_d") v = snap.l_d * 1e3;            // mm
             else if (n == "roller_target") v = snap.roller_target * 1e3;  // mm
+            else if (n == "budget_threshold") v = snap.observer_threshold * 1e6;  // uJ, the passivity observer's
+            else if (n == "budget_used")  // % of it the loop has generated (the Haptics panel's plot)
+                v = snap.observer_threshold > 0.0
+                        ? 100.0 * std::max({0.0, snap.observer_energy, snap.observer_linear_energy}) / snap.observer_threshold
+                        : 0.0;
             else if (const auto p = parameter_value(s, n)) v = *p;  // the value shown in its field
             else throw ScriptError("unknown expectation \"" + n + "\"");
             const double tol = w.size() > 3 ? number(w[3]) : 0.0;

@@ -39,7 +39,9 @@
 //                       value its field shows), ke_effective N/m (what the servo uses, within 1),
 //                       state NAME, stopped 0|1, valid 0|1, force_above N, force_below N, undo_depth N, dirty 0|1, error 0|1: the last action's message was an error,
 //                       device SPEC, device_state NAME, rate HZ, recording 0|1, force N,
-//                       finger_x MM, finger_y MM, depth MM, l_d MM, roller_target MM;
+//                       finger_x MM, finger_y MM, depth MM, l_d MM, roller_target MM,
+//                       budget_used % and budget_threshold uJ (the passivity observer's budget, as
+//                       the Haptics panel shows it);
 //                       numbers equal within TOL, default 0)
 //   quit
 // Blank lines and lines starting with # are ignored. A failed expectation is reported with its

@@ -335,6 +335,27 @@ TEST_CASE("bench --quick --report: every PNG decodes at the plot size, render_ms
         CHECK(z["k_press_no_fault"].get<double>() > 0.0);
     }
     CHECK(md.find("## Z-width") != std::string::npos);
+    // The energy terms on the seeds' trials (energy_table.hpp): seed 002 at 5 and 10 cm/s, seed
+    // 000's block. None faulted; the observer's sum stayed under its threshold (K T / 2 = 0.65 N s/m
+    // < b: the loop dissipates), and counted, the hand's turn of the finger would have passed it
+    // in a seed 002 trial at each speed (what faulted users' studies). Sliding, the hold and the
+    // walk cancel but for the loop's net dissipation: what it generated is negative.
+    REQUIRE(j["energy_terms"].size() == 3);
+    for (const nlohmann::json& e : j["energy_terms"]) {
+        CAPTURE(e.dump());
+        CHECK(e["faulted"].get<int>() == 0);
+        CHECK(e["peak_observer"].get<double>() < e["threshold"].get<double>());
+        CHECK(e["generated"].get<double>() < 0.0);
+        CHECK(e["proxy"].get<double>() <= 0.0);
+        CHECK(e["hold"].get<double>() > 0.0);
+        CHECK(std::abs(e["hold"].get<double>() + e["proxy"].get<double>()) < 0.05 * e["hold"].get<double>());
+        if (e["task"].get<std::string>() == "seed 002 bumps") {
+            CHECK(e["turn"].get<double>() > 0.0);
+            CHECK(e["would_fault"].get<int>() >= 1);
+            CHECK(e["peak_with_turn"].get<double>() > e["threshold"].get<double>());
+        }
+    }
+    CHECK(md.find("## Where the energy comes from") != std::string::npos);
     // What the user reads: one header, none of the library's per-run context or warnings, the
     // summary tables (issue 19: it was ~800 lines with 80 "built as DEBUG" warnings).
     const std::string out = read_text(CONTACTLAB_BENCH_QUICK_STDOUT);

@@ -141,7 +141,7 @@ TEST_CASE("above the passivity bound the loop reports instability at every rate,
 constexpr std::pair<double, double> kFarPastBound[] = {{100.0, 1000.0}, {200.0, 2000.0}, {1000.0, 10000.0},
                                                        {1000.0, 20000.0}, {2000.0, 40000.0}};
 
-TEST_CASE("far past the bound: fault-and-ramp reports every loop; the passivity controller holds it quiet or reports") {
+TEST_CASE("far past the bound: fault-and-ramp reports every loop, the passivity controller holds it quiet or reports") {
     // With the controller (haptics/passivity_controller.hpp) a loop either stays quiet (the mean
     // tick-to-tick force change over the last 0.5 s below 1 % of the contact force: no buzz) or the
     // observer still reports it, output zero after. Either way the force never passes the clamp.

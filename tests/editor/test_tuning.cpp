@@ -101,3 +101,26 @@ TEST_CASE("tuning: a refused value is said and its field shows the value in effe
     CHECK_FALSE(contains(p.err, "FAILED"));
     CHECK(contains(p.err, "ok: ke_effective = 1500"));
 }
+
+TEST_CASE("tuning: the Haptics panel's passivity budget is the observer's, and a press inside the bound uses none of it") {
+    // The mouse presses 1 mm into a floor at 1 kHz with Ke = 1000 N/m (the mouse device declares
+    // b = 1 N s/m: K T / 2 = 0.5 < b). The budget is 2 x max_force^2 / (2 Ke) = 2250 uJ at 1.5 N;
+    // a loop inside the sampled spring's bound dissipates more than it makes, so none is used.
+    TempDir dir;
+    const std::string script = dir.file("budget.txt");
+    write_text(script,
+               "set snap_mm 1\ntool line\nclick -40 0\nclick 40 0\nrclick 40 0\n"
+               "set ke 1000\n"
+               "finger 0 40 0\n"
+               "wait_state engaged 5\n"
+               "finger 0 25 0\n"
+               "wait_contact 3\nwait 0.5\n"
+               "expect depth 1 0.01\n"
+               "expect budget_threshold 2250 0.5\n"
+               "expect budget_used 0 1\n"
+               "quit\n");
+    const auto p = run_under_xvfb({"edit", "--script", script, "--software", "--timeout", "60"});
+    INFO("stderr: " << p.err);
+    CHECK(p.exit_code == 0);
+    CHECK_FALSE(contains(p.err, "FAILED"));
+}

@@ -1,0 +1,102 @@
+// energy_table.cpp — the energy terms on the seeds' trials (see energy_table.hpp).
+#include "engine/bench/energy_table.hpp"
+
+#include "engine/experiments/protocol.hpp"
+#include "engine/experiments/servo_trial.hpp"
+#include "engine/experiments/stimulus.hpp"
+#include "engine/experiments/trial_plan.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace contactlab::bench {
+namespace {
+
+// Seed 002's protocol as shipped (scenes/experiments/002-bump-counting.json): R 20 mm, L 20 mm,
+// 1300 N/m, 1.5 N, bumps 3 and 18 mm over 18.4 cm, pressed 3 mm, with contact location.
+experiments::Protocol seed_002(double speed) {
+    experiments::Protocol p;
+    p.task = experiments::Task::bump_counting;
+    p.conditions = {{"F+CLD", true}};
+    p.hand_speed = speed;
+    p.hand_press = 0.003;
+    p.finger_radius = 0.020;
+    p.pad_length = 0.020;
+    p.stiffness = 1300.0;
+    p.max_force = 1.5;
+    p.small_bump = 0.003;
+    p.large_bump = 0.018;
+    p.traced_length = 0.184;
+    return p;
+}
+
+// Seed 000's contour following (scenes/experiments/000-contour-following.json): the block task.
+experiments::Protocol seed_000() {
+    experiments::Protocol p;
+    p.task = experiments::Task::contour_following;
+    p.conditions = {{"force+cld", true}};
+    p.hand_speed = 0.05;
+    p.hand_press = 0.003;
+    p.finger_radius = 0.026;
+    p.pad_length = 0.020;
+    p.stiffness = 1000.0;
+    p.max_force = 1.5;
+    p.finish_depth = 0.06;
+    return p;
+}
+
+EnergyRow run_rows(const std::string& task, const experiments::Protocol& p, const std::vector<double>& stimuli) {
+    EnergyRow row;
+    row.task = task;
+    row.speed = p.hand_speed;
+    row.threshold = 2.0 * p.max_force * p.max_force / (2.0 * p.stiffness);  // ServoParams::passivity_threshold x
+    const double keep = std::exp(-1e-3 / 0.5);  // the observer's leak over one 1 kHz tick (0.5 s)
+    for (std::size_t i = 0; i < stimuli.size(); ++i) {
+        experiments::PlannedTrial t;
+        t.stimulus = stimuli[i];
+        t.seed = experiments::mix64(0xE5E5 + i);
+        const experiments::Stimulus st = experiments::make_stimulus(p, p.conditions[0], t);
+        const experiments::TrialTrace tr = experiments::run_servo_trial(st.scene, st.path, true);
+        double sum = 0.0, sum_turn = 0.0, peak = 0.0, peak_turn = 0.0;  // J
+        for (const auto& r : tr.ticks) {
+            const EnergyTerms& e = r.energy;
+            row.mean.hold += e.hold;
+            row.mean.field += e.field;
+            row.mean.turn += e.turn;
+            row.mean.edit += e.edit;
+            row.mean.proxy += e.proxy;
+            row.mean.friction += e.friction;
+            row.mean.damping += e.damping;
+            sum = sum * keep + e.generated();
+            sum_turn = sum_turn * keep + e.generated() + e.turn;
+            peak = std::max(peak, sum);
+            peak_turn = std::max(peak_turn, sum_turn);
+        }
+        row.peak_observer = std::max(row.peak_observer, peak);
+        row.peak_with_turn = std::max(row.peak_with_turn, peak_turn);
+        row.faulted += tr.faulted ? 1 : 0;
+        row.would_fault += peak_turn > row.threshold ? 1 : 0;
+        ++row.trials;
+    }
+    const double n = std::max(1, row.trials);
+    for (double* v : {&row.mean.hold, &row.mean.field, &row.mean.turn, &row.mean.edit, &row.mean.proxy,
+                      &row.mean.friction, &row.mean.damping})
+        *v /= n;
+    return row;
+}
+
+}  // namespace
+
+std::vector<EnergyRow> energy_table(bool quick) {
+    // Every bump count the protocol presents, each a new random stimulus (quick: fewer).
+    std::vector<double> bumps;
+    for (int rep = 0; rep < (quick ? 1 : 4); ++rep)
+        for (int k = 0; k <= 4; ++k) bumps.push_back(k);
+    std::vector<EnergyRow> rows;
+    rows.push_back(run_rows("seed 002 bumps", seed_002(0.05), bumps));
+    rows.push_back(run_rows("seed 002 bumps", seed_002(0.10), bumps));
+    rows.push_back(run_rows("seed 000 block", seed_000(), quick ? std::vector<double>{0.07} : std::vector<double>{0.04, 0.07, 0.10}));
+    return rows;
+}
+
+}  // namespace contactlab::bench
