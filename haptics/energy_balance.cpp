@@ -1,6 +1,7 @@
 // energy_balance.cpp — the per-tick energy terms (see energy_balance.hpp).
 #include "haptics/energy_balance.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace contactlab {
@@ -69,6 +70,19 @@ EnergyTerms EnergyBalance::step(const EnergySample& s, const EnergyLaw& L) noexc
         e.turn = u_turned - u_start;
         e.proxy = u_proxy - u_turned + (s.swapped ? 0.0 : u_start - u_proxy_before);
         e.friction = (u_anchor - u_proxy) - (u_anchor_before - u_proxy_before);
+        if (s.swapped) {  // the new scene's proxy holds no stiction point yet: the swap's doing
+            e.edit += e.friction;
+            e.friction = 0.0;
+        }
+        if (s.phi != prev_phi_) {
+            // The walk's release beyond the hold's share on a turning tick: the pad turned back
+            // out, the hand's (see the header).
+            const double beyond = e.proxy + std::max(0.0, e.hold);  // J
+            if (beyond < 0.0) {
+                e.proxy -= beyond;
+                e.turn += beyond;
+            }
+        }
         // The device's damping b dissipated b v^2 over the period, of which only the motion along
         // the spring's line of action pays for what the spring generated: motion across it
         // (sliding, driven by the hand) would credit the loop with dissipation the hand pays for
@@ -83,6 +97,7 @@ EnergyTerms EnergyBalance::step(const EnergySample& s, const EnergyLaw& L) noexc
     prev_proxy_ = s.proxy;
     prev_anchor_ = s.anchor;
     prev_normal_ = n;
+    prev_phi_ = s.phi;
     primed_ = true;
     return e;
 }

@@ -14,9 +14,14 @@
 //             potential: U here is the work along the ray from the anchor, |E p| |p| / 2, and
 //             turning the penetration p against the field's axes changes it by (|p|^2 / 2) dg
 //             with no motion along p. Zero for the spring (g = K in every direction).
-//   turn      U(x_k; p_turned) - U(x_k; p_start): the finger angle phi turned the pad into (or out
-//             of) the surface and pushed the proxy out. The hand drives phi, the device renders no
-//             torque: this is the hand's work, and it is not counted against the loop.
+//   turn      U(x_k; p_turned) - U(x_k; p_start): the finger angle phi turned the pad into the
+//             surface and pushed the proxy out. The hand drives phi, the device renders no
+//             torque: this is the hand's work, and it is not counted against the loop. Turning
+//             the pad back out pushes nothing: the walk then brings the proxy back toward the
+//             finger and releases that energy. So on a tick whose phi changed, what the walk
+//             releases beyond this tick's `hold` (the share a slide along the surface gives back)
+//             is the hand's too and moves here (negative): a pad toggled in and out at a contact
+//             nets zero, instead of crediting the loop with dissipation it never did.
 //   edit      U(x_k; p_start) - U(x_k; p_{k-1}) on a tick that swapped in a new scene: the swap
 //             placed the proxy on the new geometry (Proxy::place), the user's edit, not counted
 //             either. (On other ticks the same difference is the exact-curve refinement of the
@@ -27,6 +32,8 @@
 //             U is not the Euclidean distance the walk minimises, it can be either sign.
 //   friction  the change of (U(x; a) - U(x; p)), the stiction point's offset from the proxy:
 //             positive while the stick spring loads, negative when it slips (dynamic friction).
+//             (A scene swap starts a new proxy with no stiction point: that tick's change is the
+//             edit's.)
 //   damping   -b (n . dx)^2 / T: what the device's own damping b (N s/m) dissipated along the
 //             spring's line of action n (motion across it is the hand's).
 //
@@ -82,6 +89,7 @@ struct EnergySample {
     double share = 1.0;
     double dt = 1e-3;     // s since the last tick
     bool swapped = false; // a new scene was swapped in this tick (start is where place() put it)
+    double phi = 0.0;     // rad, the finger angle this tick
 };
 
 // The law the spring follows this tick.
@@ -106,6 +114,7 @@ public:
 
 private:
     Vec2 motion_{0.0};
+    double prev_phi_ = 0.0;  // rad
     bool primed_ = false;
     Vec2 prev_x_{0.0}, prev_proxy_{0.0}, prev_anchor_{0.0}, prev_normal_{0.0, 1.0};
     Vec2 line_{0.0};  // unit: the spring's line of action (last non-zero force's direction)

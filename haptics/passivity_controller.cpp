@@ -23,6 +23,10 @@ Vec2 PassivityController::step(double observed, Vec2 dx, Vec2 line, double dt, d
     const double v = along / dt;              // m/s
     // alpha = W / (v^2 T); a finger still along the line needs more than any cap.
     const double needed = along != 0.0 ? observed * dt / (along * along) : std::numeric_limits<double>::infinity();
+    if (along == 0.0) {  // no motion along the line: a damper adds nothing (and is not reported as added)
+        saturated_ = true;
+        return Vec2{0.0};
+    }
     damping_ = std::min(needed, max_damping);
     saturated_ = needed > max_damping;
     if (!std::isfinite(damping_)) damping_ = 0.0;

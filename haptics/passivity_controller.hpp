@@ -14,8 +14,11 @@
 // the servo faults as without a controller, once the sum passes its threshold.
 //
 // What it costs: the added damping is felt. It acts only while the loop is generating energy (W >
-// 0), along the spring's line: sliding along a surface is not damped, pressing into it is. A loop
-// well inside the sampled-spring bound (K T / 2 < b) never needs it (W stays <= 0).
+// 0), in contact, along the spring's line: sliding along a surface is not damped, pressing into it
+// is. The servo arms it only past the sampled spring's bound (K T / 2 > b): inside it W still
+// makes small positive excursions (the encoders' one-count steps, the hand), and a damper driven
+// by one-count velocity steps only excites them. drivers/ caps alpha at min(b, m / T): the
+// controller at most doubles the device's damping.
 //
 // O(1), no allocation: safe in the servo tick.
 #pragma once

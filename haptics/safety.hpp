@@ -106,12 +106,6 @@ public:
     // dissipated); linear: in contact with the force below the clamp now. Returns true once either
     // sum passes the threshold. Non-finite input resets the sums and returns false.
     bool step(double generated, double dt, bool linear = false) noexcept;
-    // Takes `dissipated` (J, >= 0) off both sums: what a passivity controller's added damping
-    // dissipated this tick (haptics/passivity_controller.hpp).
-    void credit(double dissipated) noexcept {
-        energy_ -= dissipated;
-        if (prev_linear_) linear_energy_ -= dissipated;
-    }
     double energy() const noexcept { return energy_; }  // J
     double linear_energy() const noexcept { return linear_energy_; }  // J
     // J: how much more the loop may generate before either sum reports (the observer's budget).

@@ -136,6 +136,7 @@ void ServoTick::swap_scene(const ServoInput& in) noexcept {
 
 void ServoTick::fault_tick(const ServoInput& in, double dt, ServoFault f) noexcept {
     safety_.raise(f, std::isfinite(in.t) ? in.t : (std::isfinite(last_t_) ? last_t_ + dt : 0.0));
+    energy_terms_ = EnergyTerms{};  // nothing rendered: no balance (a CSV summing terms must not count the last twice)
     observer_.reset();
     balance_.reset();
     controller_.reset();
@@ -210,7 +211,8 @@ const ServoCommand& ServoTick::tick(const ServoInput& in) noexcept {
             // loop's doing; without that a ramp into a finger resting 5 mm deep, 6 mJ at 1.5 N,
             // read as an instability and faulted the servo it was bringing back).
             const EnergySample sample{in.finger, proxy_out_.start, proxy_out_.turned, proxy_out_.proxy,
-                                      proxy_out_.anchor, applied_, scale * kept, dt, scene_swaps_ != swaps_before};
+                                      proxy_out_.anchor, applied_, scale * kept, dt, scene_swaps_ != swaps_before,
+                                      in.phi};
             energy_terms_ = balance_.step(sample, {def.law, current_.stiffness, current_.max_force, config_.device_damping});
             const bool energy_grew = observer_.step(energy_terms_.generated(), dt, linear);
             // Armed where the sampled spring's hold outdoes the device's damping along its
@@ -223,7 +225,10 @@ const ServoCommand& ServoTick::tick(const ServoInput& in) noexcept {
             // what the sum sees there is the encoders' steps and the hand, which a damper driven
             // by one-count velocity steps only excites (it faulted the block task at 10 kHz).
             controller_.reset();
-            if (current_.passivity == PassivityMode::control && past_bound && !energy_grew && !cycling) {
+            // In contact only: kept through free flight after a bounce, its damper could pull
+            // the finger back toward the surface.
+            if (current_.passivity == PassivityMode::control && past_bound && proxy_out_.contact && !energy_grew &&
+                !cycling) {
                 const double excess = std::max(observer_.energy(), observer_.linear_energy());  // J
                 const Vec2 damp = controller_.step(excess, balance_.motion(), balance_.line(), dt, config_.max_damping);
                 if (controller_.damping() > 0.0) f = clamp_then_saturate(f + damp, current_.max_force, config_.axis_max);

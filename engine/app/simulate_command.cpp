@@ -192,6 +192,11 @@ int run_simulate(const SimulateOptions& o) {
     params.passivity = scene.force.passivity;
     params.safety.watchdog_timeout = watchdog_timeout_for(o.rate);
     ServoConfig config = servo_config_for(*dev, o.rate);
+    if (scene.force.passivity == PassivityMode::control && !(config.max_damping > 0.0))
+        std::fprintf(stderr,
+                     "simulate: warning: the scene asks for the passivity controller, but the device declares no "
+                     "effective mass (DeviceLimits::mass): it cannot add damping, and an energy-generating loop faults "
+                     "as with \"passivity\": \"fault\"\n");
     if (o.roller_travel_set) config.roller_travel = software_roller_travel(*dev, config, o.roller_travel);
     ServoTick tick(config, params);
     tick.scenes().publish(std::make_unique<ServoScene>(scene));

@@ -5,6 +5,7 @@
 #include "engine/experiments/servo_trial.hpp"
 #include "engine/experiments/stimulus.hpp"
 #include "engine/experiments/trial_plan.hpp"
+#include "haptics/servo_tick.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -49,8 +50,10 @@ EnergyRow run_rows(const std::string& task, const experiments::Protocol& p, cons
     EnergyRow row;
     row.task = task;
     row.speed = p.hand_speed;
-    row.threshold = 2.0 * p.max_force * p.max_force / (2.0 * p.stiffness);  // ServoParams::passivity_threshold x
-    const double keep = std::exp(-1e-3 / 0.5);  // the observer's leak over one 1 kHz tick (0.5 s)
+    // The servo's: passivity_threshold times the spring's linear-range energy, F^2 / 2K (J), and the
+    // observer's leak (0.5 s, servo_tick.cpp) over one tick of the trials' rate.
+    row.threshold = ServoParams{}.passivity_threshold * p.max_force * p.max_force / (2.0 * p.stiffness);
+    const double keep = std::exp(-1.0 / (experiments::kTrialRate * 0.5));
     for (std::size_t i = 0; i < stimuli.size(); ++i) {
         experiments::PlannedTrial t;
         t.stimulus = stimuli[i];
