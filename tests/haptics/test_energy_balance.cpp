@@ -24,6 +24,24 @@ constexpr double kT = 1e-3;     // s
 // The floor y = 0 from x = -0.1 to 0.1 m (solid below).
 Scene floor_scene() { return test::scene_of({test::polyline({{-0.1, 0.0}, {0.1, 0.0}})}); }
 
+// A pad of R 20 mm and L 30 mm (half-angle 0.75 rad) whose centre rests 1 mm nearer the floor
+// than R, turned to phi = 1.2 rad: only its end comes near the floor, clear of it. Lowered there
+// from 2 mm above, so the proxy has its history.
+struct TurningPad {
+    Scene scene = [] {
+        Scene s = floor_scene();
+        s.finger.radius = 0.02;
+        s.finger.length = 0.03;
+        return s;
+    }();
+    Environment env = build_environment(scene);
+    Proxy proxy{env, proxy_def_of(scene)};
+    Vec2 x{0.0, 0.02 - 1e-3};  // m
+    TurningPad() {
+        for (int k = 0; k <= 20; ++k) proxy.update(x + Vec2{0.0, 2e-3 - 1e-4 * k}, 1.2);
+    }
+};
+
 EnergyLaw spring_law() { return {ForceLaw{}, K, kMax, kB}; }
 
 // A frictionless tick with the proxy fixed at `p` (m), the finger at x (m), force held `f` (N).
@@ -90,14 +108,10 @@ TEST_CASE("energy: the pad turned into the floor is the hand's work, not the loo
     // phi back to 0.4 rad sweeps the pad's end into the floor: the re-projection pushes the proxy
     // up to R above it. The spring's energy rises from 0 to K (1 mm)^2 / 2 with no motion: all of
     // it is `turn`, and what the loop generated stays zero.
-    Scene scene = floor_scene();
-    scene.finger.radius = 0.02;
-    scene.finger.length = 0.03;
-    const Environment env = build_environment(scene);
-    Proxy proxy(env, proxy_def_of(scene));
+    TurningPad pad;
+    Proxy& proxy = pad.proxy;
+    const Vec2 x = pad.x;
     EnergyBalance b;
-    const Vec2 x{0.0, 0.02 - 1e-3};
-    for (int k = 0; k <= 20; ++k) proxy.update(x + Vec2{0.0, 2e-3 - 1e-4 * k}, 1.2);  // down from 2 mm above
     Vec2 applied{0.0};
     double turn = 0.0, u_first = 0.0, u_last = 0.0;
     for (int k = 0; k <= 100; ++k) {
@@ -124,14 +138,10 @@ TEST_CASE("energy: a pad turned into the floor and back out, again and again, ne
     // Turning out pushes nothing: the walk brings the proxy back and releases the energy the turn
     // in stored. That release is the hand's too (a finger-angle encoder toggling one count at a
     // pad-end contact must not credit the loop with dissipation it never did).
-    Scene scene = floor_scene();
-    scene.finger.radius = 0.02;
-    scene.finger.length = 0.03;
-    const Environment env = build_environment(scene);
-    Proxy proxy(env, proxy_def_of(scene));
+    TurningPad pad;
+    Proxy& proxy = pad.proxy;
+    const Vec2 x = pad.x;
     EnergyBalance b;
-    const Vec2 x{0.0, 0.02 - 1e-3};
-    for (int k = 0; k <= 20; ++k) proxy.update(x + Vec2{0.0, 2e-3 - 1e-4 * k}, 1.2);
     Vec2 applied{0.0};
     double generated = 0.0, turn = 0.0, released = 0.0;
     for (int cycle = 0; cycle < 5; ++cycle) {
