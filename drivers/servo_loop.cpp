@@ -82,8 +82,7 @@ void ServoLoop::step(double wall_period, bool wait_for_ring) noexcept {
         rec.energy = tick_.energy_terms();
         rec.observer_energy = tick_.observer().energy();
         rec.observer_margin = tick_.observer().margin();
-        const double budget = tick_.observer().params().threshold;  // J
-        rec.observer_used = budget > 0.0 ? 1.0 - rec.observer_margin / budget : 0.0;
+        rec.observer_used = tick_.observer().used();
         rec.state = tick_.state();
         rec.fault = tick_.fault();
         if (!ring_->try_push(rec)) {

@@ -59,13 +59,16 @@ EnergyTerms EnergyBalance::step(const EnergySample& s, const EnergyLaw& L) noexc
             // ... and the field's axes turning with the contact frame.
             e.field += U(s.finger, prev_anchor_, n) - u_moved;
         }
-        // The anchor's way from last tick's to this tick's, at the new finger position.
-        const double u_anchor_before = U(s.finger, prev_anchor_, n);
-        const double u_proxy_before = U(s.finger, prev_proxy_, n);
-        const double u_start = U(s.finger, s.start, n);
-        const double u_turned = U(s.finger, s.turned, n);
-        const double u_proxy = U(s.finger, s.proxy, n);
-        const double u_anchor = U(s.finger, s.anchor, n);
+        // The anchor's way from last tick's to this tick's, at the new finger position. Most ticks
+        // most of these points coincide (no turn, no swap, no friction): each is evaluated once.
+        // (The spring's U ignores the normal, so its u_moved is the anchor's too.)
+        const double u_anchor_before =
+            L.law.model == ForceModel::ellipsoid ? U(s.finger, prev_anchor_, n) : u_moved;
+        const double u_proxy_before = prev_proxy_ == prev_anchor_ ? u_anchor_before : U(s.finger, prev_proxy_, n);
+        const double u_start = s.start == prev_proxy_ ? u_proxy_before : U(s.finger, s.start, n);
+        const double u_turned = s.turned == s.start ? u_start : U(s.finger, s.turned, n);
+        const double u_proxy = s.proxy == s.turned ? u_turned : U(s.finger, s.proxy, n);
+        const double u_anchor = s.anchor == s.proxy ? u_proxy : U(s.finger, s.anchor, n);
         e.edit = s.swapped ? u_start - u_proxy_before : 0.0;
         e.turn = u_turned - u_start;
         e.proxy = u_proxy - u_turned + (s.swapped ? 0.0 : u_start - u_proxy_before);

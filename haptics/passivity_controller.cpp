@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace contactlab {
 
@@ -20,13 +19,12 @@ Vec2 PassivityController::step(double observed, Vec2 dx, Vec2 line, double dt, d
     saturated_ = false;
     if (!(observed > 0.0) || !(dt > 0.0) || !(glm::dot(line, line) > 0.0) || !(max_damping > 0.0)) return Vec2{0.0};
     const double along = glm::dot(line, dx);  // m this tick
-    const double v = along / dt;              // m/s
-    // alpha = W / (v^2 T); a finger still along the line needs more than any cap.
-    const double needed = along != 0.0 ? observed * dt / (along * along) : std::numeric_limits<double>::infinity();
-    if (along == 0.0) {  // no motion along the line: a damper adds nothing (and is not reported as added)
+    if (along == 0.0) {  // still along the line: no damper can dissipate (none added, none reported)
         saturated_ = true;
         return Vec2{0.0};
     }
+    const double v = along / dt;                            // m/s
+    const double needed = observed * dt / (along * along);  // N s/m: alpha = W / (v^2 T)
     damping_ = std::min(needed, max_damping);
     saturated_ = needed > max_damping;
     if (!std::isfinite(damping_)) damping_ = 0.0;

@@ -109,9 +109,13 @@ public:
     double energy() const noexcept { return energy_; }  // J
     double linear_energy() const noexcept { return linear_energy_; }  // J
     // J: how much more the loop may generate before either sum reports (the observer's budget).
-    double margin() const noexcept { return p_.threshold - (energy_ > linear_energy_ ? energy_ : linear_energy_); }
+    double margin() const noexcept { return p_.threshold - sum(); }
+    // The share of the budget used (1: a report; negative while the loop has dissipated more than
+    // it made): what the editor plots.
+    double used() const noexcept { return p_.threshold > 0.0 ? sum() / p_.threshold : 0.0; }
 
 private:
+    double sum() const noexcept { return energy_ > linear_energy_ ? energy_ : linear_energy_; }  // J, the larger
     PassivityParams p_;
     double energy_ = 0.0;
     double linear_energy_ = 0.0;  // J

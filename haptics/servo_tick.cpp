@@ -284,6 +284,7 @@ const ServoCommand& ServoTick::tick(const ServoInput& in) noexcept {
     snap.observer_energy = observer_.energy();
     snap.observer_linear_energy = observer_.linear_energy();
     snap.observer_threshold = observer_.params().threshold;
+    snap.observer_used = observer_.used();
     snap.energy = energy_terms_;
     snap.passivity_damping = controller_.damping();
     snap.passivity_saturated = controller_.saturated();

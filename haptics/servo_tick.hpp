@@ -107,6 +107,7 @@ struct ServoSnapshot {
     double observer_energy = 0.0;   // J, the observer's whole-loop sum
     double observer_linear_energy = 0.0;  // J, its linear-range sum
     double observer_threshold = 0.0;      // J: either sum above this is an instability
+    double observer_used = 0.0;           // the share of that the larger sum has used (PassivityObserver::used)
     EnergyTerms energy;             // J, this tick's balance (haptics/energy_balance.hpp)
     double passivity_damping = 0.0; // N s/m the passivity controller added this tick
     bool passivity_saturated = false;  // ... and it was capped at ServoConfig::max_damping

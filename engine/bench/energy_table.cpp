@@ -13,36 +13,25 @@
 namespace contactlab::bench {
 namespace {
 
-// Seed 002's protocol as shipped (scenes/experiments/002-bump-counting.json): R 20 mm, L 20 mm,
-// 1300 N/m, 1.5 N, bumps 3 and 18 mm over 18.4 cm, pressed 3 mm, with contact location.
+// Seed 002's protocol as shipped (scenes/experiments/002-bump-counting.json): R 20 mm and 1300
+// N/m where it differs from experiments::Protocol's defaults (L 20 mm, 1.5 N, bumps 3 and 18 mm
+// over 18.4 cm, pressed 3 mm), with contact location.
 experiments::Protocol seed_002(double speed) {
     experiments::Protocol p;
     p.task = experiments::Task::bump_counting;
     p.conditions = {{"F+CLD", true}};
     p.hand_speed = speed;
-    p.hand_press = 0.003;
     p.finger_radius = 0.020;
-    p.pad_length = 0.020;
     p.stiffness = 1300.0;
-    p.max_force = 1.5;
-    p.small_bump = 0.003;
-    p.large_bump = 0.018;
-    p.traced_length = 0.184;
     return p;
 }
 
-// Seed 000's contour following (scenes/experiments/000-contour-following.json): the block task.
+// Seed 000's contour following (scenes/experiments/000-contour-following.json): the block task at
+// the defaults (R 26 mm, L 20 mm, 1000 N/m, 1.5 N, 5 cm/s pressed 3 mm, finish 6 cm down).
 experiments::Protocol seed_000() {
     experiments::Protocol p;
     p.task = experiments::Task::contour_following;
     p.conditions = {{"force+cld", true}};
-    p.hand_speed = 0.05;
-    p.hand_press = 0.003;
-    p.finger_radius = 0.026;
-    p.pad_length = 0.020;
-    p.stiffness = 1000.0;
-    p.max_force = 1.5;
-    p.finish_depth = 0.06;
     return p;
 }
 
@@ -51,7 +40,8 @@ EnergyRow run_rows(const std::string& task, const experiments::Protocol& p, cons
     row.task = task;
     row.speed = p.hand_speed;
     // The servo's: passivity_threshold times the spring's linear-range energy, F^2 / 2K (J), and the
-    // observer's leak (0.5 s, servo_tick.cpp) over one tick of the trials' rate.
+    // observer's leak (0.5 s, servo_tick.cpp) over one tick of the trials' rate, for the sum the
+    // observer would have kept with `turn` counted (its own sum is in each record).
     row.threshold = ServoParams{}.passivity_threshold * p.max_force * p.max_force / (2.0 * p.stiffness);
     const double keep = std::exp(-1.0 / (experiments::kTrialRate * 0.5));
     for (std::size_t i = 0; i < stimuli.size(); ++i) {
@@ -60,7 +50,7 @@ EnergyRow run_rows(const std::string& task, const experiments::Protocol& p, cons
         t.seed = experiments::mix64(0xE5E5 + i);
         const experiments::Stimulus st = experiments::make_stimulus(p, p.conditions[0], t);
         const experiments::TrialTrace tr = experiments::run_servo_trial(st.scene, st.path, true);
-        double sum = 0.0, sum_turn = 0.0, peak = 0.0, peak_turn = 0.0;  // J
+        double sum_turn = 0.0, peak = 0.0, peak_turn = 0.0;  // J
         for (const auto& r : tr.ticks) {
             const EnergyTerms& e = r.energy;
             row.mean.hold += e.hold;
@@ -70,9 +60,8 @@ EnergyRow run_rows(const std::string& task, const experiments::Protocol& p, cons
             row.mean.proxy += e.proxy;
             row.mean.friction += e.friction;
             row.mean.damping += e.damping;
-            sum = sum * keep + e.generated();
             sum_turn = sum_turn * keep + e.generated() + e.turn;
-            peak = std::max(peak, sum);
+            peak = std::max(peak, r.observer_energy);
             peak_turn = std::max(peak_turn, sum_turn);
         }
         row.peak_observer = std::max(row.peak_observer, peak);

@@ -370,12 +370,10 @@ void status_window(EditorState& s, const FrameInfo& info, const EditorLayout& la
         // The passivity observer's budget (haptics/safety.hpp): the energy the loop generated, net
         // of what the device dissipated, against the threshold of a report. A user raising Ke sees
         // the margin shrink here before anything faults.
-        const double used = snap.observer_threshold > 0.0
-                                ? std::max(snap.observer_energy, snap.observer_linear_energy) / snap.observer_threshold
-                                : 0.0;
+        const double used = std::max(0.0, snap.observer_used);
         ImGui::TextColored(used > 0.5 ? ImVec4(1, 0.6f, 0.3f, 1) : ImVec4(0.7f, 0.9f, 0.7f, 1),
-                           "passivity budget used %.0f %% (%.0f of %.0f uJ)%s", 100.0 * std::max(0.0, used),
-                           std::max(snap.observer_energy, snap.observer_linear_energy) * 1e6, snap.observer_threshold * 1e6,
+                           "passivity budget used %.0f %% (%.0f of %.0f uJ)%s", 100.0 * used,
+                           snap.observer_used * snap.observer_threshold * 1e6, snap.observer_threshold * 1e6,
                            snap.passivity_damping > 0.0 ? ", damping added" : "");
         {
             const auto& v = s.history.column(PlotHistory::budget_pct);

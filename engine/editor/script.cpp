@@ -302,9 +302,7 @@ bool Script::run(EditorState& s, const Line& line, double now) {
             else if (n == "roller_target") v = snap.roller_target * 1e3;  // mm
             else if (n == "budget_threshold") v = snap.observer_threshold * 1e6;  // uJ, the passivity observer's
             else if (n == "budget_used")  // % of it the loop has generated (the Haptics panel's plot)
-                v = snap.observer_threshold > 0.0
-                        ? 100.0 * std::max({0.0, snap.observer_energy, snap.observer_linear_energy}) / snap.observer_threshold
-                        : 0.0;
+                v = 100.0 * std::max(0.0, snap.observer_used);
             else if (const auto p = parameter_value(s, n)) v = *p;  // the value shown in its field
             else throw ScriptError("unknown expectation \"" + n + "\"");
             const double tol = w.size() > 3 ? number(w[3]) : 0.0;

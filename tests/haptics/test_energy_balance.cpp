@@ -24,6 +24,18 @@ constexpr double kT = 1e-3;     // s
 // The floor y = 0 from x = -0.1 to 0.1 m (solid below).
 Scene floor_scene() { return test::scene_of({test::polyline({{-0.1, 0.0}, {0.1, 0.0}})}); }
 
+EnergyLaw spring_law() { return {ForceLaw{}, K, kMax, kB}; }
+
+// A frictionless tick with the proxy fixed at `p` (m), the finger at x (m), force held `f` (N).
+EnergySample fixed_anchor(Vec2 x, Vec2 p, Vec2 f) {
+    EnergySample s;
+    s.finger = x;
+    s.start = s.turned = s.proxy = s.anchor = p;
+    s.applied = f;
+    s.dt = kT;
+    return s;
+}
+
 // A pad of R 20 mm and L 30 mm (half-angle 0.75 rad) whose centre rests 1 mm nearer the floor
 // than R, turned to phi = 1.2 rad: only its end comes near the floor, clear of it. Lowered there
 // from 2 mm above, so the proxy has its history.
@@ -37,22 +49,19 @@ struct TurningPad {
     Environment env = build_environment(scene);
     Proxy proxy{env, proxy_def_of(scene)};
     Vec2 x{0.0, 0.02 - 1e-3};  // m
+    EnergyBalance balance;
+    Vec2 applied{0.0};  // N, the force held since the last tick
     TurningPad() {
         for (int k = 0; k <= 20; ++k) proxy.update(x + Vec2{0.0, 2e-3 - 1e-4 * k}, 1.2);
     }
+    // One tick with the finger held at x and turned to phi (rad): the balance's terms.
+    EnergyTerms turn_to(double phi) {
+        const ProxyOutput& o = proxy.update(x, phi);
+        const EnergySample s{x, o.start, o.turned, o.proxy, o.anchor, applied, 1.0, kT, false, phi};
+        applied = o.force;
+        return balance.step(s, spring_law());
+    }
 };
-
-EnergyLaw spring_law() { return {ForceLaw{}, K, kMax, kB}; }
-
-// A frictionless tick with the proxy fixed at `p` (m), the finger at x (m), force held `f` (N).
-EnergySample fixed_anchor(Vec2 x, Vec2 p, Vec2 f) {
-    EnergySample s;
-    s.finger = x;
-    s.start = s.turned = s.proxy = s.anchor = p;
-    s.applied = f;
-    s.dt = kT;
-    return s;
-}
 
 }  // namespace
 
@@ -109,23 +118,15 @@ TEST_CASE("energy: the pad turned into the floor is the hand's work, not the loo
     // up to R above it. The spring's energy rises from 0 to K (1 mm)^2 / 2 with no motion: all of
     // it is `turn`, and what the loop generated stays zero.
     TurningPad pad;
-    Proxy& proxy = pad.proxy;
-    const Vec2 x = pad.x;
-    EnergyBalance b;
-    Vec2 applied{0.0};
     double turn = 0.0, u_first = 0.0, u_last = 0.0;
     for (int k = 0; k <= 100; ++k) {
-        const double phi = 1.2 - 0.008 * k;  // rad
-        const ProxyOutput& o = proxy.update(x, phi);
-        const EnergySample s{x, o.start, o.turned, o.proxy, o.anchor, applied, 1.0, kT, false, phi};
-        const EnergyTerms e = b.step(s, spring_law());
-        const double u = law_energy(ForceLaw{}, K, kMax, x, o.anchor, Vec2{0.0, 1.0});
+        const EnergyTerms e = pad.turn_to(1.2 - 0.008 * k);  // rad
+        const double u = law_energy(ForceLaw{}, K, kMax, pad.x, pad.proxy.output().anchor, Vec2{0.0, 1.0});
         if (k == 0) u_first = u;
         u_last = u;
         CHECK(e.hold == 0.0);  // no motion, no hold
         CHECK(e.generated() <= 1e-15);
         turn += e.turn;
-        applied = o.force;
     }
     CAPTURE(u_first);
     CAPTURE(u_last);
@@ -139,21 +140,13 @@ TEST_CASE("energy: a pad turned into the floor and back out, again and again, ne
     // in stored. That release is the hand's too (a finger-angle encoder toggling one count at a
     // pad-end contact must not credit the loop with dissipation it never did).
     TurningPad pad;
-    Proxy& proxy = pad.proxy;
-    const Vec2 x = pad.x;
-    EnergyBalance b;
-    Vec2 applied{0.0};
     double generated = 0.0, turn = 0.0, released = 0.0;
     for (int cycle = 0; cycle < 5; ++cycle) {
         for (int k = 0; k <= 200; ++k) {
-            const double phi = 1.2 - 0.8 * (k <= 100 ? k : 200 - k) / 100.0;  // rad: in to 0.4, back out to 1.2
-            const ProxyOutput& o = proxy.update(x, phi);
-            const EnergySample s{x, o.start, o.turned, o.proxy, o.anchor, applied, 1.0, kT, false, phi};
-            const EnergyTerms e = b.step(s, spring_law());
+            const EnergyTerms e = pad.turn_to(1.2 - 0.8 * (k <= 100 ? k : 200 - k) / 100.0);  // rad: in to 0.4, back out to 1.2
             generated += e.generated();
             turn += e.turn;
             if (e.turn < 0.0) released -= e.turn;
-            applied = o.force;
         }
     }
     CAPTURE(turn);
