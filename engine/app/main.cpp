@@ -7,15 +7,21 @@
 #include "engine/app/trace_csv.hpp"
 #include "haptics/scene_io.hpp"
 
+#include <contactlab/version.hpp>
+
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <string>
 
 int main(int argc, char** argv) {
     using namespace contactlab;
     using namespace contactlab::app;
     CLI::App app{"ContactLab — haptic display of contact location: scenes, proxy, traces."};
-    app.set_version_flag("--version", std::string("contactlab ") + CONTACTLAB_VERSION);
+    // "contactlab 0.1.0" and, from a git checkout, the commit: results must name what made them.
+    std::string version = std::string("contactlab ") + CONTACTLAB_VERSION;
+    if (*CONTACTLAB_GIT_COMMIT) version += std::string(" (commit ") + CONTACTLAB_GIT_COMMIT + ")";
+    app.set_version_flag("--version", version);
     app.require_subcommand(0, 1);
 
     int rc = 0;

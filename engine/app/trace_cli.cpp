@@ -4,6 +4,8 @@
 #include "engine/app/trace_command.hpp"
 #include "haptics/scene_io.hpp"
 
+#include <contactlab/version.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

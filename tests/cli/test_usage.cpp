@@ -8,10 +8,23 @@
 
 using namespace cli_test;
 
-TEST_CASE("--version prints the version and exits 0") {
+TEST_CASE("--version prints the version and, from a git checkout, the commit it was built from") {
     const auto p = run_contactlab({"--version"});
     CHECK(p.exit_code == 0);
-    CHECK(p.out == "contactlab 0.1.0\n");
+    REQUIRE(p.out.rfind("contactlab 0.1.0", 0) == 0);
+    // The commit is the checkout's HEAD (the tests run from the tree the binary was built from).
+    std::string head;
+    if (FILE* git = ::popen(("git -C '" + source_dir().string() + "' rev-parse HEAD 2>/dev/null").c_str(), "r")) {
+        char buf[64] = {};
+        if (std::fgets(buf, sizeof buf, git)) head = buf;
+        ::pclose(git);
+    }
+    while (!head.empty() && (head.back() == '\n' || head.back() == '\r')) head.pop_back();
+    if (head.size() == 40) {
+        CHECK(contains(p.out, " (commit " + head));
+    } else {
+        CHECK(p.out == "contactlab 0.1.0\n");  // a source tree without git: no commit to name
+    }
 }
 
 TEST_CASE("--help exits 0 and lists the subcommands") {
