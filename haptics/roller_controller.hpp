@@ -39,7 +39,7 @@ struct RollerGains {
     // max_drive) / Kp = 0.10 mm for as long as the target moves. kff = Kd + back_emf (864.88
     // V s/m, the default) supplies exactly that drive: the derivative then acts on the error's
     // rate and the back-EMF is pre-paid, so a steady ramp needs no P or I. 0 is seed 000's pure
-    // eq. 2 (the figures for both: README "Roller"). Below 1 kHz it is re-placed with Kd.
+    // eq. 2 (the figures for both: docs/simulation.md, "Roller"). Below 1 kHz it is re-placed with Kd.
     double kff = 864.88;
     // Cut-off of the target-rate filter (Hz). l_d moves in encoder steps (0.04 mm of l per angle
     // count, 0.02 mm per arm count) that a per-tick difference turns into +-40 mm/s of rate; at

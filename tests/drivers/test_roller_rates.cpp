@@ -110,7 +110,7 @@ TEST_CASE("roller: block task error below 1 kHz grows no faster than the period"
     // The loop below 1 kHz is the 1 kHz loop slowed by T / 1 ms, so a ramp's lag grows like T:
     // error(rate) <= error(1 kHz) x (1 kHz / rate), 10 % for the encoder's and the angle
     // encoder's steps (which do not scale). The block is 250 N/m so the contact stays inside the
-    // arm's 2 b / T at 100 Hz (343 N/m). Printed: the figures the README gives.
+    // arm's 2 b / T at 100 Hz (343 N/m). Printed: the figures docs/simulation.md gives.
     const double speed = 0.05;  // m/s
     const drivers::sim::BlockTracking k1 = drivers::sim::block_task_tracking(speed, 1000.0, RollerGains{}, 250.0);
     REQUIRE(k1.opened);

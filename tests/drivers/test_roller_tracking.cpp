@@ -63,7 +63,7 @@ TEST_CASE("continuous-time roller gains: the block task tracks alike at 1, 4 and
     // on the drive, half from the backward-difference rate), so on a target moving at v two rates
     // may differ by v (T_a - T_b), e.g. 0.75 ms x v for 1 and 4 kHz; more would be the
     // discretisation. (It holds while the closed-loop poles, 400 rad/s, stay well inside the
-    // sampling: p T <= 0.4, i.e. from 1 kHz up; README "Simulation" gives the lower rates.)
+    // sampling: p T <= 0.4, i.e. from 1 kHz up; docs/simulation.md gives the lower rates.)
     for (double rate : {4000.0, 10000.0}) {
         const Tracking kn = block_task(0.05, rate);
         const double v = std::max(k1.max_rate, kn.max_rate);   // m/s

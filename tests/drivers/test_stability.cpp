@@ -183,7 +183,7 @@ TEST_CASE("far past the bound: fault-and-ramp reports every loop, the passivity 
 TEST_CASE("just past the bound the passivity controller keeps the force on where fault-and-ramp cuts it") {
     // 1 kHz, 5000 N/m: 1.46 x 2 b_normal / T. Without the controller the press and the stroke fault
     // within 0.3 s; with it (damping capped at the device's b) both keep pressing to the end, with
-    // a residual buzz of a few percent of the force (measured 5-7 %: felt, and the README says so).
+    // a residual buzz of a few percent of the force (measured 5-7 %: felt, and docs/stability.md says so).
     for (ContactScenario sc : {ContactScenario::press, ContactScenario::slide}) {
         CAPTURE(std::string(drivers::sim::to_string(sc)));
         ScenarioOptions opt;

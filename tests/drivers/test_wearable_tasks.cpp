@@ -32,7 +32,7 @@ TEST_CASE("wearable-step: the seed-fit rig rises in 0.1 s within 20 %, steady er
     // one 10 ms link tick of slack.
     const RigDef fit = seed_fit_rig();
     CHECK(std::abs(r.rise_time_s - std::log(9.0) * fit.reference_time_constant) < 0.012);
-    // Without the shaping Table 1's motor is an order of magnitude faster (README, issue 17).
+    // Without the shaping Table 1's motor is an order of magnitude faster (docs/wearable.md).
     const WearableStepResult raw = wearable_step(RigDef{});
     CHECK(raw.rise_time_s < 0.02);
     CHECK(raw.steady_error_pct < 2.0);

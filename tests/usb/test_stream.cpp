@@ -1,6 +1,6 @@
 // test_stream.cpp — streaming state and commands through the real libusb against the emulated
 // board: 1000+ frames, readings and forces with real values, stalls, timeouts, rejected frames,
-// board faults. Prints the measured round trip and frame rate (see the README's USB section).
+// board faults. Prints the measured round trip and frame rate (docs/devices.md).
 #include "hapio_emulator.hpp"
 #include "usb_fixture.hpp"
 
