@@ -32,6 +32,10 @@ std::string where(const Chart& c, const char* axis) { return "chart \"" + c.titl
 std::pair<double, double> axis_range(const Chart& c, bool is_x) {
     const ChartAxis& a = is_x ? c.x : c.y;
     const char* name = is_x ? "x" : "y";
+    if (!a.categories.empty()) {  // one slot per category, whatever the data
+        if (a.scale != AxisScale::linear) throw ChartError(where(c, name) + ": a categorical axis cannot be logarithmic");
+        return {a.min.value_or(-0.5), a.max.value_or(static_cast<double>(a.categories.size()) - 0.5)};
+    }
     const AxisMap probe_x{c.x.scale}, probe_y{c.y.scale};
     const AxisMap& own = is_x ? probe_x : probe_y;
     double lo = INFINITY, hi = -INFINITY;
@@ -41,6 +45,9 @@ std::pair<double, double> axis_range(const Chart& c, bool is_x) {
                 const double v = is_x ? s.x[i] : s.y[i];
                 lo = std::min(lo, v);
                 hi = std::max(hi, v);
+                // Error bars are data too: the interval must fit in the plot.
+                if (!is_x && i < s.y_low.size() && probe_y.accepts(s.y_low[i])) lo = std::min(lo, s.y_low[i]);
+                if (!is_x && i < s.y_high.size() && probe_y.accepts(s.y_high[i])) hi = std::max(hi, s.y_high[i]);
             }
     for (const ChartReference& r : c.references)
         if (r.vertical == is_x && own.accepts(r.value)) {
@@ -180,7 +187,22 @@ P2 px(const ChartLayout& l, double x, double y) {
     return P2(static_cast<float>(l.x.to_px(x)), static_cast<float>(l.y.to_px(y)));
 }
 
+void draw_error_bars(DrawList& out, const ChartLayout& l, const ChartSeries& s) {
+    constexpr float kCap = 5.f;  // px either side of the point
+    for (std::size_t i = 0; i < s.x.size() && i < s.y_low.size() && i < s.y_high.size(); ++i) {
+        if (!l.x.accepts(s.x[i]) || !l.y.accepts(s.y_low[i]) || !l.y.accepts(s.y_high[i])) continue;
+        P2 a = px(l, s.x[i], s.y_low[i]), b = px(l, s.x[i], s.y_high[i]);
+        const P2 low = a, high = b;
+        if (!clip(a, b, l.plot_lo, l.plot_hi)) continue;
+        out.line(a, b, 2.f, s.color);
+        // Caps only where the bar really ends (not where the plot cut it).
+        if (glm::distance(a, low) < 0.5f) out.line(a - P2(kCap, 0.f), a + P2(kCap, 0.f), 2.f, s.color);
+        if (glm::distance(b, high) < 0.5f) out.line(b - P2(kCap, 0.f), b + P2(kCap, 0.f), 2.f, s.color);
+    }
+}
+
 void draw_series(DrawList& out, const ChartLayout& l, const ChartSeries& s) {
+    draw_error_bars(out, l, s);
     // Runs of consecutive drawable points, clipped to the plot; a skipped point breaks the line.
     std::vector<P2> run;
     auto flush = [&] {
@@ -196,7 +218,7 @@ void draw_series(DrawList& out, const ChartLayout& l, const ChartSeries& s) {
             continue;
         }
         const P2 p = px(l, s.x[i], s.y[i]);
-        if (have_prev) {
+        if (have_prev && s.connect) {
             P2 a = prev, b = p;
             if (clip(a, b, l.plot_lo, l.plot_hi)) {
                 if (run.empty() || a != prev) {
@@ -229,14 +251,15 @@ struct LegendEntry {
     Marker marker;
     bool dashed;
     float width;
+    bool line;  // a sample of the line; false: the marker alone (unconnected series)
 };
 
 std::vector<LegendEntry> legend_entries(const Chart& c) {
     std::vector<LegendEntry> e;
     for (const ChartSeries& s : c.series)
-        if (!s.name.empty()) e.push_back({s.name, s.color, s.marker, s.dashed, s.line_width});
+        if (!s.name.empty()) e.push_back({s.name, s.color, s.marker, s.dashed, s.line_width, s.connect});
     for (const ChartReference& r : c.references)
-        if (!r.label.empty()) e.push_back({r.label, r.color, Marker::none, true, 2.f});
+        if (!r.label.empty()) e.push_back({r.label, r.color, Marker::none, true, 2.f, true});
     return e;
 }
 
@@ -263,6 +286,8 @@ ChartLayout layout_chart(const Chart& c) {
             throw ChartError("chart \"" + c.title + "\", series \"" + s.name + "\": x and y differ in length");
         if (!s.labels.empty() && s.labels.size() != s.x.size())
             throw ChartError("chart \"" + c.title + "\", series \"" + s.name + "\": one label per point, or none");
+        if (s.y_low.size() != s.y_high.size() || (!s.y_low.empty() && s.y_low.size() != s.x.size()))
+            throw ChartError("chart \"" + c.title + "\", series \"" + s.name + "\": one error bar (low and high) per point, or none");
     }
     ChartLayout l;
     const auto [x0, x1] = axis_range(c, true);
@@ -273,7 +298,7 @@ ChartLayout layout_chart(const Chart& c) {
     // Room: title and the y axis's title above the plot, tick labels left and below, the x axis's
     // title under those, the legend on the right.
     float y_label_w = 0.f;
-    for (const ChartTick& t : axis_ticks(l.y)) y_label_w = std::max(y_label_w, text_w(t.label));
+    for (const ChartTick& t : axis_ticks(c.y, l.y)) y_label_w = std::max(y_label_w, text_w(t.label));
     float legend_w = 0.f;
     for (const LegendEntry& e : legend_entries(c)) legend_w = std::max(legend_w, text_w(e.name));
     const float left = kPad + std::max(y_label_w + kTick + 6.f, 20.f);
@@ -298,7 +323,7 @@ ChartLayout layout_chart(const Chart& c) {
 ChartLayout draw_chart(const Chart& c, DrawList& out) {
     const ChartLayout l = layout_chart(c);
     const P2 lo = l.plot_lo, hi = l.plot_hi;
-    const auto xt = axis_ticks(l.x), yt = axis_ticks(l.y);
+    const auto xt = axis_ticks(c.x, l.x), yt = axis_ticks(c.y, l.y);
 
     // Grid under everything: major lines at labelled ticks, minor ones fainter.
     for (const ChartTick& t : xt) {
@@ -350,7 +375,7 @@ ChartLayout draw_chart(const Chart& c, DrawList& out) {
     float y = lo.y + kGlyphHeight / 2.f;
     for (const LegendEntry& e : legend_entries(c)) {
         const float x0 = hi.x + 2 * kPad;
-        stroke_run(out, {P2(x0, y), P2(x0 + kLegendSwatch, y)}, e.dashed, e.width, e.color);
+        if (e.line) stroke_run(out, {P2(x0, y), P2(x0 + kLegendSwatch, y)}, e.dashed, e.width, e.color);
         draw_marker(out, e.marker, P2(x0 + kLegendSwatch / 2.f, y), e.color);
         text_at(out, P2(x0 + kLegendSwatch + 8.f, y - kGlyphHeight / 2.f), e.name, kInk);
         y += kLegendRow;

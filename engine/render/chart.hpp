@@ -2,9 +2,10 @@
 // path (a DrawList) and rendered offscreen like any frame, so ContactLab plots its own figures
 // with no plotting library.
 //
-// A chart: a title, an x and a y axis (linear or log10, a title with units, ticks with labels),
-// named series (polylines with markers, optionally dashed, optional per-point labels), a legend
-// right of the plot, and reference lines at a constant x or y (a budget, a reference mode).
+// A chart: a title, an x and a y axis (linear or log10, a title with units, ticks with labels; or
+// categorical: one labelled slot per category), named series (polylines with markers, optionally
+// dashed, or markers alone; optional per-point labels and error bars), a legend right of the plot,
+// and reference lines at a constant x or y (a budget, a reference mode).
 //
 // Bad data never crashes: a point with a non-finite coordinate, or a non-positive one on a log
 // axis, is skipped (the polyline breaks there) and counted; a chart with nothing to set its range
@@ -33,6 +34,10 @@ struct ChartAxis {
     // the tick step, and a linear range includes 0 when `include_zero`).
     std::optional<double> min, max;
     bool include_zero = false;
+    // Categorical axis: when not empty, category i sits at the value i (0, 1, ...), the axis spans
+    // [-0.5, n - 0.5] and its ticks are the categories' names. For stimuli that are labels or a
+    // handful of levels (0..4 bumps, 45 / 135 deg): a reader must not read between them.
+    std::vector<std::string> categories;
 };
 
 enum class Marker { none, disc, square, triangle, diamond };
@@ -45,6 +50,12 @@ struct ChartSeries {
     bool dashed = false;
     float line_width = 2.0f;  // px
     std::vector<std::string> labels;  // optional, one per point (empty strings allowed)
+    // Optional error bars, one low and one high value per point (units of the y axis; NaN: no bar
+    // at that point). Drawn as a vertical line with caps; the y range includes them.
+    std::vector<double> y_low, y_high;
+    // false: markers (and bars) only, no line between points: categories, or levels where a
+    // line would claim values between them.
+    bool connect = true;
 };
 
 // A straight line across the whole plot at x = value (vertical) or y = value (horizontal).
@@ -78,6 +89,9 @@ struct ChartTick {
     double value = 0.0;
     std::string label;  // empty for minor ticks
 };
+
+// The ticks an axis shows: its categories at 0..n-1 when it has them, else axis_ticks(map).
+std::vector<ChartTick> axis_ticks(const ChartAxis& axis, const AxisMap& map);
 
 // Tick positions within [map.lo, map.hi]: linear 1/2/5 x 10^k steps (about 5 to 10 ticks); log:
 // every decade labelled, with minor ticks at 2..9 x 10^k when the range spans at most 6 decades,

@@ -34,6 +34,14 @@ std::string tick_label(double v) {
     return buf;
 }
 
+std::vector<ChartTick> axis_ticks(const ChartAxis& axis, const AxisMap& map) {
+    if (axis.categories.empty()) return axis_ticks(map);
+    std::vector<ChartTick> ticks;
+    for (std::size_t i = 0; i < axis.categories.size(); ++i)
+        if (i >= map.lo - 1e-9 && i <= map.hi + 1e-9) ticks.push_back({static_cast<double>(i), axis.categories[i]});
+    return ticks;
+}
+
 std::vector<ChartTick> axis_ticks(const AxisMap& map) {
     std::vector<ChartTick> ticks;
     const double lo = std::min(map.lo, map.hi), hi = std::max(map.lo, map.hi);

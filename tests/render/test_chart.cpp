@@ -27,8 +27,14 @@ constexpr double kPxTol = 1e-3;
 Chart explicit_chart(AxisScale xs, double x0, double x1, AxisScale ys, double y0, double y1) {
     Chart c;
     c.title = "test";
-    c.x = ChartAxis{"x (m)", xs, x0, x1};
-    c.y = ChartAxis{"y (N)", ys, y0, y1};
+    c.x.title = "x (m)";
+    c.x.scale = xs;
+    c.x.min = x0;
+    c.x.max = x1;
+    c.y.title = "y (N)";
+    c.y.scale = ys;
+    c.y.min = y0;
+    c.y.max = y1;
     c.width = 640;
     c.height = 400;
     return c;
@@ -210,6 +216,62 @@ TEST_CASE("chart: the rendered PNG has each series' colour where its data points
     CHECK(paper[0] == 255);
     CHECK(paper[1] == 255);
     CHECK(paper[2] == 255);
+    CHECK(lavapipe().validation_messages() == 0);
+}
+
+TEST_CASE("chart: a categorical axis puts category i at i, one labelled tick each, in [-0.5, n - 0.5]") {
+    Chart c = explicit_chart(AxisScale::linear, 0.0, 1.0, AxisScale::linear, 0.0, 1.0);
+    c.x = ChartAxis{};
+    c.x.title = "bumps";
+    c.x.categories = {"0", "1", "2", "3", "4"};
+    c.series.push_back(series("s", {0.0, 4.0}, {0.5, 0.5}, chart_color(0)));
+    const ChartLayout l = layout_chart(c);
+    CHECK(l.x.lo == -0.5);
+    CHECK(l.x.hi == 4.5);
+    const auto ticks = axis_ticks(c.x, l.x);
+    REQUIRE(ticks.size() == 5);
+    for (std::size_t i = 0; i < ticks.size(); ++i) {
+        CHECK(ticks[i].value == static_cast<double>(i));
+        CHECK(ticks[i].label == c.x.categories[i]);
+    }
+    // Category slots are equal: the centres are (plot width) / 5 apart.
+    CHECK(l.x.to_px(1.0) - l.x.to_px(0.0) == doctest::Approx((l.plot_hi.x - l.plot_lo.x) / 5.0).epsilon(1e-6));
+    c.x.scale = AxisScale::log10;
+    CHECK_THROWS_AS(layout_chart(c), ChartError);
+}
+
+TEST_CASE("chart: error bars widen the range and are drawn, unconnected series draw no line between points") {
+    Chart c = explicit_chart(AxisScale::linear, 0.0, 1.0, AxisScale::linear, 0.0, 1.0);
+    c.y = ChartAxis{};  // from the data
+    c.y.title = "proportion";
+    c.x = ChartAxis{};
+    c.x.title = "condition";
+    c.x.categories = {"a", "b"};
+    ChartSeries s = series("p", {0.0, 1.0}, {0.5, 0.6}, chart_color(1));
+    s.y_low = {0.2, kNaN};  // the second point has no bar
+    s.y_high = {0.9, kNaN};
+    s.connect = false;
+    c.series.push_back(s);
+    const ChartLayout l = layout_chart(c);
+    CHECK(l.y.lo <= 0.2 + 1e-12);  // the range ends on a tick step: 0.2 itself, to rounding
+    CHECK(l.y.hi >= 0.9 - 1e-12);
+    // Drawn inside a wider range (at the range's ends the plot's frame covers the caps).
+    c.y.min = 0.0;
+    c.y.max = 1.0;
+    const ChartLayout drawn = layout_chart(c);
+    const Image img = render_chart(lavapipe(), c);
+    // The bar: the series' colour on the vertical through x = 0, between its ends, and its caps.
+    CHECK(color_near(img, at(drawn, 0.0, 0.3), chart_color(1), 1));
+    CHECK(color_near(img, at(drawn, 0.0, 0.8), chart_color(1), 1));
+    CHECK(color_near(img, at(drawn, 0.0, 0.9) + P2(4.f, 0.f), chart_color(1), 1));
+    CHECK(color_near(img, at(drawn, 0.0, 0.2) - P2(4.f, 0.f), chart_color(1), 1));
+    CHECK_FALSE(color_near(img, at(drawn, 0.0, 0.95), chart_color(1), 1));
+    // No bar at the second point (beyond its marker), and no line between the points.
+    CHECK_FALSE(color_near(img, at(drawn, 1.0, 0.8), chart_color(1), 2));
+    CHECK_FALSE(color_near(img, at(drawn, 0.5, 0.55), chart_color(1), 2));
+    // Mismatched bars are refused.
+    c.series[0].y_high.pop_back();
+    CHECK_THROWS_AS(layout_chart(c), ChartError);
     CHECK(lavapipe().validation_messages() == 0);
 }
 
