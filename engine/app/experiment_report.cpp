@@ -1,6 +1,8 @@
 // experiment_report.cpp — the analysis as Markdown with plots (experiment_report.hpp).
 #include "engine/app/experiment_report.hpp"
 
+#include "engine/app/experiment_figures.hpp"
+#include "engine/experiments/intervals.hpp"
 #include "engine/experiments/statistics.hpp"
 #include "engine/render/chart_image.hpp"
 #include "engine/render/matrix_chart.hpp"
@@ -8,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -28,12 +31,6 @@ std::string fmt(const json& v, const char* f = "%.3g") {
     return buf;
 }
 
-bool numeric(const std::string& s) {
-    char* end = nullptr;
-    std::strtod(s.c_str(), &end);
-    return !s.empty() && *end == '\0';
-}
-
 Chart chart(std::string title, std::string x, std::string y) {
     Chart c;
     c.title = std::move(title);
@@ -52,50 +49,39 @@ ChartSeries series(const std::string& name, int colour) {
     return s;
 }
 
-// One line per condition: `value` of each stimulus (numeric stimuli only).
-Chart per_stimulus_chart(const json& analysis, const char* title, const char* y_title, const char* key, const char* sub) {
-    Chart c = chart(title, "stimulus", y_title);
-    int colour = 0;
-    for (const auto& [name, cond] : analysis["conditions"].items()) {
-        if (!cond.contains("per_stimulus")) continue;
-        ChartSeries s = series(name, colour++);
-        for (const auto& [stim, f] : cond["per_stimulus"].items()) {
-            const json* v = f.contains(key) ? &f[key] : nullptr;
-            if (v && sub) v = v->contains(sub) ? &(*v)[sub] : nullptr;
-            if (!numeric(stim) || !v || !v->is_number()) continue;
-            s.x.push_back(std::stod(stim));
-            s.y.push_back(v->get<double>());
-        }
-        if (!s.x.empty()) c.series.push_back(std::move(s));
-    }
-    return c;
-}
-
-// Seed 004: phi of each (e, k) pair, against e, one line per k.
-Chart phi_chart(const experiments::ResultsTable& t) {
-    Chart c = chart("Cramer's phi against eccentricity, per stiffness", "eccentricity e", "Cramer's phi");
+// Any other protocol: proportion correct per stimulus, one marker series per condition on a
+// categorical axis (the stimuli as the analysis labels them), 95 % Wilson intervals, n per point.
+Chart per_stimulus_chart(const json& analysis) {
+    Chart c = chart("Proportion correct per stimulus", "stimulus", "proportion correct");
     c.y.min = 0.0;
     c.y.max = 1.0;
-    const auto e = t.column("e"), k = t.column("k"), st = t.column("stimulus"), rs = t.column("response");
-    const auto valid = t.column("valid"), warm = t.column("warmup");
-    if (!e || !k || !st || !rs) return c;
-    std::map<double, std::map<double, std::pair<std::vector<std::string>, std::vector<std::string>>>> by_k;
-    for (std::size_t i = 0; i < t.rows.size(); ++i) {
-        if ((valid && t.number(i, *valid) == 0.0) || (warm && t.number(i, *warm) != 0.0)) continue;
-        auto& cell = by_k[t.number(i, *k)][t.number(i, *e)];
-        cell.first.push_back(t.rows[i][*st]);
-        cell.second.push_back(t.rows[i][*rs]);
-    }
+    std::vector<std::string> stimuli;
+    for (const auto& [name, cond] : analysis["conditions"].items())
+        if (cond.contains("per_stimulus"))
+            for (const auto& [stim, f] : cond["per_stimulus"].items())
+                if (std::find(stimuli.begin(), stimuli.end(), stim) == stimuli.end()) stimuli.push_back(stim);
+    c.x.categories = stimuli;
     int colour = 0;
-    for (const auto& [kv, by_e] : by_k) {
-        char name[48];
-        std::snprintf(name, sizeof name, "k = %g", kv);
-        ChartSeries s = series(name, colour++);
-        for (const auto& [ev, sr] : by_e) {
-            s.x.push_back(ev);
-            s.y.push_back(experiments::cramers_phi(experiments::make_confusion(sr.first, sr.second)));
+    const int count = static_cast<int>(analysis["conditions"].size());
+    for (const auto& [name, cond] : analysis["conditions"].items()) {
+        ChartSeries s = series(name, colour);
+        s.connect = false;
+        const double offset = count <= 1 ? 0.0 : (colour - (count - 1) / 2.0) * (0.5 / count);
+        ++colour;
+        if (!cond.contains("per_stimulus")) continue;
+        for (const auto& [stim, f] : cond["per_stimulus"].items()) {
+            if (!f.contains("proportion_correct") || !f["proportion_correct"].is_number() || !f.contains("n")) continue;
+            const long n = f["n"].get<long>();
+            const double p = f["proportion_correct"].get<double>();
+            const auto w = experiments::wilson_interval(std::lround(p * static_cast<double>(n)), n, 0.95);
+            const auto at = std::find(stimuli.begin(), stimuli.end(), stim) - stimuli.begin();
+            s.x.push_back(static_cast<double>(at) + offset);
+            s.y.push_back(p);
+            s.y_low.push_back(w.low);
+            s.y_high.push_back(w.high);
+            s.labels.push_back("n=" + std::to_string(n));
         }
-        c.series.push_back(std::move(s));
+        if (!s.x.empty()) c.series.push_back(std::move(s));
     }
     return c;
 }
@@ -142,17 +128,15 @@ std::string write_experiment_report(const experiments::ResultsTable& table, cons
         }
     }
 
-    // Plots: only those with data.
-    std::vector<std::pair<std::string, Chart>> charts;
-    Chart pc = per_stimulus_chart(a, "Proportion correct per stimulus", "proportion correct", "proportion_correct", nullptr);
-    pc.y.min = 0.0;
-    pc.y.max = 1.0;
-    if (!pc.series.empty()) charts.emplace_back("proportion_correct.png", pc);
-    Chart tc = per_stimulus_chart(a, "Completion time per stimulus (successful trials)", "time (s)", "time_s", "mean");
-    tc.y.include_zero = true;
-    if (!tc.series.empty()) charts.emplace_back("time.png", tc);
-    Chart phi = phi_chart(table);
-    if (!phi.series.empty()) charts.emplace_back("phi_against_e.png", phi);
+    // Plots: the seed's own figures when the results are one of the seeds' experiments
+    // (experiment_figures.hpp), else proportion correct per stimulus; only those with data.
+    std::vector<ReportFigure> charts = seed_figures(table);
+    if (charts.empty()) {
+        Chart pc = per_stimulus_chart(a);
+        if (!pc.series.empty())
+            charts.push_back({"proportion_correct.png", pc,
+                              "Each point: the share of the n valid trials answered correctly, with its 95 % Wilson interval."});
+    }
     // Confusion matrices as pictures too, one per condition.
     std::vector<std::pair<std::string, render::MatrixChart>> matrices;
     int index = 0;
@@ -178,8 +162,10 @@ std::string write_experiment_report(const experiments::ResultsTable& table, cons
                     md << "(" << title << ": not drawn: " << e.what() << ")\n\n";
                 }
             };
-            for (const auto& [file, c] : charts)
-                draw(file, c.title, [&](const std::string& path) { render::write_chart_png(ctx, c, path); });
+            for (const auto& f : charts) {
+                draw(f.file, f.chart.title, [&](const std::string& path) { render::write_chart_png(ctx, f.chart, path); });
+                md << f.caption << "\n\n";
+            }
             for (const auto& [file, m] : matrices)
                 draw(file, m.title, [&](const std::string& path) { render::write_matrix_chart_png(ctx, m, path); });
         } catch (const std::exception& e) {

@@ -1,10 +1,10 @@
 // experiment_report.hpp — `contactlab experiment analyze --report DIR`: the analysis as a Markdown
 // page (report.md) with its tables (per condition figures, confusion matrices, t tests) and PNG
-// plots rendered by ContactLab's own chart drawer (engine/render/chart.hpp): proportion correct
-// against the stimulus per condition, time against the stimulus per condition (seed 000: against
-// d), each condition's confusion matrix (render/matrix_chart.hpp), and Cramer's phi against e
-// with one line per k (seed 004, when the results have e and k
-// columns). Without a Vulkan device the page says so and keeps its tables.
+// plots rendered by ContactLab's own chart drawer (engine/render/chart.hpp): the seed's own
+// figures when the results are one of the seeds' experiments (experiment_figures.hpp), else
+// proportion correct per stimulus and condition; each condition's confusion matrix
+// (render/matrix_chart.hpp). Every figure has a caption saying what a point is, its n and its
+// interval. Without a Vulkan device the page says so and keeps its tables.
 #pragma once
 
 #include "engine/experiments/results_table.hpp"
