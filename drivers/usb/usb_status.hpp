@@ -8,10 +8,12 @@
 
 namespace contactlab::drivers::usb {
 
-// The rule that grants the logged-in user access (assets/udev/70-contactlab.rules).
+// The rule that grants the logged-in user access (assets/udev/70-contactlab.rules; the Debian
+// package installs it in /usr/lib/udev/rules.d/, where udev reads it once reloaded).
 inline constexpr const char* kUdevHint =
     "permission denied opening the USB device: install the udev rule (sudo cp assets/udev/70-contactlab.rules "
-    "/etc/udev/rules.d/ && sudo udevadm control --reload && sudo udevadm trigger), then unplug and replug it";
+    "/etc/udev/rules.d/ && sudo udevadm control --reload && sudo udevadm trigger; the Debian package has put it in "
+    "/usr/lib/udev/rules.d/: only reload and trigger), then unplug and replug it";
 
 // A libusb_error (negative int; LIBUSB_SUCCESS, 0, is no fault) as a fault.
 DeviceFault fault_of_error(int libusb_error) noexcept;

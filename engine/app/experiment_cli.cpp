@@ -137,7 +137,10 @@ void register_experiment_command(CLI::App& app, int& rc) {
     r->add_option("--jobs", run->jobs, "Participants run in parallel (0: every core); the results do not depend on it")
         ->default_val(0);
     r->add_flag("--no-traces", run->no_traces, "Skip the per-trial traces (RESULTS.csv.traces/)");
-    r->callback([run, &rc] { rc = run_protocol(*run); });
+    r->callback([run, &rc] {
+        run->protocol = installed_data_path(run->protocol);
+        rc = run_protocol(*run);
+    });
 
     auto analyze = std::make_shared<AnalyzeArgs>();
     CLI::App* an = exp->add_subcommand("analyze", "Figures per condition from a results CSV: proportion correct, IT, phi, times, t tests");

@@ -122,7 +122,10 @@ void register_render_command(CLI::App& app, int& rc) {
     cmd->add_flag("--validation,!--no-validation", args.validation,
                   "Vulkan validation layers (default: on in debug builds); any validation message makes the "
                   "command fail (exit 1)");
-    cmd->callback([&rc] { rc = render_main(args); });
+    cmd->callback([&rc] {
+        args.scene_path = installed_data_path(args.scene_path);
+        rc = render_main(args);
+    });
 }
 
 }  // namespace contactlab::app

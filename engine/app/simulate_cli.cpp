@@ -45,6 +45,7 @@ void register_simulate_command(CLI::App& app, int& rc) {
     add_override_options(cmd, o.overrides);
     cmd->callback([&rc] {
         o.realtime = real_time;
+        o.scene_path = installed_data_path(o.scene_path);
         rc = run_simulate(o);
     });
 }

@@ -2,9 +2,11 @@
 //
 // Each subcommand file defines one register_* function that adds its CLI11 subcommand(s) to the
 // app; the callback stores its exit code in `rc`. Errors: throw BadInput (or SceneError /
-// CsvError) for anything the user can fix (exit 2); other exceptions exit 1.
+// CsvError) for anything the user can fix (exit 2); other exceptions exit 1. Input files that ship
+// with ContactLab (scenes, protocols) go through installed_data_path (data_path.hpp).
 #pragma once
 
+#include "engine/app/data_path.hpp"
 #include "engine/app/trace_command.hpp"
 
 #include <CLI/CLI.hpp>

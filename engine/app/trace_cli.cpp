@@ -112,13 +112,13 @@ void register_trace_commands(CLI::App& app, int& rc) {
                       "Proxy states, header t,x,y,phi,proxy_x,proxy_y,contact,depth,fx,fy,l_d,stiction_x,stiction_y")->required();
     add_override_options(trace, trace_args.overrides);
     trace->callback([&rc] {
-        rc = trace_main(trace_args.scene_path, trace_args.input, trace_args.output, trace_args.overrides);
+        rc = trace_main(installed_data_path(trace_args.scene_path), trace_args.input, trace_args.output, trace_args.overrides);
     });
 
     CLI::App* demo = app.add_subcommand("demo", "Headless demo: a scripted hand follows a scene's contour");
     demo->add_option("--scene", demo_args.scene_path, "Scene file")->default_val("scenes/block.json");
     add_override_options(demo, demo_args.overrides);
-    demo->callback([&rc] { rc = demo_main(demo_args.scene_path, demo_args.overrides); });
+    demo->callback([&rc] { rc = demo_main(installed_data_path(demo_args.scene_path), demo_args.overrides); });
 }
 
 }  // namespace contactlab::app
