@@ -47,7 +47,8 @@ void provenance_section(std::ostringstream& md, const json& a) {
             return v.is_string() ? v.get<std::string>() : v.is_null() ? std::string("-") : v.dump();
         };
         std::string participants;
-        for (const auto& p : m.value("participants", json::array())) participants += (participants.empty() ? "" : " ") + p.get<std::string>();
+        const json who = m.value("participants", json::array());
+        for (const auto& p : who) participants += (participants.empty() ? "" : " ") + p.get<std::string>();
         md << "| " << file << " | " << text("protocol_path") << " | `" << text("protocol_sha256").substr(0, 12) << "` | " << text("seed")
            << " | " << participants << " | " << text("device") << " | " << text("servo_rate_hz") << " | " << text("contactlab_version")
            << (m.contains("commit") ? " " + text("commit").substr(0, 12) : std::string()) << " | " << text("started_utc") << " | "
@@ -63,10 +64,12 @@ void bump_section(std::ostringstream& md, const json& a) {
     if (!any) return;
     md << "\n## By number of small bumps (seed 002 eq. 7)\n\n| condition | small bumps | n | proportion correct | average error |\n"
           "| --- | ---: | ---: | ---: | ---: |\n";
-    for (const auto& [name, c] : a["conditions"].items())
-        for (const auto& [k, f] : c.value("by_small_bumps", json::object()).items())
+    for (const auto& [name, c] : a["conditions"].items()) {
+        if (!c.contains("by_small_bumps")) continue;
+        for (const auto& [k, f] : c["by_small_bumps"].items())
             md << "| " << name << " | " << k << " | " << f["n"] << " | " << fmt(f["proportion_correct"]) << " | "
                << fmt(f["average_error"]) << " |\n";
+    }
     md << "\n## Small bumps only, large bumps only (seed 002 Fig. 6)\n\n| condition | small only: n | correct | large only: n | correct |\n"
           "| --- | ---: | ---: | ---: | ---: |\n";
     for (const auto& [name, c] : a["conditions"].items())

@@ -242,6 +242,10 @@ TTest paired_t_test(const std::vector<double>& a, const std::vector<double>& b, 
         return r;
     }
     const double tol = roundoff_tolerance(largest_magnitude(b, largest_magnitude(a)));
+    if (spread(d) == 0.0) {
+        undefined(r, "the differences are all equal (" + number_text(d.front()) + "): t has no variance to compare with");
+        return r;
+    }
     if (spread(d) <= tol) {
         undefined(r, "the differences are all equal to within round-off (spread " + number_text(spread(d)) + " <= " +
                          number_text(tol) + ", 32 eps times the largest value): t has no variance to compare with");

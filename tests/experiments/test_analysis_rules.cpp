@@ -98,7 +98,7 @@ TEST_CASE("analyze: identical times give no p value, with the reason, not one fr
     CHECK(t["valid"] == false);
     CHECK(t["p"].is_null());
     CHECK(t["t"].is_null());
-    CHECK(contains_text(t["undefined"].get<std::string>(), "equal to within round-off"));
+    CHECK(t["undefined"] == "the differences are all equal (0): t has no variance to compare with");
 }
 
 TEST_CASE("statistics: spreads at round-off level are undefined, real ones are not") {
@@ -107,7 +107,7 @@ TEST_CASE("statistics: spreads at round-off level are undefined, real ones are n
     const TTest tiny = paired_t_test({3.401, 3.401 * (1 + 4 * e), 3.401}, {3.401, 3.401, 3.401});
     CHECK_FALSE(tiny.valid);
     CHECK(std::isnan(tiny.p));
-    CHECK_FALSE(tiny.undefined.empty());
+    CHECK(contains_text(tiny.undefined, "the differences are all equal to within round-off"));
     const TTest w = welch_t_test({3.401, 3.401, 3.401}, {3.401, 3.401 * (1 + 2 * e)});
     CHECK_FALSE(w.valid);
     CHECK(contains_text(w.undefined, "neither sample varies"));

@@ -134,3 +134,21 @@ TEST_CASE("experiment analyze: provenance per file in the JSON, files of differe
     CHECK(pooled.exit_code == 0);
     CHECK(contains(pooled.err, "warning"));
 }
+
+TEST_CASE("experiment analyze: seed 002's report has the tables by number of small bumps and by bump size") {
+    TempDir dir;
+    std::string csv = "participant,condition,trial,stimulus,response,small_bumps,large_bumps\n";
+    for (const char* p : {"p1", "p2", "p3"})
+        for (const char* c : {"F", "F+CLD"})
+            for (const char* row : {",1,1,1,1,0\n", ",2,2,1,0,2\n", ",3,3,2,2,1\n", ",4,0,0,0,0\n"}) csv += std::string(p) + "," + c + row;
+    write_text(dir.file("b.csv"), csv);
+    const auto p = run_contactlab({"experiment", "analyze", dir.file("b.csv"), "--report", dir.file("rep")});
+    INFO("stderr: " << p.err);
+    REQUIRE(p.exit_code == 0);
+    const std::string md = read_text(dir.file("rep/report.md"));
+    CHECK(contains(md, "## By number of small bumps (seed 002 eq. 7)"));
+    CHECK(contains(md, "| F | 2 | 3 | 0 | 1 |"));  // two small bumps: answered 2 of 3, always wrong by 1
+    CHECK(contains(md, "## Small bumps only, large bumps only (seed 002 Fig. 6)"));
+    CHECK(contains(md, "undefined: "));  // identical accuracy in both conditions: no test
+    CHECK(contains(md, "b.csv | (no meta file) |"));
+}
