@@ -1,14 +1,17 @@
 // experiment_cli.cpp — `contactlab experiment run|analyze` (issue 16): the seeds' experiments
 // (engine/experiments/). `run PROTOCOL --participant sim|sim:N | --participants sim:A-B --seed S
-// --output RESULTS.csv [--jobs J] [--no-traces]` performs the protocol's trials with simulated
-// participants through the servo and the simulated rig. `analyze RESULTS.csv [--json OUT.json] [--report DIR] [--confidence C]`
-// prints the figures per condition and writes them as JSON (schema: scenes/README.md) and as a
-// Markdown page with plots.
+// --output RESULTS.csv [--jobs J] [--no-traces] [--overwrite]` performs the protocol's trials
+// with simulated participants through the servo and the simulated rig, durably (started again,
+// the same command resumes) with RESULTS.csv.meta.json beside it. `analyze RESULTS.csv...
+// [--json OUT.json] [--report DIR] [--confidence C] [--pool-protocols]` prints the figures per
+// condition, the tests' rule and any warnings, and writes them as JSON (schema:
+// scenes/README.md) with each file's provenance, and as a Markdown page with plots.
 #include "engine/app/experiment_report.hpp"
 #include "engine/app/progress_bar.hpp"
 #include "engine/app/subcommands.hpp"
 #include "engine/experiments/analysis.hpp"
 #include "engine/experiments/experiment_run.hpp"
+#include "engine/experiments/pooling.hpp"
 #include "engine/experiments/protocol.hpp"
 #include "haptics/atomic_file.hpp"
 
@@ -16,6 +19,8 @@
 
 #include <chrono>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <thread>
 
@@ -27,8 +32,21 @@ struct RunArgs {
     std::string protocol, participant, participants, output;
     unsigned long long seed = 1;
     int jobs = 0;  // 0: every core
-    bool no_traces = false;
+    bool no_traces = false, overwrite = false;
 };
+
+// The command line as typed (argv joined by spaces), for the results' meta: Linux keeps it in
+// /proc/self/cmdline, NUL-separated, so no argv has to be threaded through main().
+std::string command_line() {
+    std::ifstream in("/proc/self/cmdline", std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    std::string c = s.str();
+    while (!c.empty() && c.back() == '\0') c.pop_back();
+    for (char& ch : c)
+        if (ch == '\0') ch = ' ';
+    return c;
+}
 
 // "sim" -> {1}; "sim:3" -> {3}; "sim:1-20" -> {1..20}.
 std::vector<std::uint64_t> sim_participants(const std::string& spec, const char* option) {
@@ -61,6 +79,9 @@ int run_protocol(const RunArgs& a) {
     o.seed = a.seed;
     o.output = a.output;
     o.traces = !a.no_traces;
+    o.overwrite = a.overwrite;
+    o.protocol_path = a.protocol;
+    o.command = command_line();
     o.jobs = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     o.progress = print_progress;
     try {
@@ -68,9 +89,17 @@ int run_protocol(const RunArgs& a) {
         const auto t0 = std::chrono::steady_clock::now();
         const experiments::RunSummary s = experiments::run_experiment(p, o);
         const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        std::fprintf(stderr, "experiment: %s (%s), %zu participant(s), %zu trials (%zu warm-up, %zu invalid) in %.1f s; written to %s%s%s\n",
+        if (s.already_complete) {
+            std::fprintf(stderr, "experiment: %s already holds this run, complete (%zu trials): nothing to do (--overwrite runs it again)\n",
+                         a.output.c_str(), s.rows);
+            return 0;
+        }
+        if (s.resumed > 0)
+            std::fprintf(stderr, "experiment: resumed: %zu trials were already on disk\n", s.resumed);
+        std::fprintf(stderr, "experiment: %s (%s), %zu participant(s), %zu trials (%zu warm-up, %zu invalid) in %.1f s; written to %s with %s%s%s\n",
                      p.name.c_str(), experiments::to_string(p.task), o.participants.size(), s.rows, s.warmup, s.invalid, secs,
-                     a.output.c_str(), o.traces ? ", traces in " : "", o.traces ? (a.output + ".traces/").c_str() : "");
+                     a.output.c_str(), (a.output + ".meta.json").c_str(), o.traces ? ", traces in " : "",
+                     o.traces ? (a.output + ".traces/").c_str() : "");
     } catch (const experiments::ExperimentError& e) {
         throw BadInput(e.what());
     }
@@ -78,8 +107,10 @@ int run_protocol(const RunArgs& a) {
 }
 
 struct AnalyzeArgs {
-    std::string results, json, report;
+    std::vector<std::string> results;
+    std::string json, report;
     double confidence = 0.95;
+    bool pool_protocols = false;
 };
 
 std::string figure(const nlohmann::json& c, const char* key, const char* f) {
@@ -91,16 +122,23 @@ std::string figure(const nlohmann::json& c, const char* key, const char* f) {
 
 int run_analyze(const AnalyzeArgs& a) {
     if (!(a.confidence > 0.0 && a.confidence < 1.0)) throw BadInput("--confidence: must lie in (0, 1), e.g. 0.99");
-    experiments::ResultsTable table;
+    experiments::PooledResults pooled;
     nlohmann::json result;
     try {
-        table = experiments::read_results_csv(a.results);
-        result = experiments::analyze_results(table, experiments::AnalyzeOptions{a.confidence});
+        pooled = experiments::pool_results(a.results, a.pool_protocols);
+        result = experiments::analyze_results(pooled.table, experiments::AnalyzeOptions{a.confidence});
     } catch (const experiments::ExperimentError& e) {
         throw BadInput(e.what());
     }
-    std::printf("%s: %zu rows, %zu left out (warm-up or invalid)\n", a.results.c_str(), result["rows"].get<std::size_t>(),
+    // The pooling's warnings first: they concern every figure.
+    nlohmann::json warnings = pooled.warnings;
+    for (const auto& w : result["warnings"]) warnings.push_back(w);
+    result["warnings"] = warnings;
+    result["provenance"] = pooled.provenance;
+    const experiments::ResultsTable& table = pooled.table;
+    std::printf("%s: %zu rows, %zu left out (warm-up or invalid)\n", table.origin.c_str(), result["rows"].get<std::size_t>(),
                 result["excluded"].get<std::size_t>());
+    for (const auto& w : warnings) std::fprintf(stderr, "experiment analyze: warning: %s\n", w.get<std::string>().c_str());
     for (const auto& [name, c] : result["conditions"].items()) {
         std::printf("  %-24s n %4zu  correct %s  IT %s bits  phi %s", name.c_str(), c["n"].get<std::size_t>(),
                     figure(c, "proportion_correct", "%.3f").c_str(), figure(c, "it_est_bits", "%.3f").c_str(),
@@ -110,14 +148,29 @@ int run_analyze(const AnalyzeArgs& a) {
                         figure(c, "failure_proportion", "%.3f").c_str());
         std::printf("\n");
     }
-    for (const auto& t : result["comparisons"])
-        std::printf("  %s, %s - %s: difference %s, t(%s) = %s, p = %s, %.0f %% interval %s .. %s (%s)\n",
+    if (!result["comparisons"].empty()) std::printf("  tests: %s\n", experiments::kPairingRule);
+    for (const auto& t : result["comparisons"]) {
+        const std::string kind = t["test"]["kind"] == "paired" ? "paired" : "Welch";
+        if (!t["valid"].get<bool>()) {
+            std::printf("  %s, %s - %s: difference %s, t undefined: %s (%s: %s)\n", t["measure"].get<std::string>().c_str(),
+                        t["a"].get<std::string>().c_str(), t["b"].get<std::string>().c_str(), figure(t, "mean_difference", "%.4g").c_str(),
+                        t["undefined"].get<std::string>().c_str(), kind.c_str(), t["test"]["because"].get<std::string>().c_str());
+            continue;
+        }
+        std::printf("  %s, %s - %s: difference %s, t(%s) = %s, p = %s, %.0f %% interval %s .. %s (%s: %s)\n",
                     t["measure"].get<std::string>().c_str(), t["a"].get<std::string>().c_str(), t["b"].get<std::string>().c_str(),
                     figure(t, "mean_difference", "%.4g").c_str(), figure(t, "df", "%.3g").c_str(), figure(t, "t", "%.3f").c_str(),
                     figure(t, "p", "%.3g").c_str(), 100.0 * a.confidence, figure(t, "ci_low", "%.4g").c_str(),
-                    figure(t, "ci_high", "%.4g").c_str(), t["paired"].get<bool>() ? "paired" : "Welch");
+                    figure(t, "ci_high", "%.4g").c_str(), kind.c_str(), t["test"]["because"].get<std::string>().c_str());
+    }
     if (!a.json.empty()) write_file_atomically(a.json, result.dump(2) + "\n");
-    if (!a.report.empty()) std::printf("report: %s\n", write_experiment_report(table, result, a.report).c_str());
+    if (!a.report.empty()) {
+        try {
+            std::printf("report: %s\n", write_experiment_report(table, result, a.report).c_str());
+        } catch (const experiments::ExperimentError& e) {
+            throw BadInput(e.what());
+        }
+    }
     return 0;
 }
 
@@ -137,6 +190,9 @@ void register_experiment_command(CLI::App& app, int& rc) {
     r->add_option("--jobs", run->jobs, "Participants run in parallel (0: every core); the results do not depend on it")
         ->default_val(0);
     r->add_flag("--no-traces", run->no_traces, "Skip the per-trial traces (RESULTS.csv.traces/)");
+    r->add_flag("--overwrite", run->overwrite,
+                "Replace the results, meta and traces of another run in --output (without it such a run is refused; the same "
+                "run resumes)");
     r->callback([run, &rc] {
         run->protocol = installed_data_path(run->protocol);
         rc = run_protocol(*run);
@@ -144,7 +200,9 @@ void register_experiment_command(CLI::App& app, int& rc) {
 
     auto analyze = std::make_shared<AnalyzeArgs>();
     CLI::App* an = exp->add_subcommand("analyze", "Figures per condition from a results CSV: proportion correct, IT, phi, times, t tests");
-    an->add_option("results", analyze->results, "Results CSV (one row per trial; scenes/README.md)")->required();
+    an->add_option("results", analyze->results, "Results CSVs (one row per trial; scenes/README.md), pooled")->required();
+    an->add_flag("--pool-protocols", analyze->pool_protocols,
+                 "Pool results files from different protocols (different protocol_sha256 in their meta files)");
     an->add_option("--json", analyze->json, "Write the figures as JSON");
     an->add_option("--report", analyze->report, "Write report.md and PNG plots into this folder");
     an->add_option("--confidence", analyze->confidence, "Confidence of the t tests' intervals (seed 000: 0.99)")

@@ -2,6 +2,7 @@
 #include "engine/app/experiment_report.hpp"
 
 #include "engine/app/experiment_figures.hpp"
+#include "engine/experiments/analysis.hpp"
 #include "engine/experiments/intervals.hpp"
 #include "engine/experiments/statistics.hpp"
 #include "engine/render/chart_image.hpp"
@@ -29,6 +30,52 @@ std::string fmt(const json& v, const char* f = "%.3g") {
     char buf[64];
     std::snprintf(buf, sizeof buf, f, v.get<double>());
     return buf;
+}
+
+// Where the results came from, per file: what its meta says (run_meta.hpp), or that it has none.
+void provenance_section(std::ostringstream& md, const json& a) {
+    if (!a.contains("provenance")) return;
+    md << "\n## Provenance\n\n| file | protocol | sha256 | seed | participants | device | rate (Hz) | program | started | finished |\n"
+          "| --- | --- | --- | ---: | --- | --- | ---: | --- | --- | --- |\n";
+    for (const auto& [file, m] : a["provenance"].items()) {
+        if (m.is_null()) {
+            md << "| " << file << " | (no meta file) | | | | | | | | |\n";
+            continue;
+        }
+        auto text = [&](const char* key) {
+            const json v = m.value(key, json());
+            return v.is_string() ? v.get<std::string>() : v.is_null() ? std::string("-") : v.dump();
+        };
+        std::string participants;
+        const json who = m.value("participants", json::array());
+        for (const auto& p : who) participants += (participants.empty() ? "" : " ") + p.get<std::string>();
+        md << "| " << file << " | " << text("protocol_path") << " | `" << text("protocol_sha256").substr(0, 12) << "` | " << text("seed")
+           << " | " << participants << " | " << text("device") << " | " << text("servo_rate_hz") << " | " << text("contactlab_version")
+           << (m.contains("commit") ? " " + text("commit").substr(0, 12) : std::string()) << " | " << text("started_utc") << " | "
+           << text("finished_utc") << " |\n";
+    }
+}
+
+// Seed 002: eq. 7's average error and the accuracy per number of small bumps, and Fig. 6's
+// small-only and large-only accuracy, per condition.
+void bump_section(std::ostringstream& md, const json& a) {
+    bool any = false;
+    for (const auto& [name, c] : a["conditions"].items()) any |= c.contains("by_small_bumps");
+    if (!any) return;
+    md << "\n## By number of small bumps (seed 002 eq. 7)\n\n| condition | small bumps | n | proportion correct | average error |\n"
+          "| --- | ---: | ---: | ---: | ---: |\n";
+    for (const auto& [name, c] : a["conditions"].items()) {
+        if (!c.contains("by_small_bumps")) continue;
+        for (const auto& [k, f] : c["by_small_bumps"].items())
+            md << "| " << name << " | " << k << " | " << f["n"] << " | " << fmt(f["proportion_correct"]) << " | "
+               << fmt(f["average_error"]) << " |\n";
+    }
+    md << "\n## Small bumps only, large bumps only (seed 002 Fig. 6)\n\n| condition | small only: n | correct | large only: n | correct |\n"
+          "| --- | ---: | ---: | ---: | ---: |\n";
+    for (const auto& [name, c] : a["conditions"].items())
+        if (c.contains("small_only"))
+            md << "| " << name << " | " << c["small_only"]["n"] << " | " << fmt(c["small_only"]["proportion_correct"]) << " | "
+               << c["large_only"]["n"] << " | " << fmt(c["large_only"]["proportion_correct"]) << " |\n";
 }
 
 Chart chart(std::string title, std::string x, std::string y) {
@@ -116,17 +163,26 @@ std::string write_experiment_report(const experiments::ResultsTable& table, cons
             md << "\n";
         }
     }
+    bump_section(md, a);
     if (!a["comparisons"].empty()) {
-        md << "\n## Comparisons (t tests)\n\n| measure | a - b | test | t | df | p | interval |\n| --- | --- | --- | ---: | ---: | ---: | --- |\n";
+        md << "\n## Comparisons (t tests)\n\nRule: " << experiments::kPairingRule << ".\n\n"
+           << "| measure | a - b | test | t | df | p | interval |\n| --- | --- | --- | ---: | ---: | ---: | --- |\n";
         for (const auto& t : a["comparisons"]) {
             char ci[96];
             std::snprintf(ci, sizeof ci, "%.0f %%: %s .. %s", 100.0 * t["confidence"].get<double>(), fmt(t["ci_low"]).c_str(),
                           fmt(t["ci_high"]).c_str());
             md << "| " << t["measure"].get<std::string>() << " | " << t["a"].get<std::string>() << " - " << t["b"].get<std::string>()
-               << " = " << fmt(t["mean_difference"]) << " | " << (t["paired"].get<bool>() ? "paired" : "Welch") << " | "
-               << fmt(t["t"]) << " | " << fmt(t["df"]) << " | " << fmt(t["p"]) << " | " << ci << " |\n";
+               << " = " << fmt(t["mean_difference"]) << " | " << (t["test"]["kind"] == "paired" ? "paired" : "Welch") << " ("
+               << t["test"]["because"].get<std::string>() << ") | ";
+            if (t["valid"].get<bool>()) md << fmt(t["t"]) << " | " << fmt(t["df"]) << " | " << fmt(t["p"]) << " | " << ci << " |\n";
+            else md << "undefined: " << t["undefined"].get<std::string>() << " | - | - | - |\n";
         }
     }
+    if (a.contains("warnings") && !a["warnings"].empty()) {
+        md << "\n## Warnings\n\n";
+        for (const auto& w : a["warnings"]) md << "- " << w.get<std::string>() << "\n";
+    }
+    provenance_section(md, a);
 
     // Plots: the seed's own figures when the results are one of the seeds' experiments
     // (experiment_figures.hpp), else proportion correct per stimulus; only those with data.

@@ -8,9 +8,17 @@
 // and Cramer's phi, per stimulus too; with a `participant` column the same per participant and
 // their means (seed 002 computes IT per participant, then averages: IT_est is biased upward for
 // small n, so the pooled and the averaged figures differ); with `time_s`, the mean and sd of the
-// successful trials' times and, with `failed`, the failure proportion (seed 000). Two conditions
-// are compared by t tests: paired across participants when both have the same two or more
-// participants, else Welch over trials.
+// successful trials' times and, with `failed`, the failure proportion (seed 000). With
+// `small_bumps` and `large_bumps` (seed 002): per count of small bumps the proportion correct and
+// eq. 7's average error, and accuracy on small-only and large-only stimuli (Fig. 6).
+//
+// Two conditions are compared by t tests chosen by one stated rule (kPairingRule, written into
+// each comparison's "test"): paired across the participants who have rows in both conditions,
+// the others left out and named in "warnings"; Welch over trials only without a participant
+// column or with fewer than two pairs, and then the comparison says so. A t test with no
+// variance, or variance at round-off level, is undefined ("undefined": the reason), never a p
+// value. Labels are bounded (a column of thousands of distinct stimuli is refused) and a label
+// that reads as a number out of a double's range is refused with its file and line.
 #pragma once
 
 #include "engine/experiments/results_table.hpp"
@@ -22,6 +30,8 @@ namespace contactlab::experiments {
 struct AnalyzeOptions {
     double confidence = 0.95;  // of the t tests' intervals (seed 000 used 0.99)
 };
+
+extern const char* const kPairingRule;
 
 nlohmann::json analyze_results(const ResultsTable& table, const AnalyzeOptions& options = {});
 

@@ -1,14 +1,17 @@
-// experiment_run.cpp — protocol -> trials -> simulated participant -> results file
-// (experiment_run.hpp).
+// experiment_run.cpp — protocol -> trials -> simulated participant -> results file, durable and
+// resumable (experiment_run.hpp).
 #include "engine/experiments/experiment_run.hpp"
 
 #include "engine/experiments/results_table.hpp"
+#include "engine/experiments/run_files.hpp"
+#include "engine/experiments/run_meta.hpp"
+#include "engine/experiments/servo_trial.hpp"
 #include "engine/experiments/sim_participant.hpp"
 #include "engine/experiments/trial_plan.hpp"
 #include "haptics/atomic_file.hpp"
 
+#include <algorithm>
 #include <atomic>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <mutex>
@@ -17,17 +20,7 @@
 namespace contactlab::experiments {
 namespace {
 
-std::string fmt(double v, const char* f = "%.6g") {
-    if (!std::isfinite(v)) return "";
-    char buf[48];
-    std::snprintf(buf, sizeof buf, f, v);
-    return buf;
-}
-
-struct ParticipantRun {
-    std::vector<std::vector<std::string>> rows;
-    std::size_t invalid = 0, warmup = 0;
-};
+namespace fs = std::filesystem;
 
 std::string trace_csv(const TrialOutcome& o) {
     std::string s = "t,x,y,phi,contact,fx,fy,roller_l,l_d\n";
@@ -40,115 +33,183 @@ std::string trace_csv(const TrialOutcome& o) {
     return s;
 }
 
-ParticipantRun run_participant(const Protocol& p, const RunOptions& o, std::uint64_t participant, const std::string& trace_dir,
-                               std::atomic<std::size_t>& done, std::size_t total) {
-    ParticipantRun out;
-    const std::string id = "sim" + std::to_string(participant);
-    for (std::vector<PlannedTrial> block : plan_trials(p, o.seed, participant)) {
+// One participant's run: the rows (CSV lines) in order, found on disk or performed.
+struct ParticipantRun {
+    std::vector<std::string> lines;
+    std::size_t invalid = 0, warmup = 0, resumed = 0;
+    bool finished = false;
+};
+
+// Shared by the workers: the rows so far, for RESULTS.csv whenever a participant finishes.
+struct Shared {
+    const Protocol& p;
+    const RunOptions& o;
+    const RunFiles& files;
+    std::vector<ParticipantRun> runs;
+    std::mutex lock;
+    std::atomic<std::size_t> done{0};
+    std::size_t total = 0;
+
+    // RESULTS.csv with every participant finished so far, in participant order.
+    void write_results(bool all) {
+        std::string csv = csv_line(results_columns(p)) + "\n";
+        for (const ParticipantRun& r : runs)
+            if (all || r.finished)
+                for (const std::string& l : r.lines) csv += l + "\n";
+        write_file_atomically(o.output, csv);
+    }
+};
+
+std::string participant_id(std::uint64_t n) { return "sim" + std::to_string(n); }
+
+void run_participant(Shared& sh, std::size_t index, const std::vector<std::vector<std::string>>& done_rows) {
+    const Protocol& p = sh.p;
+    const RunOptions& o = sh.o;
+    ParticipantRun& out = sh.runs[index];
+    const std::string id = participant_id(o.participants[index]);
+    const std::string part = sh.files.part(id);
+    const std::vector<std::string>& columns = results_columns(p);
+    auto column = [&](const char* name) {
+        return static_cast<std::size_t>(std::find(columns.begin(), columns.end(), name) - columns.begin());
+    };
+    const std::size_t condition_col = column("condition"), trial_col = column("trial"), valid_col = column("valid");
+    std::string part_text = csv_line(columns) + "\n";
+    std::size_t k = 0;  // this participant's trials so far, in order
+    for (std::vector<PlannedTrial> block : plan_trials(p, o.seed, o.participants[index])) {
         const std::size_t planned = block.size();
-        for (std::size_t i = 0; i < block.size(); ++i) {
+        for (std::size_t i = 0; i < block.size(); ++i, ++k) {
             PlannedTrial t = block[i];
             const Condition& c = p.conditions[static_cast<std::size_t>(t.condition)];
-            TrialOutcome r = perform_sim_trial(p, t);
+            std::vector<std::string> row;
+            bool valid = true;
+            if (k < done_rows.size()) {
+                // Done before the run was interrupted: the row must be the trial the plan puts here.
+                row = done_rows[k];
+                if (row[condition_col] != c.name || row[trial_col] != std::to_string(t.trial))
+                    throw ExperimentError(part + ": row " + std::to_string(k + 1) + " is " + row[condition_col] + " trial " +
+                                          row[trial_col] + ", the plan has " + c.name + " trial " + std::to_string(t.trial) +
+                                          " there (the file is not this run's); give --overwrite to start again");
+                valid = row[valid_col] == "1";
+                ++out.resumed;
+            } else {
+                const TrialOutcome r = perform_sim_trial(p, t);
+                valid = r.valid;
+                TrialRecord rec;
+                rec.participant = id;
+                rec.trial = t;
+                rec.response = r.response;
+                rec.valid = r.valid;
+                rec.failed = r.failed;
+                rec.time_s = r.time_s;
+                rec.contact_breaks = r.contact_breaks;
+                rec.peak_force = r.peak_force;
+                rec.touched = r.touched;
+                rec.device = kTrialDevice;
+                rec.small_bumps = r.small_bumps;
+                rec.large_bumps = r.large_bumps;
+                row = results_row(p, rec);
+                // The trace first, then the row: a row on disk always has its trace.
+                if (o.traces) write_file_atomically(sh.files.trace(id, c.name, t.trial), trace_csv(r));
+            }
             // At most as many repeats as planned trials: a stimulus that always faults the servo
             // cannot keep the block going for ever.
             // A warm-up trial is not analysed, so it is not repeated either.
-            if (!r.valid && !t.warmup && p.repeat_invalid && block.size() < 2 * planned) {
+            if (!valid && !t.warmup && p.repeat_invalid && block.size() < 2 * planned) {
                 PlannedTrial again = t;
                 again.seed = mix64(t.seed);
                 again.trial = static_cast<int>(block.size()) + 1;
                 block.push_back(again);  // presented again at the end of the block
             }
-            out.invalid += !r.valid;
+            out.invalid += !valid;
             out.warmup += t.warmup;
-            std::vector<std::string> row = {id,
-                                            c.name,
-                                            std::to_string(t.trial),
-                                            stimulus_label(p, t.stimulus),
-                                            r.response,
-                                            r.response.empty() ? "" : (r.correct ? "1" : "0"),
-                                            r.valid ? "1" : "0",
-                                            t.warmup ? "1" : "0",
-                                            fmt(r.time_s, "%.4f"),
-                                            r.failed ? "1" : "0",
-                                            std::to_string(r.contact_breaks),
-                                            fmt(r.peak_force, "%.4f"),
-                                            c.contact_location ? "1" : "0"};
-            if (p.task == Task::surface_orientation) {
-                row.push_back(fmt(c.eccentricity));
-                row.push_back(fmt(c.total_stiffness * 1e-3));  // N/mm, as seed 004 writes k
+            const std::string line = csv_line(row);
+            part_text += line + "\n";
+            {
+                std::lock_guard<std::mutex> g(sh.lock);
+                out.lines.push_back(line);
             }
-            if (p.task == Task::curvature) row.push_back(c.motion);
-            if (!trace_dir.empty())
-                write_file_atomically(trace_dir + "/" + id + "-" + c.name + "-" + std::to_string(t.trial) + ".csv", trace_csv(r));
-            out.rows.push_back(std::move(row));
-            if (o.progress) o.progress(++done, total);
+            // On disk before the next trial starts.
+            if (k >= done_rows.size()) write_file_atomically(part, part_text);
+            if (o.progress) o.progress(++sh.done, sh.total);
         }
     }
-    return out;
+    if (k < done_rows.size())
+        throw ExperimentError(part + ": " + std::to_string(done_rows.size()) + " rows, the plan has " + std::to_string(k) +
+                              " (the file is not this run's); give --overwrite to start again");
+    std::lock_guard<std::mutex> g(sh.lock);
+    out.finished = true;
+    sh.write_results(false);
 }
 
 }  // namespace
 
-const std::vector<std::string>& results_columns(const Protocol& p) {
-    static const std::vector<std::string> base = {"participant", "condition", "trial",  "stimulus",       "response",
-                                                  "correct",     "valid",     "warmup", "time_s",         "failed",
-                                                  "contact_breaks", "peak_force_n", "contact_location"};
-    static const std::vector<std::string> orientation = [] {
-        auto v = base;
-        v.push_back("e");
-        v.push_back("k");
-        return v;
-    }();
-    static const std::vector<std::string> curvature = [] {
-        auto v = base;
-        v.push_back("motion");
-        return v;
-    }();
-    return p.task == Task::surface_orientation ? orientation : p.task == Task::curvature ? curvature : base;
-}
-
 RunSummary run_experiment(const Protocol& p, const RunOptions& o) {
     if (o.participants.empty()) throw ExperimentError("no participants");
     if (o.output.empty()) throw ExperimentError("no output file");
-    std::string trace_dir;
-    if (o.traces) {
-        trace_dir = o.output + ".traces";
-        std::filesystem::create_directories(trace_dir);
+    RunIdentity id;
+    id.protocol_path = o.protocol_path.empty() ? p.origin : o.protocol_path;
+    id.protocol = &p;
+    id.seed = o.seed;
+    for (std::uint64_t n : o.participants) id.participants.push_back(participant_id(n));
+    id.device = kTrialDevice;
+    id.servo_rate_hz = kTrialRate;
+    id.traces = o.traces;
+    nlohmann::json meta = make_meta(id, o.command);
+
+    // Whose files are these? Ours to resume, another run's to refuse, or (--overwrite) to clear.
+    RunFiles files(o.output);
+    RunSummary sum;
+    const RunState state = files.claim(meta, o.overwrite);
+    if (state.complete) {
+        // The same run, finished before: nothing to do, nothing rewritten.
+        const ResultsTable t = read_results_csv(o.output);
+        sum.rows = sum.resumed = t.rows.size();
+        sum.already_complete = true;
+        return sum;
     }
+    if (state.resuming) {
+        meta = state.meta;
+        note_resume(meta, o.command);
+    }
+    write_meta(o.output, meta);  // before any row: until finished_utc is set, the run is unfinished
+
     std::size_t per_participant = 0;
     for (const auto& block : plan_trials(p, o.seed, 1)) per_participant += block.size();
-    const std::size_t total = per_participant * o.participants.size();
-    std::atomic<std::size_t> done{0}, next{0};
-    std::vector<ParticipantRun> runs(o.participants.size());
+    Shared sh{p, o, files, std::vector<ParticipantRun>(o.participants.size()), {}, {}, 0};
+    sh.total = per_participant * o.participants.size();
+    std::vector<std::vector<std::vector<std::string>>> done_rows(o.participants.size());
+    for (std::size_t i = 0; i < o.participants.size(); ++i) done_rows[i] = files.done_rows(results_columns(p), id.participants[i]);
+
+    std::atomic<std::size_t> next{0};
     std::mutex error_lock;
     std::string error;
     auto worker = [&] {
-        for (std::size_t i; (i = next++) < runs.size();) {
+        for (std::size_t i; (i = next++) < o.participants.size();) {
             try {
-                runs[i] = run_participant(p, o, o.participants[i], trace_dir, done, total);
+                run_participant(sh, i, done_rows[i]);
             } catch (const std::exception& e) {
                 std::lock_guard<std::mutex> g(error_lock);
-                error = e.what();
+                if (error.empty()) error = e.what();
             }
         }
     };
-    const int jobs = std::max(1, std::min<int>(o.jobs, static_cast<int>(runs.size())));
+    const int jobs = std::max(1, std::min<int>(o.jobs, static_cast<int>(o.participants.size())));
     std::vector<std::thread> threads;
     for (int j = 1; j < jobs; ++j) threads.emplace_back(worker);
     worker();
     for (std::thread& t : threads) t.join();
     if (!error.empty()) throw ExperimentError(error);
 
-    std::string csv = csv_line(results_columns(p)) + "\n";
-    RunSummary sum;
-    for (const ParticipantRun& r : runs) {
-        for (const auto& row : r.rows) csv += csv_line(row) + "\n";
-        sum.rows += r.rows.size();
+    sh.write_results(true);
+    for (const ParticipantRun& r : sh.runs) {
+        sum.rows += r.lines.size();
         sum.invalid += r.invalid;
         sum.warmup += r.warmup;
+        sum.resumed += r.resumed;
     }
-    write_file_atomically(o.output, csv);
+    finish_meta(meta, sum.rows);
+    write_meta(o.output, meta);
+    files.finish();  // the parts are in RESULTS.csv now
     return sum;
 }
 

@@ -1,9 +1,8 @@
 // live_session.cpp — live trials, row-by-row results and resuming (live_session.hpp).
 #include "engine/experiments/live_session.hpp"
 
-#include "engine/experiments/experiment_run.hpp"
+#include "engine/experiments/results_row.hpp"
 #include "engine/experiments/results_table.hpp"
-#include "engine/experiments/sim_participant.hpp"
 #include "engine/experiments/stimulus.hpp"
 #include "haptics/atomic_file.hpp"
 
@@ -14,15 +13,6 @@
 #include <map>
 
 namespace contactlab::experiments {
-namespace {
-
-std::string fmt(double v, const char* f) {
-    char buf[48];
-    std::snprintf(buf, sizeof buf, f, v);
-    return buf;
-}
-
-}  // namespace
 
 LiveSession::LiveSession(Protocol protocol, std::string participant, std::uint64_t seed, std::string results_path)
     : protocol_(std::move(protocol)), participant_(std::move(participant)), results_path_(std::move(results_path)) {
@@ -42,11 +32,13 @@ LiveSession::LiveSession(Protocol protocol, std::string participant, std::uint64
         const ResultsTable t = read_results_csv(results_path_);
         if (t.columns != columns)
             throw ExperimentError(results_path_ + ": its columns are not this protocol's results columns (" + lines_[0] + ")");
+        const std::size_t who = *t.column("participant"), cond = *t.column("condition"), num = *t.column("trial"),
+                          valid = *t.column("valid");
         std::map<std::pair<std::string, int>, bool> seen;  // (condition, trial) of this participant -> valid
         for (std::size_t i = 0; i < t.rows.size(); ++i) {
             lines_.push_back(csv_line(t.rows[i]));
-            if (t.rows[i][0] != participant_) continue;
-            seen[{t.rows[i][1], static_cast<int>(t.number(i, 2))}] = t.number(i, 6) != 0.0;
+            if (t.rows[i][who] != participant_) continue;
+            seen[{t.rows[i][cond], static_cast<int>(t.number(i, num))}] = t.number(i, valid) != 0.0;
         }
         // Done trials are those already in the file (their repeats queued again): skip them.
         for (auto it = seen.end(); next_ < queue_.size() && (it = seen.find({condition().name, queue_[next_].trial})) != seen.end();) {
@@ -64,7 +56,10 @@ const Condition& LiveSession::condition() const {
 
 void LiveSession::build_scene() {
     // The live trial is felt as the simulated participant's first run is: the same scene.
-    scene_ = make_stimulus(protocol_, condition(), trial(), 0.0).scene;
+    Stimulus st = make_stimulus(protocol_, condition(), trial(), 0.0);
+    scene_ = std::move(st.scene);
+    small_bumps_ = st.small_bumps;
+    large_bumps_ = st.large_bumps;
     ++version_;
 }
 
@@ -85,32 +80,20 @@ void LiveSession::answer(const LiveTrialResult& r) {
         }
         throw ExperimentError("answer \"" + r.response + "\" is not one of " + set);
     }
-    const PlannedTrial t = trial();
-    const Condition& c = condition();
-    bool correct = false;
-    if (protocol_.task == Task::surface_orientation)
-        correct = r.response == (t.stimulus < 90.0 ? protocol_.answers.front() : protocol_.answers.back());
-    else if (judged)
-        correct = r.response == stimulus_label(protocol_, t.stimulus);
-    std::vector<std::string> row = {participant_,
-                                    c.name,
-                                    std::to_string(t.trial),
-                                    stimulus_label(protocol_, t.stimulus),
-                                    r.response,
-                                    judged ? (correct ? "1" : "0") : "",
-                                    r.valid ? "1" : "0",
-                                    t.warmup ? "1" : "0",
-                                    fmt(r.time_s, "%.4f"),
-                                    "0",
-                                    std::to_string(r.contact_breaks),
-                                    fmt(r.peak_force, "%.4f"),
-                                    c.contact_location ? "1" : "0"};
-    if (protocol_.task == Task::contour_following && r.contact_breaks > 0) row[9] = std::string("1");  // failed
-    if (protocol_.task == Task::surface_orientation) {
-        row.push_back(fmt(c.eccentricity, "%g"));
-        row.push_back(fmt(c.total_stiffness * 1e-3, "%g"));
-    }
-    if (protocol_.task == Task::curvature) row.push_back(c.motion);
+    TrialRecord rec;
+    rec.participant = participant_;
+    rec.trial = trial();
+    rec.response = r.response;
+    rec.valid = r.valid;
+    rec.failed = protocol_.task == Task::contour_following && r.contact_breaks > 0;
+    rec.time_s = r.time_s;
+    rec.contact_breaks = r.contact_breaks;
+    rec.peak_force = r.peak_force;
+    rec.touched = r.touched.value_or(r.peak_force > 0.0);
+    rec.device = r.device;
+    rec.small_bumps = small_bumps_;
+    rec.large_bumps = large_bumps_;
+    const std::vector<std::string> row = results_row(protocol_, rec);
     lines_.push_back(csv_line(row));
     write();  // the row is on disk before the next trial starts
     if (!r.valid) queue_repeat();

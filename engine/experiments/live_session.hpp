@@ -15,6 +15,7 @@
 #include "haptics/scene.hpp"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,10 @@ struct LiveTrialResult {
     int contact_breaks = 0;
     double peak_force = 0.0;  // N
     bool valid = true;        // false: the servo faulted during the trial
+    // The finger contacted the stimulus during the trial; when the editor does not say, a
+    // trial with a peak force above zero touched (the servo renders force only in contact).
+    std::optional<bool> touched;
+    std::string device;       // the device the trial was felt on ("" when not known)
 };
 
 class LiveSession {
@@ -67,6 +72,7 @@ private:
     std::size_t next_ = 0, resumed_ = 0;
     std::vector<std::string> lines_;      // the file's lines, header first
     Scene scene_;
+    int small_bumps_ = 0, large_bumps_ = 0;  // the current stimulus's (seed 002)
     std::uint64_t version_ = 0;
 };
 

@@ -2,9 +2,11 @@
 #include "engine/experiments/protocol.hpp"
 
 #include "engine/experiments/results_table.hpp"
+#include "engine/experiments/sha256.hpp"
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -75,7 +77,71 @@ Task task_of(const Reader& r, const std::string& name) {
     r.fail("task", "unknown task \"" + name + "\" (contour-following, bump-counting, curvature, surface-orientation)");
 }
 
+// What each task can answer (the simulated participant's answers and the grading rule) fixes
+// what its answer set may be: a protocol whose answers the task cannot produce, or whose grading
+// would be arbitrary, is refused when it loads rather than graded wrongly at every trial.
+void check_answers(const Reader& r, const Protocol& p) {
+    std::set<std::string> seen;
+    for (std::size_t i = 0; i < p.answers.size(); ++i) {
+        const std::string path = "answers[" + std::to_string(i) + "]";
+        if (p.answers[i].empty() || p.answers[i].find_first_of("\n\r") != std::string::npos)
+            r.fail(path, "an answer is a non-empty label on one line");
+        if (!seen.insert(p.answers[i]).second) r.fail(path, "\"" + p.answers[i] + "\" appears twice (every answer must be told apart)");
+    }
+    switch (p.task) {
+        case Task::contour_following: break;
+        case Task::bump_counting: {
+            // The count of bumps felt: 0, 1, ..., N in that order, N at least the largest
+            // stimulus (or the right answer could not be given) and at most 4 (seed 002).
+            const double most = *std::max_element(p.stimuli.begin(), p.stimuli.end());
+            if (p.answers.size() > 5 || static_cast<double>(p.answers.size()) - 1.0 < most)
+                r.fail("answers", "bump counting answers are the counts \"0\" .. \"N\", N from the largest stimulus (" +
+                                      stimulus_label(p, most) + ") to 4");
+            for (std::size_t i = 0; i < p.answers.size(); ++i)
+                if (p.answers[i] != std::to_string(i))
+                    r.fail("answers[" + std::to_string(i) + "]", "expected \"" + std::to_string(i) + "\" (bump counting answers are the counts 0 .. N in order), got \"" + p.answers[i] + "\"");
+            break;
+        }
+        case Task::curvature: {
+            // The answer is the height felt, in mm as the stimulus column writes it: the answer
+            // set is the stimuli's labels, each once.
+            std::set<std::string> labels;
+            for (std::size_t i = 0; i < p.stimuli.size(); ++i)
+                if (!labels.insert(stimulus_label(p, p.stimuli[i])).second)
+                    r.fail("stimuli[" + std::to_string(i) + "]", "h = " + stimulus_label(p, p.stimuli[i]) + " mm twice (heights are told apart to 0.1 mm)");
+            if (labels != seen) {
+                std::string want;
+                for (const std::string& l : labels) want += (want.empty() ? "\"" : ", \"") + l + "\"";
+                r.fail("answers", "curvature answers are the stimuli's heights in mm: " + want);
+            }
+            break;
+        }
+        case Task::surface_orientation:
+            if (p.answers.size() != 2) r.fail("answers", "two answers: template A (0 < alpha < 90 deg), then B (90 < alpha < 180 deg)");
+            break;
+    }
+}
+
 }  // namespace
+
+const char* stimulus_unit(Task t) {
+    switch (t) {
+        case Task::contour_following: return "m";
+        case Task::bump_counting: return "bumps";
+        case Task::curvature: return "mm";
+        case Task::surface_orientation: return "deg";
+    }
+    return "";
+}
+
+int orientation_template(double alpha_deg) { return alpha_deg < 90.0 ? 0 : 1; }
+
+std::string stimulus_label(const Protocol& p, double stimulus) {
+    char buf[32];
+    if (p.task == Task::curvature) std::snprintf(buf, sizeof buf, "%g", std::round(stimulus * 1e4) / 10.0);  // mm
+    else std::snprintf(buf, sizeof buf, "%g", stimulus);
+    return buf;
+}
 
 const char* to_string(Task t) {
     switch (t) {
@@ -102,6 +168,8 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
     if (r.integer(root, "", "version", 1, 1, 0) != 1) r.fail("version", "missing (this ContactLab reads version 1)");
     Protocol p;
     p.origin = origin;
+    p.text = text;
+    p.sha256 = sha256_hex(text);
     p.name = r.text(r.need(root, "", "name"), "name");
     p.seed_paper = r.text(r.need(root, "", "seed"), "seed");
     p.task = task_of(r, r.text(r.need(root, "", "task"), "task"));
@@ -147,6 +215,9 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
         }
         const double v = r.number(stim[i], path, lo, hi, unit);
         if (p.task == Task::bump_counting && v != std::floor(v)) r.fail(path, "a bump count is a whole number");
+        if (p.task == Task::surface_orientation && (v == 0.0 || v == 90.0 || v == 180.0))
+            r.fail(path, "the compliant axis at 0, 90 or 180 deg is tilted neither way: neither template A (0 < alpha < 90) "
+                         "nor B (90 < alpha < 180) is right");
         p.stimuli.push_back(v);
     }
     p.repetitions = r.integer(root, "", "repetitions", 1, 1000, 1);
@@ -163,6 +234,7 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
     }
     if (p.task != Task::contour_following && p.answers.size() < 2) r.fail("answers", "a judgement task needs at least two answers");
     if (p.task == Task::contour_following && !p.answers.empty()) r.fail("answers", "the contour-following task is timed, not answered");
+    check_answers(r, p);
 
     if (root.contains("hand")) {
         r.only(root["hand"], "hand", {"speed", "press"});

@@ -45,6 +45,10 @@ struct ParticipantModel {
 
 struct Protocol {
     std::string origin;  // the file, for messages
+    // The file's exact bytes and their SHA-256 (sha256.hpp): a results file's provenance names
+    // the protocol that made it (RESULTS.csv.meta.json), and a resumed or pooled run is checked
+    // against it.
+    std::string text, sha256;
     std::string name;
     std::string seed_paper;  // "000", "002", "003", "004"
     Task task = Task::bump_counting;
@@ -68,6 +72,19 @@ struct Protocol {
     double max_force = 1.5;        // N
     ParticipantModel participant;
 };
+
+// The unit of the `stimulus` column for a task (the results' `stimulus_unit` column): "m"
+// (000's d), "bumps" (002's count), "mm" (003's h) and "deg" (004's alpha).
+const char* stimulus_unit(Task t);
+
+// Seed 004's template for a field angle alpha (deg): 0 (the protocol's first answer, template
+// A) for 0 < alpha < 90, 1 (B) for 90 < alpha < 180. The axis is an axis, not a direction: at
+// 0, 90 and 180 deg it is horizontal or vertical, tilted neither way, so neither template is
+// right; protocols may not use those angles (parse_protocol refuses them).
+int orientation_template(double alpha_deg);
+
+// The CSV text of a stimulus value: seed 003 in mm ("10"), others as written ("0.06", "2", "45").
+std::string stimulus_label(const Protocol& p, double stimulus);
 
 // Throws ExperimentError (results_table.hpp) naming the file, path and problem.
 Protocol parse_protocol(const std::string& json_text, const std::string& origin);

@@ -16,6 +16,8 @@
 namespace contactlab::experiments {
 
 inline constexpr double kTrialRate = 1000.0;  // Hz, the seeds' servo rate
+// The rig's name (drivers::sim::SimCldDevice::name()), for the results' `device` column and meta.
+inline constexpr const char* kTrialDevice = "sim-cld";
 
 struct TrialTrace {
     std::vector<drivers::TickRecord> ticks;  // one per servo tick

@@ -1,6 +1,7 @@
 // sim_participant.cpp — the simulated participant's perception and answers (sim_participant.hpp).
 #include "engine/experiments/sim_participant.hpp"
 
+#include "engine/experiments/results_row.hpp"
 #include "engine/experiments/servo_trial.hpp"
 #include "engine/experiments/stimulus.hpp"
 
@@ -34,6 +35,9 @@ void common_measures(const TrialTrace& tr, TrialOutcome& o, double t_end = 1e300
         prev = r.contact;
     }
     o.valid = !tr.faulted;
+    // Over the whole trial, not up to t_end: a finger that first touches after the finish line
+    // still touched the stimulus.
+    o.touched = std::any_of(tr.ticks.begin(), tr.ticks.end(), [](const TickRecord& r) { return r.contact; });
     for (std::size_t i = 0; i < tr.ticks.size(); i += 10) o.shown.push_back(tr.ticks[i]);
 }
 
@@ -129,7 +133,10 @@ TrialOutcome bump_counting(const Protocol& p, const Condition& c, const PlannedT
         count = std::max(count, excursions(band(location, narrow, wide), noisy(m.location_threshold_mm, m.location_noise_mm, rng)));
     TrialOutcome o;
     common_measures(tr, o);
-    o.response = std::to_string(std::clamp(count, 0, 4));
+    o.small_bumps = st.small_bumps;
+    o.large_bumps = st.large_bumps;
+    // The answers are the counts 0..N (parse_protocol checks it): a larger count is answered N.
+    o.response = std::to_string(std::clamp(count, 0, static_cast<int>(p.answers.size()) - 1));
     o.time_s = st.slide_end - st.slide_start;
     return o;
 }
@@ -190,13 +197,6 @@ TrialOutcome surface_orientation(const Protocol& p, const Condition& c, const Pl
 
 }  // namespace
 
-std::string stimulus_label(const Protocol& p, double stimulus) {
-    char buf[32];
-    if (p.task == Task::curvature) std::snprintf(buf, sizeof buf, "%g", std::round(stimulus * 1e4) / 10.0);  // mm
-    else std::snprintf(buf, sizeof buf, "%g", stimulus);
-    return buf;
-}
-
 TrialOutcome perform_sim_trial(const Protocol& p, const PlannedTrial& t) {
     const Condition& c = p.conditions.at(static_cast<std::size_t>(t.condition));
     std::uint64_t rng = mix64(t.seed ^ 0x5EEDull);
@@ -207,12 +207,7 @@ TrialOutcome perform_sim_trial(const Protocol& p, const PlannedTrial& t) {
         case Task::curvature: o = curvature(p, c, t, rng); break;
         case Task::surface_orientation: o = surface_orientation(p, c, t, rng); break;
     }
-    if (p.task == Task::surface_orientation) {
-        // Template A belongs with alpha = 45 deg, B with 135 deg (seed 004 Fig. 9).
-        o.correct = o.response == (t.stimulus < 90.0 ? p.answers.front() : p.answers.back());
-    } else if (!o.response.empty()) {
-        o.correct = o.response == stimulus_label(p, t.stimulus);
-    }
+    o.correct = graded_correct(p, t.stimulus, o.response);
     return o;
 }
 

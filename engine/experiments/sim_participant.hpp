@@ -39,6 +39,8 @@ struct TrialOutcome {
     double time_s = 0.0;     // seed 000: start line to finish line; others: the slide's duration
     bool failed = false;     // seed 000: contact broken, or the finish line not reached
     int contact_breaks = 0;  // contact lost after it was first made
+    bool touched = false;    // the finger contacted the stimulus at any tick of the trial
+    int small_bumps = 0, large_bumps = 0;  // seed 002: the stimulus's bumps by size
     double peak_force = 0.0; // N
     // What the device displayed in the trial as performed, every 10th tick (100 Hz), for the
     // per-trial trace files.
@@ -46,8 +48,5 @@ struct TrialOutcome {
 };
 
 TrialOutcome perform_sim_trial(const Protocol& p, const PlannedTrial& t);
-
-// The CSV text of a stimulus value: seed 003 in mm ("10"), others as written ("0.06", "2", "45").
-std::string stimulus_label(const Protocol& p, double stimulus);
 
 }  // namespace contactlab::experiments

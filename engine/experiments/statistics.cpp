@@ -6,6 +6,7 @@
 #include <boost/math/distributions/students_t.hpp>
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -37,9 +38,33 @@ std::size_t index_of(const std::vector<std::string>& v, const std::string& s) {
     return static_cast<std::size_t>(std::find(v.begin(), v.end(), s) - v.begin());
 }
 
+void undefined(TTest& r, std::string why) {
+    r.valid = false;
+    r.undefined = std::move(why);
+    r.t = r.p = r.ci_low = r.ci_high = kNaN;
+}
+
+double largest_magnitude(const std::vector<double>& v, double m = 0.0) {
+    for (double x : v) m = std::max(m, std::abs(x));
+    return m;
+}
+
+double spread(const std::vector<double>& v) {
+    if (v.empty()) return 0.0;
+    const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+    return *hi - *lo;
+}
+
+std::string number_text(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", v);
+    return buf;
+}
+
 // Two-sided p and the half-width of the interval for t with df degrees of freedom.
 void finish(TTest& r, double se) {
     if (!(se > 0.0) || !(r.df > 0.0) || !std::isfinite(se)) {
+        if (r.undefined.empty()) r.undefined = "no variance";
         r.valid = false;
         r.t = kNaN;
         r.p = kNaN;
@@ -158,16 +183,22 @@ Summary summarize(const std::vector<double>& x) {
         s.mean = kNaN;
         return s;
     }
+    // Deviations from the first value are exact for values within a factor 2 of it (Sterbenz),
+    // so equal values sum to exactly 0 and the mean is exactly their value.
+    const double shift = x.front();
     double sum = 0.0;
-    for (double v : x) sum += v;
-    s.mean = sum / static_cast<double>(x.size());
+    for (double v : x) sum += v - shift;
+    const double offset = sum / static_cast<double>(x.size());
+    s.mean = shift + offset;
     if (x.size() > 1) {
         double ss = 0.0;
-        for (double v : x) ss += (v - s.mean) * (v - s.mean);
+        for (double v : x) ss += (v - shift - offset) * (v - shift - offset);
         s.sd = std::sqrt(ss / static_cast<double>(x.size() - 1));
     }
     return s;
 }
+
+double roundoff_tolerance(double magnitude) { return 32.0 * std::numeric_limits<double>::epsilon() * magnitude; }
 
 TTest welch_t_test(const std::vector<double>& a, const std::vector<double>& b, double confidence) {
     check_confidence(confidence);
@@ -178,7 +209,13 @@ TTest welch_t_test(const std::vector<double>& a, const std::vector<double>& b, d
     const Summary sa = summarize(a), sb = summarize(b);
     r.mean_difference = sa.mean - sb.mean;
     if (a.size() < 2 || b.size() < 2) {
-        finish(r, kNaN);
+        undefined(r, "fewer than two values in a sample (" + std::to_string(a.size()) + " and " + std::to_string(b.size()) + ")");
+        return r;
+    }
+    const double tol = roundoff_tolerance(largest_magnitude(b, largest_magnitude(a)));
+    if (spread(a) <= tol && spread(b) <= tol) {
+        undefined(r, "neither sample varies (each within round-off, " + number_text(tol) + ", of one value: " +
+                         number_text(sa.mean) + " and " + number_text(sb.mean) + "): t has no variance to compare with");
         return r;
     }
     const double va = sa.sd * sa.sd / static_cast<double>(a.size()), vb = sb.sd * sb.sd / static_cast<double>(b.size());
@@ -201,7 +238,17 @@ TTest paired_t_test(const std::vector<double>& a, const std::vector<double>& b, 
     const Summary s = summarize(d);
     r.mean_difference = s.mean;
     if (d.size() < 2) {
-        finish(r, kNaN);
+        undefined(r, "fewer than two pairs (" + std::to_string(d.size()) + ")");
+        return r;
+    }
+    const double tol = roundoff_tolerance(largest_magnitude(b, largest_magnitude(a)));
+    if (spread(d) == 0.0) {
+        undefined(r, "the differences are all equal (" + number_text(d.front()) + "): t has no variance to compare with");
+        return r;
+    }
+    if (spread(d) <= tol) {
+        undefined(r, "the differences are all equal to within round-off (spread " + number_text(spread(d)) + " <= " +
+                         number_text(tol) + ", 32 eps times the largest value): t has no variance to compare with");
         return r;
     }
     r.df = static_cast<double>(d.size() - 1);

@@ -49,7 +49,17 @@ struct Summary {
     double mean = 0.0;
     double sd = 0.0;  // sample standard deviation (n - 1); 0 for n < 2
 };
+// Shifted by the first value before summing, so identical values give exactly that value and sd
+// 0 (a plain sum of n copies of 3.401 divided by n is not 3.401, and the round-off then reads
+// as variance).
 Summary summarize(const std::vector<double>& x);
+
+// Round-off tolerance for a spread of values computed from inputs of magnitude `magnitude`: 32
+// units of double epsilon times the magnitude. Why 32: each input may carry a few ulps from its
+// own computation (decimal parsing 0.5 ulp, a shifted mean about 2), each difference a_i - b_i
+// of two inputs up to about 10 eps M with its own rounding, and a spread of two differences
+// twice that: 20 eps M from round-off alone; 32 is the power of two above it.
+double roundoff_tolerance(double magnitude);
 
 struct TTest {
     bool paired = false;
@@ -61,10 +71,15 @@ struct TTest {
     double confidence = 0.95;
     double ci_low = 0.0, ci_high = 0.0;  // for the mean difference
     bool valid = false;            // false when there are too few values or no variance
+    // Why t is undefined when !valid ("the differences are all equal to within round-off ..."):
+    // a t test on no variance has no p value, and one from round-off would be a made-up number.
+    std::string undefined;
 };
-// Two independent samples, unequal variances (Welch).
+// Two independent samples, unequal variances (Welch). Undefined when both samples' spreads are
+// within roundoff_tolerance of their magnitude.
 TTest welch_t_test(const std::vector<double>& a, const std::vector<double>& b, double confidence = 0.95);
-// Paired samples (a[i] with b[i], the same length).
+// Paired samples (a[i] with b[i], the same length). Undefined when the differences' spread is
+// within roundoff_tolerance of the values' magnitude.
 TTest paired_t_test(const std::vector<double>& a, const std::vector<double>& b, double confidence = 0.95);
 
 }  // namespace contactlab::experiments

@@ -135,6 +135,29 @@ inline ProcessResult run_process(const std::string& exe, const std::vector<std::
     return r;
 }
 
+// Starts `exe args...` without waiting: stdin from /dev/null, stdout and stderr to `log` (to
+// /dev/null when empty). Returns the child's id, for the caller to wait for or kill (a test that
+// kills a run as a crash would).
+inline pid_t start_process(const std::string& exe, const std::vector<std::string>& args, const std::string& log = {}) {
+    std::vector<std::string> store{exe};
+    store.insert(store.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (auto& a : store) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    const std::string out_path = log.empty() ? std::string("/dev/null") : log;
+    const pid_t pid = ::fork();
+    if (pid < 0) throw std::runtime_error("fork failed: " + std::string(std::strerror(errno)));
+    if (pid == 0) {
+        // Child: only async-signal-safe calls from here to exec.
+        const int in = ::open("/dev/null", O_RDONLY);
+        const int out = ::open(out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (in < 0 || out < 0 || ::dup2(in, 0) < 0 || ::dup2(out, 1) < 0 || ::dup2(out, 2) < 0) ::_exit(126);
+        ::execv(argv[0], argv.data());
+        ::_exit(127);
+    }
+    return pid;
+}
+
 inline ProcessResult run_contactlab(const std::vector<std::string>& args, const std::string& cwd = {}) {
     return run_process(exe_path(), args, cwd);
 }

@@ -35,20 +35,10 @@ inline cli_test::ProcessResult run_validated_script(const std::string& script, c
 // xvfb-run process's id. With kill_editor() below a test can kill the editor as a crash would.
 inline pid_t start_under_xvfb(std::vector<std::string> args, const std::string& log) {
     setenv("VK_DRIVER_FILES", "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json", 1);
-    std::vector<std::string> store = {"/usr/bin/xvfb-run", "-a", "-s", "-screen 0 1600x1000x24", cli_test::exe_path()};
-    store.insert(store.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (auto& a : store) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    const pid_t pid = ::fork();
+    std::vector<std::string> all = {"-a", "-s", "-screen 0 1600x1000x24", cli_test::exe_path()};
+    all.insert(all.end(), args.begin(), args.end());
+    const pid_t pid = cli_test::start_process("/usr/bin/xvfb-run", all, log);
     REQUIRE(pid >= 0);
-    if (pid == 0) {
-        const int in = ::open("/dev/null", O_RDONLY);
-        const int out = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        if (in < 0 || out < 0 || ::dup2(in, 0) < 0 || ::dup2(out, 1) < 0 || ::dup2(out, 2) < 0) ::_exit(126);
-        ::execv(argv[0], argv.data());
-        ::_exit(127);
-    }
     return pid;
 }
 

@@ -66,8 +66,8 @@ TEST_CASE("experiment run: seed 003's protocol with two simulated participants, 
     REQUIRE(p.exit_code == 0);
     CHECK(contains(p.err, "2 participant(s), 48 trials"));
     const std::string csv = read_text(out);
-    CHECK(csv.rfind("participant,condition,trial,stimulus,response,correct,valid,warmup,time_s,failed,contact_breaks,"
-                    "peak_force_n,contact_location,motion\n", 0) == 0);
+    CHECK(csv.rfind("participant,condition,trial,stimulus,stimulus_unit,response,correct,valid,warmup,time_s,failed,"
+                    "contact_breaks,peak_force_n,touched,contact_location,device,motion\n", 0) == 0);
     CHECK(contains(csv, "sim2,B,"));
     // One trace per trial beside the results, at 100 Hz.
     CHECK(std::filesystem::exists(out + ".traces/sim1-A-1.csv"));
@@ -91,4 +91,64 @@ TEST_CASE("experiment run: a person as participant, or a bad protocol, exits 2 a
     CHECK(bad.exit_code == 2);
     CHECK(contains(bad.err, "bad.json: version: must lie in [1, 1], got 2"));
     CHECK_FALSE(std::filesystem::exists(dir.file("r.csv")));
+}
+
+TEST_CASE("experiment analyze: invalid UTF-8 and 1e999 exit 2 naming the file and line") {
+    TempDir dir;
+    write_text(dir.file("latin1.csv"), "participant,stimulus,response\np1,1,1\np\xe9,2,2\n");
+    const auto a = run_contactlab({"experiment", "analyze", dir.file("latin1.csv"), "--json", dir.file("a.json")});
+    CHECK(a.exit_code == 2);
+    CHECK(contains(a.err, "latin1.csv: line 3: not UTF-8"));
+    write_text(dir.file("huge.csv"), "stimulus,response\n1,1\n1e999,1\n");
+    const auto b = run_contactlab({"experiment", "analyze", dir.file("huge.csv"), "--report", dir.file("rep")});
+    CHECK(b.exit_code == 2);
+    CHECK(contains(b.err, "huge.csv: line 3, column stimulus: \"1e999\" is out of the range of a double"));
+}
+
+TEST_CASE("experiment analyze: provenance per file in the JSON, files of different protocols pooled only when asked") {
+    TempDir dir;
+    const std::string proto = (source_dir() / "scenes/experiments/003-curvature.json").string();
+    // Two runs of different participants: one protocol, so they pool.
+    for (const char* who : {"sim:1", "sim:2"}) {
+        const auto r = run_contactlab({"experiment", "run", proto, "--participant", who, "-o", dir.file(std::string(who + 4) + ".csv"),
+                                       "--no-traces"});
+        REQUIRE(r.exit_code == 0);
+    }
+    const auto a = run_contactlab({"experiment", "analyze", dir.file("1.csv"), dir.file("2.csv"), "--json", dir.file("a.json")});
+    INFO("stderr: " << a.err);
+    REQUIRE(a.exit_code == 0);
+    const auto j = nlohmann::json::parse(read_text(dir.file("a.json")));
+    CHECK(j["provenance"][dir.file("1.csv")]["participants"] == nlohmann::json::array({"sim1"}));
+    CHECK(j["provenance"][dir.file("2.csv")]["protocol_path"] == proto);
+    CHECK(j["conditions"]["A"]["participants"].size() == 2);
+    CHECK(j["comparisons"][0]["test"]["kind"] == "paired");
+    // The second file's meta says another protocol: refused, then pooled with --pool-protocols.
+    auto meta = nlohmann::json::parse(read_text(dir.file("2.csv.meta.json")));
+    meta["protocol_sha256"] = std::string(64, '0');
+    write_text(dir.file("2.csv.meta.json"), meta.dump());
+    const auto refused = run_contactlab({"experiment", "analyze", dir.file("1.csv"), dir.file("2.csv")});
+    CHECK(refused.exit_code == 2);
+    CHECK(contains(refused.err, "come from different protocols"));
+    CHECK(contains(refused.err, "--pool-protocols"));
+    const auto pooled = run_contactlab({"experiment", "analyze", dir.file("1.csv"), dir.file("2.csv"), "--pool-protocols"});
+    CHECK(pooled.exit_code == 0);
+    CHECK(contains(pooled.err, "warning"));
+}
+
+TEST_CASE("experiment analyze: seed 002's report has the tables by number of small bumps and by bump size") {
+    TempDir dir;
+    std::string csv = "participant,condition,trial,stimulus,response,small_bumps,large_bumps\n";
+    for (const char* p : {"p1", "p2", "p3"})
+        for (const char* c : {"F", "F+CLD"})
+            for (const char* row : {",1,1,1,1,0\n", ",2,2,1,0,2\n", ",3,3,2,2,1\n", ",4,0,0,0,0\n"}) csv += std::string(p) + "," + c + row;
+    write_text(dir.file("b.csv"), csv);
+    const auto p = run_contactlab({"experiment", "analyze", dir.file("b.csv"), "--report", dir.file("rep")});
+    INFO("stderr: " << p.err);
+    REQUIRE(p.exit_code == 0);
+    const std::string md = read_text(dir.file("rep/report.md"));
+    CHECK(contains(md, "## By number of small bumps (seed 002 eq. 7)"));
+    CHECK(contains(md, "| F | 2 | 3 | 0 | 1 |"));  // two small bumps: answered 2 of 3, always wrong by 1
+    CHECK(contains(md, "## Small bumps only, large bumps only (seed 002 Fig. 6)"));
+    CHECK(contains(md, "undefined: "));  // identical accuracy in both conditions: no test
+    CHECK(contains(md, "b.csv | (no meta file) |"));
 }

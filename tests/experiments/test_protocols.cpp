@@ -200,3 +200,39 @@ TEST_CASE("passivity: every shipped protocol runs two simulated participants wit
         CHECK(s.invalid == 0);
     }
 }
+
+TEST_CASE("protocols: answers are checked against what each task can answer and how it grades") {
+    auto proto = [](const char* task, const char* stimuli, const char* answers, const char* extra = "") {
+        return std::string(R"({"format": "contactlab experiment protocol", "version": 1, "name": "x", "seed": "0", "task": ")") + task +
+               R"(", "conditions": [{"name": "c")" + extra + R"(}], "stimuli": )" + stimuli + R"(, "answers": )" + answers + "}";
+    };
+    const char* field = R"(, "eccentricity": 0.4, "total_stiffness": 1000)";
+    CHECK_NOTHROW(parse_protocol(proto("surface-orientation", "[45, 135]", R"(["A", "B"])", field), "p.json"));
+    // Seed 004: two distinct templates; the axes at 0, 90 and 180 deg are tilted neither way.
+    CHECK_THROWS_WITH_AS(parse_protocol(proto("surface-orientation", "[45, 135]", R"(["A", "A"])", field), "p.json"),
+                         "p.json: answers[1]: \"A\" appears twice (every answer must be told apart)", ExperimentError);
+    CHECK_THROWS_WITH_AS(parse_protocol(proto("surface-orientation", "[45, 135]", R"(["A", "B", "C"])", field), "p.json"),
+                         "p.json: answers: two answers: template A (0 < alpha < 90 deg), then B (90 < alpha < 180 deg)",
+                         ExperimentError);
+    CHECK_THROWS_WITH_AS(parse_protocol(proto("surface-orientation", "[45, 90]", R"(["A", "B"])", field), "p.json"),
+                         doctest::Contains("p.json: stimuli[1]: the compliant axis at 0, 90 or 180 deg is tilted neither way"),
+                         ExperimentError);
+    CHECK(orientation_template(89.999) == 0);
+    CHECK(orientation_template(90.001) == 1);
+    // Seed 002: the counts 0..N in order, N from the largest stimulus to 4.
+    CHECK_NOTHROW(parse_protocol(proto("bump-counting", "[0, 1, 2]", R"(["0", "1", "2"])"), "p.json"));
+    CHECK_THROWS_WITH_AS(parse_protocol(proto("bump-counting", "[0, 1, 2]", R"(["0", "1", "3"])"), "p.json"),
+                         "p.json: answers[2]: expected \"2\" (bump counting answers are the counts 0 .. N in order), got \"3\"",
+                         ExperimentError);
+    CHECK_THROWS_WITH_AS(parse_protocol(proto("bump-counting", "[0, 4]", R"(["0", "1", "2"])"), "p.json"),
+                         "p.json: answers: bump counting answers are the counts \"0\" .. \"N\", N from the largest stimulus (4) to 4",
+                         ExperimentError);
+    CHECK_THROWS_WITH_AS(parse_protocol(proto("bump-counting", "[0, 1]", R"(["zero", "one"])"), "p.json"),
+                         doctest::Contains("p.json: answers[0]: expected \"0\""), ExperimentError);
+    // Seed 003: the heights in mm, each once.
+    CHECK_THROWS_WITH_AS(parse_protocol(proto("curvature", "[0.01, 0.02]", R"(["10", "25"])", R"(, "motion": "A")"), "p.json"),
+                         "p.json: answers: curvature answers are the stimuli's heights in mm: \"10\", \"20\"", ExperimentError);
+    // Every shipped protocol passes.
+    for (const char* f : {"000-contour-following.json", "002-bump-counting.json", "003-curvature.json", "004-surface-orientation.json"})
+        CHECK_NOTHROW(load_protocol(protocol_path(f)));
+}

@@ -1,0 +1,48 @@
+// run_files.hpp — the files of one batch run and who owns them: RESULTS.csv, its meta
+// (run_meta.hpp), RESULTS.csv.parts/ (each participant's finished trials while the run is
+// unfinished) and RESULTS.csv.traces/. claim() decides, from the meta, whether they are this
+// run's to resume, another run's to refuse, or (overwrite) to clear; it removes what a killed
+// run left half-written (write_file_atomically's NAME.tmp-XXXXXX) and locks the parts folder so
+// that two processes never write one run.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace contactlab::experiments {
+
+struct RunState {
+    bool resuming = false;   // the same run, unfinished: carry on from its parts
+    bool complete = false;   // the same run, finished: nothing to do
+    nlohmann::json meta;     // the meta found (resuming or complete)
+};
+
+class RunFiles {
+public:
+    explicit RunFiles(std::string output);
+    ~RunFiles();
+    RunFiles(const RunFiles&) = delete;
+    RunFiles& operator=(const RunFiles&) = delete;
+
+    // Throws ExperimentError saying why the files are not this run's (and naming --overwrite).
+    RunState claim(const nlohmann::json& now_meta, bool overwrite);
+
+    std::string part(const std::string& participant) const;
+    std::string trace(const std::string& participant, const std::string& condition, int trial) const;
+    // The participant's rows already on disk, in order: from its part, else from RESULTS.csv
+    // (an interrupted run whose parts were removed by hand). Cells checked against `columns`.
+    std::vector<std::vector<std::string>> done_rows(const std::vector<std::string>& columns, const std::string& participant) const;
+    // The run is in RESULTS.csv: remove the parts, release the lock.
+    void finish();
+
+private:
+    void lock();
+    void remove_temps() const;
+
+    std::string output_, parts_, traces_;
+    int lock_fd_ = -1;
+};
+
+}  // namespace contactlab::experiments
