@@ -13,13 +13,21 @@
 namespace contactlab::bench {
 namespace {
 
+// A condition with contact location displayed (the field defaults for the rest).
+experiments::Condition with_contact_location(const char* name) {
+    experiments::Condition c;
+    c.name = name;
+    c.contact_location = true;
+    return c;
+}
+
 // Seed 002's protocol as shipped (scenes/experiments/002-bump-counting.json): R 20 mm and 1300
 // N/m where it differs from experiments::Protocol's defaults (L 20 mm, 1.5 N, bumps 3 and 18 mm
 // over 18.4 cm, pressed 3 mm), with contact location.
 experiments::Protocol seed_002(double speed) {
     experiments::Protocol p;
     p.task = experiments::Task::bump_counting;
-    p.conditions = {{"F+CLD", true}};
+    p.conditions = {with_contact_location("F+CLD")};
     p.hand_speed = speed;
     p.finger_radius = 0.020;
     p.stiffness = 1300.0;
@@ -31,7 +39,7 @@ experiments::Protocol seed_002(double speed) {
 experiments::Protocol seed_000() {
     experiments::Protocol p;
     p.task = experiments::Task::contour_following;
-    p.conditions = {{"force+cld", true}};
+    p.conditions = {with_contact_location("force+cld")};
     return p;
 }
 

@@ -40,8 +40,10 @@ TEST_CASE("experiment analyze: seed 004 Table I from a results file, as JSON and
     CHECK(j["comparisons"].size() == 2);  // proportion correct and IT, paired over the 5 participants
     const std::string md = read_text(dir.file("report/report.md"));
     CHECK(contains(md, "| 45 | 41 | 9 |"));
-    CHECK(contains(md, "![Cramer's phi against eccentricity, per stiffness](phi_against_e.png)"));
-    CHECK(std::filesystem::file_size(dir.file("report/phi_against_e.png")) > 1000);
+    // The seed's own figure (experiment_figures.hpp), with its caption.
+    CHECK(contains(md, "![Orientation matched to the field: Cramer's phi (seed 004)](seed004_phi.png)"));
+    CHECK(contains(md, "Each point: Cramer's phi of the 2 x 2 table"));
+    CHECK(std::filesystem::file_size(dir.file("report/seed004_phi.png")) > 1000);
     CHECK(contains(md, "![Confusion: e0.40](confusion_1.png)"));
     CHECK(std::filesystem::file_size(dir.file("report/confusion_1.png")) > 1000);
 }
