@@ -12,6 +12,7 @@
 #include "engine/editor/panels.hpp"
 #include "engine/editor/redraw_policy.hpp"
 #include "engine/editor/experiment_mode.hpp"
+#include "engine/experiments/run_meta.hpp"
 #include "engine/editor/recovery.hpp"
 #include "engine/editor/rulers.hpp"
 #include "engine/editor/scene_layer_key.hpp"
@@ -191,6 +192,24 @@ int run_editor(const EditorOptions& o) {
                                     : std::filesystem::path(o.experiment).stem().string() + "-" + o.participant + ".csv";
         experiment.session = std::make_unique<experiments::LiveSession>(protocol, o.participant, o.experiment_seed, results);
         s.experiment = &experiment;
+        // Provenance beside the results (run_meta.hpp): program, protocol file and its SHA-256,
+        // seed, participant, the device and rate the session started with (each row names the
+        // device its trial was felt on); a session started again adds when.
+        experiments::RunIdentity id;
+        id.protocol_path = o.experiment;
+        id.protocol = &experiment.session->protocol();
+        id.seed = o.experiment_seed;
+        id.participants = {o.participant};
+        id.device = o.device;
+        id.servo_rate_hz = o.rate;
+        id.traces = false;
+        const std::string command = "contactlab edit --experiment " + o.experiment + " --participant " + o.participant +
+                                    " --seed " + std::to_string(o.experiment_seed) + " --results " + results +
+                                    " --device " + o.device;
+        auto meta = experiments::read_meta(results);
+        if (meta) experiments::note_resume(*meta, command);
+        else meta = experiments::make_meta(id, command);
+        experiments::write_meta(results, *meta);
         char buf[256];
         std::snprintf(buf, sizeof buf, "experiment: %s, participant %s, %zu of %zu trials done, results in %s",
                       protocol.name.c_str(), o.participant.c_str(), experiment.session->done(), experiment.session->total(),

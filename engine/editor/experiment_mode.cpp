@@ -3,10 +3,13 @@
 
 #include "engine/editor/canvas.hpp"
 #include "engine/editor/editor_state.hpp"
+#include "engine/editor/haptics_host.hpp"
+#include "engine/experiments/run_meta.hpp"
 
 #include <imgui.h>
 
 #include <cmath>
+#include <numbers>
 #include <cstdio>
 
 namespace contactlab::editor {
@@ -34,7 +37,33 @@ std::string prompt(const experiments::LiveSession& s) {
     return {};
 }
 
+// Seed 004's visual templates as pictures (the seed's Fig. 7, bottom): a surface tilted along
+// the field's axis of maximum compliance, alpha = 45 deg (template A, the protocol's first answer)
+// or 135 deg (B), in side view with its solid below, so the participant matches a shape, not a
+// letter. `alpha_deg` from +x, counter-clockwise.
+void template_picture(double alpha_deg, const char* label) {
+    const float w = 96.0f, h = 72.0f;  // px
+    const ImVec2 p = ImGui::GetCursorScreenPos();
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const float a = static_cast<float>(alpha_deg * std::numbers::pi / 180.0);
+    const ImVec2 c(p.x + w / 2.0f, p.y + h / 2.0f + 6.0f);
+    const float half = 0.42f * w;  // px of the surface either side of the centre
+    const ImVec2 d(std::cos(a) * half, -std::sin(a) * half);  // screen y grows downwards
+    const ImVec2 e1(c.x - d.x, c.y - d.y), e2(c.x + d.x, c.y + d.y);
+    const ImVec2 left = e1.x < e2.x ? e1 : e2, right = e1.x < e2.x ? e2 : e1;
+    dl->AddRectFilled(p, ImVec2(p.x + w, p.y + h), IM_COL32(30, 30, 36, 255));
+    dl->AddQuadFilled(left, right, ImVec2(right.x, p.y + h - 2.0f), ImVec2(left.x, p.y + h - 2.0f), IM_COL32(205, 160, 120, 140));
+    dl->AddLine(left, right, IM_COL32(250, 220, 190, 255), 2.0f);
+    dl->AddRect(p, ImVec2(p.x + w, p.y + h), IM_COL32(120, 120, 130, 255));
+    dl->AddText(ImVec2(p.x + 5.0f, p.y + 3.0f), IM_COL32(255, 255, 255, 255), label);
+    ImGui::Dummy(ImVec2(w, h));
+}
+
 }  // namespace
+
+bool experiment_running(const EditorState& s) {
+    return s.experiment && s.experiment->session && !s.experiment->session->finished();
+}
 
 const Scene& experiment_servo_scene(const EditorState& s) {
     const ExperimentState* e = s.experiment;
@@ -93,6 +122,8 @@ bool cmd_experiment_answer(EditorState& s, const std::string& response, double n
     r.contact_breaks = e->contact_breaks;
     r.peak_force = e->peak_force;
     r.valid = !e->faulted;
+    r.touched = e->touched;
+    r.device = s.haptics ? s.haptics->spec() : std::string();
     try {
         e->session->answer(r);
     } catch (const std::exception& ex) {
@@ -101,11 +132,24 @@ bool cmd_experiment_answer(EditorState& s, const std::string& response, double n
     }
     start_trial(*e);
     char buf[160];
+    if (e->session->finished()) {
+        // The meta says the run is whole: finished_utc and the row count.
+        try {
+            if (auto meta = experiments::read_meta(e->session->results_path())) {
+                experiments::finish_meta(*meta, e->session->total());
+                experiments::write_meta(e->session->results_path(), *meta);
+            }
+        } catch (const std::exception& ex) {
+            s.say(std::string("results meta not finished: ") + ex.what(), true);
+        }
+    }
     if (e->session->finished())
         std::snprintf(buf, sizeof buf, "experiment finished: %zu trials in %s", e->session->total(), e->session->results_path().c_str());
     else
         std::snprintf(buf, sizeof buf, "trial %zu of %zu recorded%s", e->session->done(), e->session->total(),
-                      r.valid ? "" : " (invalid: the servo faulted; it comes again at the end of the block)");
+                      !r.valid     ? " (invalid: the servo faulted; it comes again at the end of the block)"
+                      : !*r.touched ? " (invalid: the stimulus was never touched; it comes again at the end of the block)"
+                                    : "");
     s.say(buf);
     return true;
 }
@@ -163,11 +207,15 @@ void experiment_window(EditorState& s, double now) {
         if (answers.empty()) {
             if (ImGui::Button("Done (Enter)")) cmd_experiment_answer(s, "", now);
         }
+        const bool templates = x.protocol().task == experiments::Task::surface_orientation && answers.size() == 2;
         for (std::size_t i = 0; i < answers.size(); ++i) {
             if (i) ImGui::SameLine();
             char label[48];
             std::snprintf(label, sizeof label, "%s (%zu)", answers[i].c_str(), i + 1);
+            ImGui::BeginGroup();
+            if (templates) template_picture(i == 0 ? 45.0 : 135.0, answers[i].c_str());
             if (ImGui::Button(label)) cmd_experiment_answer(s, answers[i], now);
+            ImGui::EndGroup();
         }
         if (ImGui::Button("Pause (P)")) cmd_experiment_pause(s, true);
     }

@@ -28,6 +28,10 @@ struct ExperimentState {
     double peak_force = 0.0;  // N
 };
 
+// A live experiment is on with trials left: the trial's values are fixed (Tuning shows them
+// read-only, and parameter edits are refused).
+bool experiment_running(const EditorState& s);
+
 // The scene the servo should feel now: the trial's, or an empty one while paused or finished.
 const Scene& experiment_servo_scene(const EditorState& s);
 // A number that changes whenever experiment_servo_scene changes.

@@ -273,6 +273,27 @@ void rate_controls(EditorState& s) {
     }
 }
 
+// During a live experiment: the trial's force and finger values, read-only. Nothing that gives the
+// stimulus away (the scene is not drawn either).
+void trial_values(EditorState& s) {
+    const Scene& sc = experiment_servo_scene(s);
+    ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.4f, 1.0f), "Experiment running: the trial's values (read-only)");
+    const ForceLaw& law = sc.force.law;
+    if (law.model == ForceModel::spring) {
+        ImGui::Text("model        spring");
+        ImGui::Text("Ke           %.0f N/m", sc.force.stiffness);
+    } else {
+        ImGui::Text("model        ellipsoid");
+        // Not the field angle: in seed 004 it is the stimulus the participant judges.
+        ImGui::Text("k_t, k_n     %.0f, %.0f N/m", law.k_tangential, law.k_normal);
+    }
+    ImGui::Text("max force    %.2f N", sc.force.max_force);
+    ImGui::Text("damping      %.2f N s/m", law.damping);
+    ImGui::Text("mu s, d      %.2f, %.2f", law.mu_static, law.mu_dynamic);
+    ImGui::Text("finger R, L  %.1f, %.1f mm", sc.finger.radius * 1e3, sc.finger.length * 1e3);
+    if (s.haptics) ImGui::Text("servo        %.0f Hz", s.haptics->rate());
+}
+
 void tuning_window(EditorState& s, const EditorLayout& layout, ImGuiCond cond) {
     // As tall as its open sections, at most the column (then it scrolls): the canvas's legend
     // below it stays in sight.
@@ -284,6 +305,14 @@ void tuning_window(EditorState& s, const EditorLayout& layout, ImGuiCond cond) {
         return;
     }
     ImGui::PushTextWrapPos(0.0f);  // long lines wrap, never cut
+    if (experiment_running(s)) {
+        // A live trial's values are the protocol's: what the servo renders now, shown, not edited
+        // (an edit here used to change the field and not the servo).
+        trial_values(s);
+        ImGui::PopTextWrapPos();
+        ImGui::End();
+        return;
+    }
     ImGui::PushItemWidth(170);
     if (ImGui::CollapsingHeader("Force (scene, undoable)", ImGuiTreeNodeFlags_DefaultOpen)) {
         const Scene& sc = s.doc.scene();

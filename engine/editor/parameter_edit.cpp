@@ -1,6 +1,7 @@
 // parameter_edit.cpp — one validation path for every tunable parameter (parameter_edit.hpp).
 #include "engine/editor/parameter_edit.hpp"
 
+#include "engine/editor/experiment_mode.hpp"
 #include "engine/editor/servo_view.hpp"
 #include "haptics/scene_io.hpp"
 #include "haptics/servo_params_check.hpp"
@@ -174,6 +175,8 @@ std::optional<double> parameter_value(const EditorState& s, std::string_view n) 
 std::string parameter_problem(const EditorState& s, std::string_view name, double value) {
     if (!find(name)) return "unknown parameter \"" + std::string(name) + "\"";
     if (!std::isfinite(value)) return std::string(name) + ": must be a finite number";
+    if (experiment_running(s))
+        return std::string(name) + ": the trial's values are the protocol's while an experiment runs (Tuning shows them)";
     Candidate c{s.doc.scene(), s.roller, s.roller_travel};
     if (std::string p = apply(c, name, value); !p.empty()) return p;
     if (std::string p = check(s, c); !p.empty()) return std::string(name) + ": " + p;

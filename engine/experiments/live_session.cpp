@@ -84,19 +84,22 @@ void LiveSession::answer(const LiveTrialResult& r) {
     rec.participant = participant_;
     rec.trial = trial();
     rec.response = r.response;
-    rec.valid = r.valid;
+    rec.touched = r.touched.value_or(r.peak_force > 0.0);
+    // An answer about a stimulus the finger never touched says nothing of the display: the trial
+    // is invalid (left out of the analysis) and, like a faulted one, presented again when the
+    // protocol's repeat_invalid says so.
+    rec.valid = r.valid && rec.touched;
     rec.failed = protocol_.task == Task::contour_following && r.contact_breaks > 0;
     rec.time_s = r.time_s;
     rec.contact_breaks = r.contact_breaks;
     rec.peak_force = r.peak_force;
-    rec.touched = r.touched.value_or(r.peak_force > 0.0);
     rec.device = r.device;
     rec.small_bumps = small_bumps_;
     rec.large_bumps = large_bumps_;
     const std::vector<std::string> row = results_row(protocol_, rec);
     lines_.push_back(csv_line(row));
     write();  // the row is on disk before the next trial starts
-    if (!r.valid) queue_repeat();
+    if (!rec.valid) queue_repeat();
     ++next_;
     if (!finished()) build_scene();
 }

@@ -4,7 +4,8 @@
 // row (each write atomic: the whole file to a temporary, then renamed), so a crash loses at most
 // the trial in progress. Started again with the same protocol, participant, seed and file, it
 // resumes after the last row it finds for that participant. An invalid trial (the servo
-// faulted) is presented again at the end of its block, as in `experiment run`.
+// faulted, or the finger never touched the stimulus: `touched` 0) is presented again at the end
+// of its block, as in `experiment run`, when the protocol's repeat_invalid says so.
 //
 // The editor stays thin: it shows the prompt, publishes current_scene() to the servo with the
 // contact element held (roller_held()) in force-only conditions, and calls answer().

@@ -8,6 +8,7 @@
 #include "engine/experiments/results_table.hpp"
 
 #include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <string>
@@ -26,7 +27,11 @@ TEST_CASE("experiment mode: answers become rows at once, a killed session resume
     const std::string s1 = dir.file("s1.txt");
     write_text(s1,
                "expect experiment_total 24\nexpect experiment_done 0\nframes 3\n"
+               // The trial's values are the protocol's: an edit is refused.
+               "set ke 500\nexpect error 1\n"
                "answer 20\nexpect error 0\nexpect experiment_done 1\n"
+               // Never touched (the finger stayed where it was): invalid, presented again.
+               "expect experiment_total 25\n"
                "answer 15\nexpect error 1\nexpect experiment_done 1\n"
                "frames 2\nkey 1\nexpect experiment_done 2\n"
                "pause\nexpect experiment_paused 1\nanswer 10\nexpect error 1\nexpect experiment_done 2\n"
@@ -55,6 +60,18 @@ TEST_CASE("experiment mode: answers become rows at once, a killed session resume
     CHECK(t1.rows[0][*t1.column("response")] == "20");
     CHECK(t1.rows[1][*t1.column("response")] == "10");  // key 1: the first answer
     CHECK(t1.rows[2][*t1.column("response")] == "30");
+    for (int i = 0; i < 3; ++i) {
+        // Answered without touching the arc: touched 0 and invalid; the device is named.
+        CHECK(t1.rows[i][*t1.column("touched")] == "0");
+        CHECK(t1.rows[i][*t1.column("valid")] == "0");
+        CHECK(t1.rows[i][*t1.column("device")] == "mouse");
+    }
+    // The provenance beside the live results: the protocol's hash, the participant, the device.
+    const auto meta = nlohmann::json::parse(read_text(results + ".meta.json"));
+    CHECK(meta["participants"] == nlohmann::json::array({"P1"}));
+    CHECK(meta["device"] == "mouse");
+    CHECK(meta["protocol_sha256"].get<std::string>().size() == 64);
+    CHECK(meta["finished_utc"].is_null());
 
     // Session 2: resumes at trial 4 and records one more.
     const std::string s2 = dir.file("s2.txt");
@@ -65,7 +82,7 @@ TEST_CASE("experiment mode: answers become rows at once, a killed session resume
     INFO("session 2: " << p2.err);
     CHECK(p2.exit_code == 0);
     CHECK_FALSE(contains(p2.err, "FAILED"));
-    CHECK(contains(p2.err, "3 of 24 trials done"));
+    CHECK(contains(p2.err, "3 of 27 trials done"));  // the three untouched trials come again
     const auto t2 = contactlab::experiments::read_results_csv(results);
     REQUIRE(t2.rows.size() == 4);
     for (int i = 0; i < 3; ++i) CHECK(t2.rows[i] == t1.rows[i]);  // nothing rewritten

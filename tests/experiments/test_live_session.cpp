@@ -67,12 +67,12 @@ TEST_CASE("live session: an invalid trial comes back at the end of its block, a 
     const std::string first_condition = s.condition().name;
     const int first_trial = s.trial().trial;
     const double stimulus = s.trial().stimulus;
-    CHECK_THROWS_AS(s.answer(result("15", 1.0, 0, 0.0, true)), ExperimentError);  // not 10, 20 or 30
+    CHECK_THROWS_AS(s.answer(result("15", 1.0, 0, 1.0, true)), ExperimentError);  // not 10, 20 or 30
     CHECK(s.done() == 0);
-    s.answer(result("10", 1.0, 0, 0.0, false));  // the servo faulted
+    s.answer(result("10", 1.0, 0, 1.0, false));  // the servo faulted
     CHECK(s.total() == 25);
     // The repeat is the 13th trial of the first block, the same stimulus.
-    while (s.condition().name == first_condition && s.trial().trial != 13) s.answer(result("10", 1.0, 0, 0.0, true));
+    while (s.condition().name == first_condition && s.trial().trial != 13) s.answer(result("10", 1.0, 0, 1.0, true));
     CHECK(s.condition().name == first_condition);
     CHECK(s.trial().stimulus == stimulus);
     CHECK(first_trial == 1);
@@ -84,10 +84,12 @@ TEST_CASE("live session: an invalid trial comes back at the end of its block, a 
     CHECK(resumed.trial().trial == 13);
 }
 
-TEST_CASE("live session: rows say the device and whether the finger touched (from the peak force unless told)") {
+TEST_CASE("live session: rows say the device and whether the finger touched, an untouched answer is invalid and comes again") {
     TempDir dir;
     const std::string out = dir.file("r.csv");
     LiveSession s(curvature(), "P02", 1, out);
+    CHECK(s.total() == 24);
+    const double first_stimulus = s.trial().stimulus;
     s.answer(result("10", 1.0, 0, 0.0, true));  // no force at all: not touched
     LiveTrialResult r = result("10", 1.0, 0, 0.8, true);
     r.device = "mouse";
@@ -102,4 +104,13 @@ TEST_CASE("live session: rows say the device and whether the finger touched (fro
     CHECK(t.rows[0][device].empty());
     CHECK(t.rows[1][device] == "mouse");
     CHECK(t.rows[0][unit] == "mm");
+    // An answer about a stimulus never touched says nothing of the display: invalid (left out of
+    // the analysis) and presented again at the end of its block, like a faulted trial.
+    const std::size_t valid = *t.column("valid");
+    CHECK(t.rows[0][valid] == "0");
+    CHECK(t.rows[1][valid] == "1");
+    CHECK(t.rows[2][valid] == "0");
+    CHECK(s.total() == 26);
+    while (s.trial().trial != 13) s.answer(result("10", 1.0, 0, 1.0, true));
+    CHECK(s.trial().stimulus == first_stimulus);
 }
