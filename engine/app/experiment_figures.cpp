@@ -67,39 +67,12 @@ bool correct(const ResultsTable& t, std::size_t row) {
 
 // ---- chart helpers -----------------------------------------------------------------------------
 
-Chart chart(std::string title, std::string x, std::string y) {
-    Chart c;
-    c.title = std::move(title);
-    c.x.title = std::move(x);
-    c.y.title = std::move(y);
-    c.width = 900;
-    c.height = 540;
-    return c;
-}
-
 Chart proportion_chart(std::string title, std::string x) {
-    Chart c = chart(std::move(title), std::move(x), "proportion correct");
+    Chart c = report_chart(std::move(title), std::move(x), "proportion correct");
     c.y.min = 0.0;
     c.y.max = 1.0;
     return c;
 }
-
-// A series of markers (no line) in palette colour `index` with its own marker shape; its points
-// are shifted sideways within their category by dodge(), so series stand side by side.
-ChartSeries dodged_series(const std::string& name, int index) {
-    ChartSeries s;
-    s.name = name;
-    s.color = render::chart_color(index);
-    const render::Marker markers[] = {render::Marker::disc, render::Marker::square, render::Marker::triangle,
-                                      render::Marker::diamond};
-    s.marker = markers[index % 4];
-    s.connect = false;
-    s.line_width = 2.f;
-    return s;
-}
-
-// Offset of series `index` of `count` within a category slot (width 1): they share half of it.
-double dodge(int index, int count) { return count <= 1 ? 0.0 : (index - (count - 1) / 2.0) * (0.5 / count); }
 
 void add_point(ChartSeries& s, double x, double y, double low, double high, const std::string& label) {
     s.x.push_back(x);
@@ -161,12 +134,12 @@ std::vector<ReportFigure> seed000(const ResultsTable& t) {
     Chart failures = proportion_chart("Failures per block length (seed 000, Fig. 10)", "block length d (cm)");
     failures.y.title = "proportion of trials failed";
     failures.x.categories = d_labels;
-    Chart times = chart("Completion time of successful trials (seed 000, Fig. 10)", "block length d (cm)", "time (s)");
+    Chart times = report_chart("Completion time of successful trials (seed 000, Fig. 10)", "block length d (cm)", "time (s)");
     times.x.categories = d_labels;
     times.y.include_zero = true;
     const int nc = static_cast<int>(conditions.size());
     for (int ci = 0; ci < nc; ++ci) {
-        ChartSeries f = dodged_series(conditions[ci], ci), s = dodged_series(conditions[ci], ci);
+        ChartSeries f = marker_series(conditions[ci], ci), s = marker_series(conditions[ci], ci);
         for (std::size_t di = 0; di < ds.size(); ++di) {
             long n = 0, failed = 0;
             std::vector<double> ok_times;
@@ -217,12 +190,12 @@ std::vector<ReportFigure> seed002(const ResultsTable& t) {
 
     // Fig. 5a: proportion correct and IT_est per condition, the participants' mean +- SE.
     Chart pc_chart = proportion_chart("Bump counting: proportion correct (seed 002, Fig. 5a)", "condition");
-    Chart it_chart = chart("Bump counting: information transfer (seed 002, Fig. 5a)", "condition", "IT_est (bits)");
+    Chart it_chart = report_chart("Bump counting: information transfer (seed 002, Fig. 5a)", "condition", "IT_est (bits)");
     pc_chart.x.categories = conditions;
     it_chart.x.categories = conditions;
     it_chart.y.include_zero = true;
     for (int ci = 0; ci < nc; ++ci) {
-        ChartSeries p = dodged_series(conditions[ci], ci), it = dodged_series(conditions[ci], ci);
+        ChartSeries p = marker_series(conditions[ci], ci), it = marker_series(conditions[ci], ci);
         const auto means = participant_means(t, rows, conditions[ci], right, all);
         const double se = experiments::standard_error(means), m = mean(means);
         // Mean +- SE of proportions, cut at 0 and 1 (a proportion's bar never leaves [0, 1]).
@@ -254,13 +227,13 @@ std::vector<ReportFigure> seed002(const ResultsTable& t) {
     if (!small || !large) return out;
     Chart sl = proportion_chart("Small bumps only against large bumps only (seed 002, Fig. 6)", "stimuli");
     sl.x.categories = {"small bumps only", "large bumps only"};
-    Chart err = chart("Error by number of small bumps (seed 002, eq. 7, Fig. 8)", "small bumps in the stimulus",
+    Chart err = report_chart("Error by number of small bumps (seed 002, eq. 7, Fig. 8)", "small bumps in the stimulus",
                       "mean |answer - bumps| (bumps)");
     err.y.include_zero = true;
     const auto ks = levels(t, rows, *small);
     for (double k : ks) err.x.categories.push_back(number_text(k));
     for (int ci = 0; ci < nc; ++ci) {
-        ChartSeries s = dodged_series(conditions[ci], ci), e = dodged_series(conditions[ci], ci);
+        ChartSeries s = marker_series(conditions[ci], ci), e = marker_series(conditions[ci], ci);
         for (int kind = 0; kind < 2; ++kind) {
             const auto keep = [&](std::size_t i) {
                 const double ns = t.number(i, *small), nl = t.number(i, *large);
@@ -308,7 +281,7 @@ std::vector<ReportFigure> seed003(const ResultsTable& t) {
     for (double h : heights) c.x.categories.push_back(number_text(h));
     const int nt = static_cast<int>(tasks.size());
     for (int ti = 0; ti < nt; ++ti) {
-        ChartSeries s = dodged_series("task " + tasks[ti], ti);
+        ChartSeries s = marker_series("task " + tasks[ti], ti);
         for (std::size_t hi = 0; hi < heights.size(); ++hi) {
             long n = 0, ok = 0;
             for (std::size_t i : rows)
@@ -335,14 +308,14 @@ std::vector<ReportFigure> seed004(const ResultsTable& t) {
     const auto e = t.column("e"), k = t.column("k"), st = t.column("stimulus"), rs = t.column("response");
     if (!e || !k || !st || !rs) return {};
     const auto es = levels(t, rows, *e), ks = levels(t, rows, *k);
-    Chart c = chart("Orientation matched to the field: Cramer's phi (seed 004)", "eccentricity e = k2 / k1",
+    Chart c = report_chart("Orientation matched to the field: Cramer's phi (seed 004)", "eccentricity e = k2 / k1",
                     "Cramer's phi (0: none, 1: complete)");
     c.y.min = 0.0;
     c.y.max = 1.0;
     for (double v : es) c.x.categories.push_back(number_text(v));
     const int nk = static_cast<int>(ks.size());
     for (int ki = 0; ki < nk; ++ki) {
-        ChartSeries s = dodged_series("k = " + number_text(ks[ki]) + " N/mm", ki);
+        ChartSeries s = marker_series("k = " + number_text(ks[ki]) + " N/mm", ki);
         for (std::size_t ei = 0; ei < es.size(); ++ei) {
             std::vector<std::string> stimuli, responses;
             for (std::size_t i : rows)
@@ -363,6 +336,35 @@ std::vector<ReportFigure> seed004(const ResultsTable& t) {
 }
 
 }  // namespace
+
+// ---- shared with experiment_report.cpp -----------------------------------------------------------
+
+Chart report_chart(std::string title, std::string x, std::string y) {
+    Chart c;
+    c.title = std::move(title);
+    c.x.title = std::move(x);
+    c.y.title = std::move(y);
+    c.width = 900;
+    c.height = 540;
+    return c;
+}
+
+// A series of markers (no line) in palette colour `index` with its own marker shape; its points
+// are shifted sideways within their category by dodge(), so series stand side by side.
+ChartSeries marker_series(const std::string& name, int index) {
+    ChartSeries s;
+    s.name = name;
+    s.color = render::chart_color(index);
+    const render::Marker markers[] = {render::Marker::disc, render::Marker::square, render::Marker::triangle,
+                                      render::Marker::diamond};
+    s.marker = markers[index % 4];
+    s.connect = false;
+    s.line_width = 2.f;
+    return s;
+}
+
+// Offset of series `index` of `count` within a category slot (width 1): they share half of it.
+double dodge(int index, int count) { return count <= 1 ? 0.0 : (index - (count - 1) / 2.0) * (0.5 / count); }
 
 // ---- entry points -------------------------------------------------------------------------------
 

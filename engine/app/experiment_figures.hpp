@@ -34,6 +34,13 @@ struct ReportFigure {
     std::string caption;  // printed under the picture: what each point is, n, the interval's rule
 };
 
+// A report chart: 900 x 540 px, the title and the axes' titles (with units).
+render::Chart report_chart(std::string title, std::string x, std::string y);
+// A series of markers with no line between them, palette colour and marker shape by `index`.
+render::ChartSeries marker_series(const std::string& name, int index);
+// Where series `index` of `count` stands within its category's slot (width 1): they share half.
+double dodge(int index, int count);
+
 // Which seed's experiment a results table holds: "000" (conditions force / force+cld), "002"
 // (conditions F / F+CLD), "003" (a `motion` column), "004" (`e` and `k` columns), or "" for
 // none of them.

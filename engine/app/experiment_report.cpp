@@ -78,28 +78,10 @@ void bump_section(std::ostringstream& md, const json& a) {
                << c["large_only"]["n"] << " | " << fmt(c["large_only"]["proportion_correct"]) << " |\n";
 }
 
-Chart chart(std::string title, std::string x, std::string y) {
-    Chart c;
-    c.title = std::move(title);
-    c.x.title = std::move(x);
-    c.y.title = std::move(y);
-    c.width = 900;
-    c.height = 540;
-    return c;
-}
-
-ChartSeries series(const std::string& name, int colour) {
-    ChartSeries s;
-    s.name = name;
-    s.color = render::chart_color(colour);
-    s.marker = render::Marker::disc;
-    return s;
-}
-
 // Any other protocol: proportion correct per stimulus, one marker series per condition on a
 // categorical axis (the stimuli as the analysis labels them), 95 % Wilson intervals, n per point.
 Chart per_stimulus_chart(const json& analysis) {
-    Chart c = chart("Proportion correct per stimulus", "stimulus", "proportion correct");
+    Chart c = report_chart("Proportion correct per stimulus", "stimulus", "proportion correct");
     c.y.min = 0.0;
     c.y.max = 1.0;
     std::vector<std::string> stimuli;
@@ -111,9 +93,8 @@ Chart per_stimulus_chart(const json& analysis) {
     int colour = 0;
     const int count = static_cast<int>(analysis["conditions"].size());
     for (const auto& [name, cond] : analysis["conditions"].items()) {
-        ChartSeries s = series(name, colour);
-        s.connect = false;
-        const double offset = count <= 1 ? 0.0 : (colour - (count - 1) / 2.0) * (0.5 / count);
+        ChartSeries s = marker_series(name, colour);
+        const double offset = dodge(colour, count);
         ++colour;
         if (!cond.contains("per_stimulus")) continue;
         for (const auto& [stim, f] : cond["per_stimulus"].items()) {
