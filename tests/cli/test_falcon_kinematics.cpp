@@ -37,11 +37,11 @@ TEST_CASE("falcon-kinematics: 35 degrees at zero counts for each arm, and the gr
 }
 
 TEST_CASE("falcon-kinematics: each count turns its arm by 360/9880.7 degrees") {
-    const auto j = run_json({"falcon-kinematics", "--encoders=1000,-500,2500"});
-    const int e[3] = {1000, -500, 2500};
+    const auto j = run_json({"falcon-kinematics", "--encoders=400,-700,100"});
+    const int e[3] = {400, -700, 100};
     for (int i = 0; i < 3; ++i)
         CHECK(j["theta_deg"][i].get<double>() == doctest::Approx(35.0 + e[i] * 360.0 / kCountsPerRev).epsilon(1e-12));
-    CHECK(j["encoders"] == nlohmann::json({1000, -500, 2500}));
+    CHECK(j["encoders"] == nlohmann::json({400, -700, 100}));
 }
 
 TEST_CASE("falcon-kinematics: position to encoders and back lands within one count's resolution") {
