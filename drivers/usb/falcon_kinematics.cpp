@@ -1,4 +1,5 @@
-// falcon_kinematics.cpp — rotary delta IK/FK/Jacobian (see falcon_kinematics.hpp).
+// falcon_kinematics.cpp — Stamper's Falcon model: inverse/forward kinematics, Jacobian, J^T F
+// (equations and conventions in falcon_kinematics.hpp).
 #include "drivers/usb/falcon_kinematics.hpp"
 
 #include <cmath>
@@ -7,114 +8,183 @@ namespace contactlab::drivers::falcon {
 
 namespace {
 
-// Solves A x = b for 3x3 A (Cramer); false when singular.
-bool solve3(const double A[3][3], const double b[3], double x[3]) {
-    const double det = A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) -
-                       A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
-                       A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
-    if (!std::isfinite(det) || std::fabs(det) < 1e-18) return false;
-    for (int c = 0; c < 3; ++c) {
-        double M[3][3];
-        for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j) M[i][j] = j == c ? b[i] : A[i][j];
-        x[c] = (M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) - M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
-                M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0])) / det;
-    }
+double det3(const Mat3& A) {
+    return A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
+           A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+}
+
+// A^-1 by the adjugate; false when A is singular relative to its own scale.
+bool invert3(const Mat3& A, Mat3& out) {
+    const double det = det3(A);
+    double scale = 0.0;
+    for (const auto& row : A)
+        for (double v : row) scale = std::fmax(scale, std::fabs(v));
+    if (!std::isfinite(det) || !(scale > 0.0) || std::fabs(det) < 1e-12 * scale * scale * scale) return false;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            // Cofactor of A[j][i] (transposed: the adjugate).
+            const int r0 = (j + 1) % 3, r1 = (j + 2) % 3, c0 = (i + 1) % 3, c1 = (i + 2) % 3;
+            out[i][j] = (A[r0][c0] * A[r1][c1] - A[r0][c1] * A[r1][c0]) / det;
+        }
+    return true;
+}
+
+// One leg's angles at p: t1 (driven), t2 (knee), t3 (shin); false when p is out of its reach.
+struct Leg {
+    double t1, t2, t3;
+};
+
+bool leg_angles(const FalconGeometry& g, int i, const Vec3& p, Leg& out) {
+    const double ca = std::cos(g.leg_azimuth[i]), sa = std::sin(g.leg_azimuth[i]);
+    const double u = ca * p.x + sa * p.y - g.r;
+    const double v = -sa * p.x + ca * p.y - g.s;
+    const double w = p.z;
+    const double c3 = (v + g.f) / g.b;
+    if (!(std::fabs(c3) <= 1.0)) return false;  // also false for NaN
+    const double t3 = std::acos(c3);            // [0, pi]: the Falcon's branch
+    const double D = g.d + g.e + g.b * std::sin(t3);
+    // The knee (a cos t1, a sin t1) lies at distance D from (u + c, w).
+    const double U = u + g.c;
+    const double rho = std::hypot(U, w);
+    const double K = (U * U + w * w + g.a * g.a - D * D) / (2.0 * g.a);
+    if (!(rho > 0.0) || !(std::fabs(K) <= rho)) return false;
+    const double t1 = std::atan2(w, U) - std::acos(K / rho);
+    const double t2 = std::atan2(w - g.a * std::sin(t1), U - g.a * std::cos(t1));
+    out = {t1, t2, t3};
     return true;
 }
 
 }  // namespace
 
-bool FalconKinematics::inverse(const Vec3& p, std::array<double, 3>& theta) const noexcept {
-    const double L = g_.upper, l = g_.lower, r = g_.base - g_.effector;
-    for (int i = 0; i < 3; ++i) {
-        // The grip in arm i's frame (x' radial, y' tangential, z along the device axis).
-        const double c = std::cos(g_.azimuth[i]), s = std::sin(g_.azimuth[i]);
-        const double xr = c * p.x + s * p.y, yt = -s * p.x + c * p.y;
-        const double dx = xr - r;
-        // |A - E|^2 = l^2 with E = (L cos t, L sin t) in the arm's (radial, z) plane gives
-        // dx cos t + z sin t = K.
-        const double K = (dx * dx + yt * yt + p.z * p.z + L * L - l * l) / (2.0 * L);
-        const double rho = std::hypot(dx, p.z);
-        if (!(rho > 0.0) || std::fabs(K) > rho) return false;
-        // The elbow-out branch (upper arm pointing away from the axis), as the Falcon is built.
-        theta[i] = std::atan2(p.z, dx) - std::acos(K / rho);
+const char* to_string(KinStatus s) noexcept {
+    switch (s) {
+        case KinStatus::ok: return "ok";
+        case KinStatus::unreachable: return "unreachable";
+        case KinStatus::singular: return "singular";
+        case KinStatus::no_convergence: return "no_convergence";
     }
-    return true;
+    return "unknown";
 }
 
-bool FalconKinematics::dtheta_dp(const Vec3& p, double M[3][3]) const noexcept {
-    constexpr double h = 1e-7;  // m, central differences
-    for (int j = 0; j < 3; ++j) {
-        Vec3 a = p, b = p;
-        (j == 0 ? a.x : j == 1 ? a.y : a.z) += h;
-        (j == 0 ? b.x : j == 1 ? b.y : b.z) -= h;
-        std::array<double, 3> ta{}, tb{};
-        if (!inverse(a, ta) || !inverse(b, tb)) return false;
-        for (int i = 0; i < 3; ++i) M[i][j] = (ta[i] - tb[i]) / (2.0 * h);
-    }
-    return true;
-}
-
-bool FalconKinematics::forward(const std::array<double, 3>& theta, const Vec3& guess, Vec3& p) const noexcept {
-    Vec3 x = guess;
-    for (int it = 0; it < 60; ++it) {
-        std::array<double, 3> t{};
-        double M[3][3];
-        if (!inverse(x, t) || !dtheta_dp(x, M)) return false;
-        const double e[3] = {theta[0] - t[0], theta[1] - t[1], theta[2] - t[2]};
-        if (std::fabs(e[0]) + std::fabs(e[1]) + std::fabs(e[2]) < 1e-12) {
-            p = x;
-            return true;
-        }
-        double d[3];
-        if (!solve3(M, e, d)) return false;
-        // Halve a step that would leave the reachable set (far corners seen from a central guess).
-        double step = 1.0;
-        for (int h = 0; h < 20; ++h, step *= 0.5) {
-            std::array<double, 3> probe{};
-            if (inverse({x.x + step * d[0], x.y + step * d[1], x.z + step * d[2]}, probe)) break;
-        }
-        x.x += step * d[0];
-        x.y += step * d[1];
-        x.z += step * d[2];
-    }
+KinStatus inverse_kinematics(const FalconGeometry& g, const Vec3& p, std::array<double, 3>& theta) noexcept {
     std::array<double, 3> t{};
-    if (!inverse(x, t)) return false;
-    if (std::fabs(t[0] - theta[0]) + std::fabs(t[1] - theta[1]) + std::fabs(t[2] - theta[2]) > 1e-9) return false;
-    p = x;
-    return true;
+    for (int i = 0; i < 3; ++i) {
+        Leg l{};
+        if (!leg_angles(g, i, p, l)) return KinStatus::unreachable;
+        t[i] = l.t1;
+    }
+    theta = t;
+    return KinStatus::ok;
 }
 
-bool FalconKinematics::torques(const Vec3& p, const Vec3& f, std::array<double, 3>& tau) const noexcept {
-    // J = dp/dtheta = M^-1 with M = dtheta/dp, so tau = J^T f solves M^T tau = f.
-    double M[3][3], Mt[3][3];
-    if (!dtheta_dp(p, M)) return false;
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) Mt[i][j] = M[j][i];
-    const double b[3] = {f.x, f.y, f.z};
-    double x[3];
-    if (!solve3(Mt, b, x)) return false;
-    tau = {x[0], x[1], x[2]};
-    return true;
+KinStatus angle_jacobian(const FalconGeometry& g, const Vec3& p, Mat3& M) noexcept {
+    for (int i = 0; i < 3; ++i) {
+        Leg l{};
+        if (!leg_angles(g, i, p, l)) return KinStatus::unreachable;
+        // a sin(t2 - t1) dt1 = cos t2 du + cot t3 dv + sin t2 dw, and (du, dv, dw) = R(-az) dp.
+        const double s3 = std::sin(l.t3);
+        const double den = g.a * std::sin(l.t2 - l.t1) * s3;
+        if (!(std::fabs(den) > 1e-9 * g.a)) return KinStatus::singular;
+        const double ca = std::cos(g.leg_azimuth[i]), sa = std::sin(g.leg_azimuth[i]);
+        const double gu = std::cos(l.t2) * s3, gv = std::cos(l.t3), gw = std::sin(l.t2) * s3;
+        M[i] = {(ca * gu - sa * gv) / den, (sa * gu + ca * gv) / den, gw / den};
+    }
+    return KinStatus::ok;
 }
 
-bool FalconKinematics::force(const Vec3& p, const std::array<double, 3>& tau, Vec3& f) const noexcept {
-    double M[3][3];
-    if (!dtheta_dp(p, M)) return false;
-    // f = M^T tau.
+KinStatus jacobian(const FalconGeometry& g, const Vec3& p, Mat3& J) noexcept {
+    Mat3 M{};
+    if (const KinStatus s = angle_jacobian(g, p, M); s != KinStatus::ok) return s;
+    return invert3(M, J) ? KinStatus::ok : KinStatus::singular;
+}
+
+namespace {
+
+double max_abs_error(const std::array<double, 3>& a, const std::array<double, 3>& b) {
+    return std::fmax(std::fabs(a[0] - b[0]), std::fmax(std::fabs(a[1] - b[1]), std::fabs(a[2] - b[2])));
+}
+
+KinStatus newton(const FalconGeometry& g, const std::array<double, 3>& theta, Vec3 x, Vec3& p) {
+    std::array<double, 3> t{};
+    if (inverse_kinematics(g, x, t) != KinStatus::ok) return KinStatus::unreachable;
+    double err = max_abs_error(theta, t);
+    for (int it = 0; it < kForwardIterations; ++it) {
+        if (err < kForwardTolerance) {
+            p = x;
+            return KinStatus::ok;
+        }
+        Mat3 J{};
+        if (const KinStatus s = jacobian(g, x, J); s != KinStatus::ok) return s;
+        const double e[3] = {theta[0] - t[0], theta[1] - t[1], theta[2] - t[2]};
+        double dx[3];
+        for (int r = 0; r < 3; ++r) dx[r] = J[r][0] * e[0] + J[r][1] * e[1] + J[r][2] * e[2];
+        // Damped step: halve until the new point is reachable and the error shrinks.
+        double step = 1.0;
+        bool moved = false;
+        for (int h = 0; h < 30 && !moved; ++h, step *= 0.5) {
+            const Vec3 y{x.x + step * dx[0], x.y + step * dx[1], x.z + step * dx[2]};
+            std::array<double, 3> ty{};
+            if (inverse_kinematics(g, y, ty) != KinStatus::ok) continue;
+            const double ey = max_abs_error(theta, ty);
+            if (ey < err || ey < kForwardTolerance) {
+                x = y;
+                t = ty;
+                err = ey;
+                moved = true;
+            }
+        }
+        if (!moved) break;
+    }
+    if (err < kForwardTolerance) {
+        p = x;
+        return KinStatus::ok;
+    }
+    return KinStatus::no_convergence;
+}
+
+}  // namespace
+
+KinStatus forward_kinematics(const FalconGeometry& g, const std::array<double, 3>& theta, const Vec3& guess,
+                             Vec3& p) noexcept {
+    for (double t : theta)
+        if (!std::isfinite(t)) return KinStatus::unreachable;
+    const KinStatus first = newton(g, theta, guess, p);
+    if (first == KinStatus::ok) return first;
+    // One retry from the device's axis in the middle of the workspace.
+    const Vec3 axis{0.0, 0.0, 0.11};
+    const KinStatus second = newton(g, theta, axis, p);
+    return second == KinStatus::ok ? second : first;
+}
+
+KinStatus joint_torques(const FalconGeometry& g, const Vec3& p, const Vec3& f, std::array<double, 3>& tau) noexcept {
+    Mat3 J{};
+    if (const KinStatus s = jacobian(g, p, J); s != KinStatus::ok) return s;
+    // tau = J^T f.
+    for (int i = 0; i < 3; ++i) tau[i] = J[0][i] * f.x + J[1][i] * f.y + J[2][i] * f.z;
+    return KinStatus::ok;
+}
+
+KinStatus grip_force(const FalconGeometry& g, const Vec3& p, const std::array<double, 3>& tau, Vec3& f) noexcept {
+    Mat3 M{};
+    if (const KinStatus s = angle_jacobian(g, p, M); s != KinStatus::ok) return s;
+    // f = M^T tau (J^T M^T = I).
     f.x = M[0][0] * tau[0] + M[1][0] * tau[1] + M[2][0] * tau[2];
     f.y = M[0][1] * tau[0] + M[1][1] * tau[1] + M[2][1] * tau[2];
     f.z = M[0][2] * tau[0] + M[1][2] * tau[1] + M[2][2] * tau[2];
-    return true;
+    return KinStatus::ok;
 }
 
-double FalconKinematics::theta_of(int arm, std::int16_t counts) const noexcept {
-    return g_.theta_offset[arm] + kTwoPi * counts / g_.counts_per_rev;
+double FalconKinematics::theta_of(int arm, std::int32_t counts) const noexcept {
+    return g_.theta_at_zero[arm] + kTwoPi * static_cast<double>(counts) / g_.counts_per_rev();
+}
+
+double FalconKinematics::counts_exact(int arm, double theta) const noexcept {
+    return (theta - g_.theta_at_zero[arm]) / kTwoPi * g_.counts_per_rev();
 }
 
 std::int16_t FalconKinematics::counts_of(int arm, double theta) const noexcept {
-    const double c = std::round((theta - g_.theta_offset[arm]) / kTwoPi * g_.counts_per_rev);
+    const double c = std::round(counts_exact(arm, theta));
+    if (std::isnan(c)) return 0;
     return static_cast<std::int16_t>(std::fmax(-32768.0, std::fmin(32767.0, c)));
 }
 
