@@ -59,8 +59,10 @@ struct EditorState {
     LiveServo* servo = nullptr;
     drivers::Device* device = nullptr;
     PoseInput* pose_input = nullptr;  // null: the device ignores the cursor (replay, USB)
-    char record_path[512] = "recording.csv";  // the panel's recording file
-    char replay_path[512] = "recording.csv";  // the panel's replay file
+    // The panel's recording and replay files: different names, so that a recording started while
+    // a replay runs never writes over the file being played (cmd_record_start refuses that too).
+    char record_path[512] = "recording.csv";
+    char replay_path[512] = "replay.csv";
     RollerGains roller;                // published with the scene's Ke and max force
     double roller_travel = 0.0;        // m of roller travel l_d may use (0: the device's whole)
     PlotHistory history;

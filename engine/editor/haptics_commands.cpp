@@ -4,6 +4,7 @@
 #include "engine/editor/servo_view.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <cstdio>
 
 namespace contactlab::editor {
@@ -53,6 +54,16 @@ bool cmd_set_rate(EditorState& s, double hz) {
 
 bool cmd_record_start(EditorState& s, const std::string& path) {
     if (!s.haptics) return false;
+    // Recording over the recording being replayed would destroy the take while it plays.
+    if (const std::string& spec = s.haptics->spec(); spec.rfind("replay:", 0) == 0) {
+        namespace fs = std::filesystem;
+        std::error_code ec;
+        const fs::path playing = fs::weakly_canonical(spec.substr(7), ec), target = fs::weakly_canonical(path, ec);
+        if (playing == target) {
+            s.say("refused: " + path + " is the file being replayed; record to another file", true);
+            return false;
+        }
+    }
     const std::string err = s.haptics->start_recording(path);
     if (!err.empty()) {
         s.say(err, true);

@@ -100,15 +100,19 @@ TEST_CASE("a recording made in the editor replays the same finger trajectory") {
                            "expect device replay:" + rec + "\n"
                            "wait 2.5\n"
                            "report replayed\n"
+                           "# Recording over the file being replayed would destroy it: refused.\n"
+                           "record " + rec + "\nexpect error 1\nexpect recording 0\n"
                            "device replay " + dir.file("missing.csv") + "\n"
                            "quit\n");
     const auto p = run_validated_script(script, dir.path());
     INFO("stderr: " << p.err);
-    // The one expected failure: a recording that does not exist, named in the message.
+    // The two expected failures: recording over the take being replayed, and a recording that
+    // does not exist, named in the message.
     CHECK(p.exit_code == 1);
-    CHECK(contains(p.err, "script " + script + ":25: FAILED: device replay: " + dir.file("missing.csv") + ": cannot open"));
+    CHECK(contains(p.err, "script " + script + ":29: FAILED: device replay: " + dir.file("missing.csv") + ": cannot open"));
+    CHECK(contains(p.err, "script " + script + ":26: FAILED: refused: " + rec + " is the file being replayed"));
     CHECK(contains(p.err, "check(s) failed"));
-    CHECK(contains(p.err, ": 1 check(s) failed"));
+    CHECK(contains(p.err, ": 2 check(s) failed"));
 
     const Csv take = parse_csv(read_text(rec));
     CHECK(take.header == "t,x,y,phi,roller_l,fx,fy,roller_drive,state,fault");
