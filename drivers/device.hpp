@@ -94,6 +94,10 @@ public:
     virtual const char* name() const noexcept = 0;
     virtual DeviceCapabilities capabilities() const noexcept = 0;
     virtual DeviceLimits limits() const noexcept = 0;
+    // The unit's serial number as the device reports it once open (a hapio board's handshake),
+    // for the provenance of what was measured with it; "" when it has none (simulated devices,
+    // the mouse) or has not said yet. Never called on the servo thread (it may allocate).
+    virtual std::string serial() const { return {}; }
 
     // Disconnected -> Opening -> Ready. May block and allocate (off the servo thread). Returns
     // false and enters Fault (with the reason) when it fails.

@@ -77,6 +77,11 @@ public:
 
     HapioStats stats() const noexcept;
     Info info() const noexcept { return info_.load(); }
+    // The board's serial from its handshake (Info::serial), in decimal; "" before the first open.
+    std::string serial() const override {
+        const std::uint32_t n = info().serial;
+        return n ? std::to_string(n) : std::string();
+    }
     const std::shared_ptr<usb::UsbContext>& context() const noexcept { return ctx_; }
     // The last valid frame (tests, diagnostics).
     State last_state() const noexcept { return latest_.load().state; }

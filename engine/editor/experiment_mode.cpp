@@ -4,6 +4,7 @@
 #include "engine/editor/canvas.hpp"
 #include "engine/editor/editor_state.hpp"
 #include "engine/editor/haptics_host.hpp"
+#include "drivers/device.hpp"
 #include "engine/experiments/run_meta.hpp"
 
 #include <imgui.h>
@@ -57,6 +58,24 @@ void template_picture(double alpha_deg, const char* label) {
     dl->AddRect(p, ImVec2(p.x + w, p.y + h), IM_COL32(120, 120, 130, 255));
     dl->AddText(ImVec2(p.x + 5.0f, p.y + 3.0f), IM_COL32(255, 255, 255, 255), label);
     ImGui::Dummy(ImVec2(w, h));
+}
+
+// The serial of the device the trial was felt on, where it reports one (a hapio board), goes into
+// the results' meta as "device_serials": {spec: serial} (a session may switch devices).
+void record_device_serial(EditorState& s) {
+    if (!s.device || !s.haptics || !s.experiment || !s.experiment->session) return;
+    const std::string serial = s.device->serial();
+    if (serial.empty()) return;
+    try {
+        auto meta = experiments::read_meta(s.experiment->session->results_path());
+        if (!meta) return;
+        auto& serials = (*meta)["device_serials"];
+        if (serials.is_object() && serials.value(s.haptics->spec(), std::string()) == serial) return;
+        serials[s.haptics->spec()] = serial;
+        experiments::write_meta(s.experiment->session->results_path(), *meta);
+    } catch (const std::exception& ex) {
+        s.say(std::string("results meta: the device's serial not recorded: ") + ex.what(), true);
+    }
 }
 
 }  // namespace
@@ -131,6 +150,7 @@ bool cmd_experiment_answer(EditorState& s, const std::string& response, double n
         return false;
     }
     start_trial(*e);
+    record_device_serial(s);
     char buf[160];
     if (e->session->finished()) {
         // The meta says the run is whole: finished_utc and the row count.

@@ -54,9 +54,11 @@ TEST_CASE("enumerate: the emulated board is listed with its bus, address and sta
 TEST_CASE("open and handshake: Ready, board info read, streaming started") {
     HapioEmulator emu;
     hapio::HapioDevice dev;
+    CHECK(dev.serial().empty());  // nothing said yet
     REQUIRE(dev.open());
     CHECK(dev.state() == DeviceState::ready);
     CHECK(dev.fault().code == DeviceFaultCode::none);
+    CHECK(dev.serial() == "4242");  // the board's own, from its handshake (for results' provenance)
     const hapio::Info info = dev.info();
     CHECK(info.model == 1);
     CHECK(info.encoders == 4);
