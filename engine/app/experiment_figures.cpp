@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 
 namespace contactlab::app {
@@ -59,11 +60,17 @@ std::string number_text(double v) {
 
 std::string n_label(long n) { return "n=" + std::to_string(n); }
 
-// Whether a row's answer was right: the `correct` column, else response == stimulus.
-bool correct(const ResultsTable& t, std::size_t row) {
-    if (const auto c = t.column("correct")) return t.number(row, *c) != 0.0;
-    return t.rows[row][*t.column("response")] == t.rows[row][*t.column("stimulus")];
-}
+// Whether a row's answer was right: the `correct` column, else response == stimulus (the
+// columns looked up once per table, not once per row).
+struct Grader {
+    const ResultsTable& t;
+    std::optional<std::size_t> correct_col = t.column("correct"), response = t.column("response"),
+                               stimulus = t.column("stimulus");
+    bool operator()(std::size_t row) const {
+        if (correct_col) return t.number(row, *correct_col) != 0.0;
+        return response && stimulus && t.rows[row][*response] == t.rows[row][*stimulus];
+    }
+};
 
 // ---- chart helpers -----------------------------------------------------------------------------
 
@@ -113,12 +120,7 @@ std::vector<double> participant_means(const ResultsTable& t, const std::vector<s
     return means;
 }
 
-double mean(const std::vector<double>& v) {
-    if (v.empty()) return kNaN;
-    double s = 0.0;
-    for (double x : v) s += x;
-    return s / static_cast<double>(v.size());
-}
+double mean(const std::vector<double>& v) { return experiments::summarize(v).mean; }  // NaN when empty
 
 // ---- seed 000: failures and completion time per d (Fig. 10) ------------------------------------
 
@@ -186,7 +188,8 @@ std::vector<ReportFigure> seed002(const ResultsTable& t) {
     const long participants = pc ? static_cast<long>(in_order(t, rows, *pc).size()) : 1;
     std::vector<ReportFigure> out;
     const auto all = [](std::size_t) { return true; };
-    const auto right = [&](std::size_t i) { return correct(t, i) ? 1.0 : 0.0; };
+    const Grader correct{t};
+    const auto right = [&](std::size_t i) { return correct(i) ? 1.0 : 0.0; };
 
     // Fig. 5a: proportion correct and IT_est per condition, the participants' mean +- SE.
     Chart pc_chart = proportion_chart("Bump counting: proportion correct (seed 002, Fig. 5a)", "condition");
@@ -276,6 +279,7 @@ std::vector<ReportFigure> seed003(const ResultsTable& t) {
     const auto cc = t.column("condition"), sc = t.column("stimulus");
     if (!cc || !sc) return {};
     const auto tasks = in_order(t, rows, *cc);
+    const Grader correct{t};
     const auto heights = levels(t, rows, *sc);
     Chart c = proportion_chart("Curvature: proportion correct per arc height (seed 003, Fig. 10)", "arc height (mm)");
     for (double h : heights) c.x.categories.push_back(number_text(h));
@@ -287,7 +291,7 @@ std::vector<ReportFigure> seed003(const ResultsTable& t) {
             for (std::size_t i : rows)
                 if (t.rows[i][*cc] == tasks[ti] && t.number(i, *sc) == heights[hi]) {
                     ++n;
-                    ok += correct(t, i) ? 1 : 0;
+                    ok += correct(i) ? 1 : 0;
                 }
             if (n == 0) continue;
             const auto w = experiments::wilson_interval(ok, n, 0.95);

@@ -66,13 +66,14 @@ void record_device_serial(EditorState& s) {
     if (!s.device || !s.haptics || !s.experiment || !s.experiment->session) return;
     const std::string serial = s.device->serial();
     if (serial.empty()) return;
+    const std::string key = s.haptics->spec() + " " + serial;
+    if (key == s.experiment->serial_recorded) return;
     try {
         auto meta = experiments::read_meta(s.experiment->session->results_path());
         if (!meta) return;
-        auto& serials = (*meta)["device_serials"];
-        if (serials.is_object() && serials.value(s.haptics->spec(), std::string()) == serial) return;
-        serials[s.haptics->spec()] = serial;
+        (*meta)["device_serials"][s.haptics->spec()] = serial;
         experiments::write_meta(s.experiment->session->results_path(), *meta);
+        s.experiment->serial_recorded = key;
     } catch (const std::exception& ex) {
         s.say(std::string("results meta: the device's serial not recorded: ") + ex.what(), true);
     }

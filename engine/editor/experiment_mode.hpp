@@ -26,6 +26,9 @@ struct ExperimentState {
     bool touched = false, in_contact = false, faulted = false;
     int contact_breaks = 0;
     double peak_force = 0.0;  // N
+    // "spec serial" last written to the results' meta: the meta is read and rewritten only when
+    // the device (or its serial) changes, not after every answer.
+    std::string serial_recorded;
 };
 
 // A live experiment is on with trials left: the trial's values are fixed (Tuning shows them

@@ -1,6 +1,8 @@
 // intervals.cpp — Wilson, t and standard-error intervals (intervals.hpp).
 #include "engine/experiments/intervals.hpp"
 
+#include "engine/experiments/statistics.hpp"
+
 #include <boost/math/distributions/normal.hpp>
 #include <boost/math/distributions/students_t.hpp>
 
@@ -24,25 +26,19 @@ Interval wilson_interval(long successes, long n, double confidence) {
     return {successes == 0 ? 0.0 : centre - half, successes == n ? 1.0 : centre + half};
 }
 
-double standard_error(const std::vector<double>& x) {
-    const std::size_t n = x.size();
-    if (n < 2) return kNaN;
-    double mean = 0.0;
-    for (double v : x) mean += v;
-    mean /= static_cast<double>(n);
-    double ss = 0.0;
-    for (double v : x) ss += (v - mean) * (v - mean);
-    return std::sqrt(ss / static_cast<double>(n - 1)) / std::sqrt(static_cast<double>(n));
+// The sample's mean and sd come from summarize() (statistics.hpp), the analysis's own.
+double standard_error(const Summary& s) {
+    return s.n < 2 ? kNaN : s.sd / std::sqrt(static_cast<double>(s.n));
 }
 
+double standard_error(const std::vector<double>& x) { return standard_error(summarize(x)); }
+
 Interval mean_interval(const std::vector<double>& x, double confidence) {
-    const double se = standard_error(x);
+    const Summary s = summarize(x);
+    const double se = standard_error(s);
     if (!std::isfinite(se)) return {kNaN, kNaN};
-    double mean = 0.0;
-    for (double v : x) mean += v;
-    mean /= static_cast<double>(x.size());
-    const double t = boost::math::quantile(boost::math::students_t(static_cast<double>(x.size() - 1)), 0.5 + confidence / 2.0);
-    return {mean - t * se, mean + t * se};
+    const double t = boost::math::quantile(boost::math::students_t(static_cast<double>(s.n - 1)), 0.5 + confidence / 2.0);
+    return {s.mean - t * se, s.mean + t * se};
 }
 
 }  // namespace contactlab::experiments
