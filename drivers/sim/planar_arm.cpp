@@ -15,6 +15,22 @@ void PlanarArm::jacobian(double q1, double q2, double J[2][2]) const {
     J[1][1] = p_.l2 * c12;
 }
 
+void PlanarArm::update_trig() {
+    s1_ = std::sin(q1_), c1_ = std::cos(q1_);
+    s12_ = std::sin(q1_ + q2_), c12_ = std::cos(q1_ + q2_);
+}
+
+void PlanarArm::jacobian_now(double J[2][2]) const {
+    J[0][0] = -p_.l1 * s1_ - p_.l2 * s12_;
+    J[0][1] = -p_.l2 * s12_;
+    J[1][0] = p_.l1 * c1_ + p_.l2 * c12_;
+    J[1][1] = p_.l2 * c12_;
+}
+
+Vec2 PlanarArm::endpoint() const {
+    return p_.base + Vec2{p_.l1 * c1_ + p_.l2 * c12_, p_.l1 * s1_ + p_.l2 * s12_};
+}
+
 Vec2 PlanarArm::endpoint_of(double q1, double q2) const {
     return p_.base + Vec2{p_.l1 * std::cos(q1) + p_.l2 * std::cos(q1 + q2),
                           p_.l1 * std::sin(q1) + p_.l2 * std::sin(q1 + q2)};
@@ -30,13 +46,14 @@ bool PlanarArm::place_at(Vec2 x) {
     const double q1 = std::atan2(d.y, d.x) - std::atan2(p_.l2 * std::sin(q2), p_.l1 + p_.l2 * std::cos(q2));
     q1_ = q1;
     q2_ = q2;
+    update_trig();
     w1_ = w2_ = 0.0;
     return true;
 }
 
 Vec2 PlanarArm::velocity() const {
     double J[2][2];
-    jacobian(q1_, q2_, J);
+    jacobian_now(J);
     return {J[0][0] * w1_ + J[0][1] * w2_, J[1][0] * w1_ + J[1][1] * w2_};
 }
 
@@ -60,7 +77,7 @@ void PlanarArm::command_force(Vec2 f) {
 Vec2 PlanarArm::applied_force() const {
     // F = J^-T tau at the true configuration.
     double J[2][2];
-    jacobian(q1_, q2_, J);
+    jacobian_now(J);
     const double det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
     if (std::abs(det) < 1e-12) return Vec2{0.0};
     // Solve J^T F = tau.
@@ -71,10 +88,9 @@ Vec2 PlanarArm::applied_force() const {
 
 void PlanarArm::step(double h, Vec2 ext) {
     double J[2][2];
-    jacobian(q1_, q2_, J);
+    jacobian_now(J);
     // J-dot q-dot: the endpoint's centripetal acceleration, for the endpoint mass.
-    const double c1 = std::cos(q1_), s1 = std::sin(q1_);
-    const double c12 = std::cos(q1_ + q2_), s12 = std::sin(q1_ + q2_);
+    const double c1 = c1_, s1 = s1_, c12 = c12_, s12 = s12_;
     const double w12 = w1_ + w2_;
     const Vec2 jdqd{-p_.l1 * c1 * w1_ * w1_ - p_.l2 * c12 * w12 * w12,
                     -p_.l1 * s1 * w1_ * w1_ - p_.l2 * s12 * w12 * w12};
@@ -95,11 +111,12 @@ void PlanarArm::step(double h, Vec2 ext) {
     w2_ += a2 * h;
     q1_ += w1_ * h;
     q2_ += w2_ * h;
+    update_trig();
 }
 
 double PlanarArm::cartesian_damping(Vec2 n) const {
     double J[2][2];
-    jacobian(q1_, q2_, J);
+    jacobian_now(J);
     const double det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
     // J^-1 n: the joint speeds that move the endpoint along n at 1 m/s.
     const double u1 = (J[1][1] * n.x - J[0][1] * n.y) / det;

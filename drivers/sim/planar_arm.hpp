@@ -27,13 +27,13 @@ struct PlanarArmParams {
 
 class PlanarArm {
 public:
-    explicit PlanarArm(const PlanarArmParams& p) : p_(p) {}
+    explicit PlanarArm(const PlanarArmParams& p) : p_(p) { update_trig(); }
 
     // Elbow-up inverse kinematics; returns false when x is out of reach (state unchanged).
     bool place_at(Vec2 x);
     // Forward kinematics of joint angles (rad) and of the true state.
     Vec2 endpoint_of(double q1, double q2) const;
-    Vec2 endpoint() const { return endpoint_of(q1_, q2_); }
+    Vec2 endpoint() const;
     Vec2 velocity() const;  // m/s, true endpoint velocity
     // Endpoint from the quantised encoder angles (what the device reports).
     Vec2 measured_endpoint() const;
@@ -55,12 +55,18 @@ public:
 
 private:
     void jacobian(double q1, double q2, double J[2][2]) const;
+    void jacobian_now(double J[2][2]) const;  // at the true state, from the stored sines
+    void update_trig();                       // after q1_ or q2_ changed
     double quantise(double q) const;
 
     PlanarArmParams p_;
     double q1_ = 0.0, q2_ = 0.0;    // rad: shoulder absolute, elbow relative
     double w1_ = 0.0, w2_ = 0.0;    // rad/s
     double tau1_ = 0.0, tau2_ = 0.0;  // N m, motor torques held over the servo period
+    // sin and cos of q1_ and of q1_ + q2_, kept with the angles: each substep asked for them four
+    // times (endpoint, velocity, the Jacobian and J-dot in step), a seventh of a simulated trial's
+    // time. The same library calls on the same angles: results are bit for bit unchanged.
+    double s1_ = 0.0, c1_ = 1.0, s12_ = 0.0, c12_ = 1.0;
 };
 
 }  // namespace contactlab::drivers::sim

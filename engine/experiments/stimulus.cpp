@@ -1,6 +1,8 @@
 // stimulus.cpp — scenes and hand paths for each task (stimulus.hpp).
 #include "engine/experiments/stimulus.hpp"
 
+#include "engine/experiments/surface_profile.hpp"
+
 #include "drivers/tasks.hpp"
 #include "haptics/bezier.hpp"
 #include "haptics/force_law.hpp"
@@ -36,30 +38,21 @@ std::vector<Vec2> surface_points(const Scene& s) {
     return out;
 }
 
-// Height (m) of the centre of a circle of radius r resting on the points from above at x.
-double resting_height(const std::vector<Vec2>& pts, double x, double r) {
-    double best = -1e9;
-    for (const Vec2& q : pts) {
-        const double dx = q.x - x;
-        if (std::abs(dx) <= r) best = std::max(best, q.y + std::sqrt(r * r - dx * dx));
-    }
-    return best;
-}
-
 // Descend onto x0, settle, slide to x1 at `speed` (along x) keeping `press` below the resting
 // height, hold. The finger turns with the surface's slope over +-15 mm (a person keeps the pad on
 // the contour, seed 002's gimbal measures it): the pad reaches slopes only within L / 2R of its
 // axis, and seed 002's base shape is steeper than that.
-drivers::HandPath slide_path(const std::vector<Vec2>& pts, double x0, double x1, double r, double speed, double press,
+drivers::HandPath slide_path(const SurfaceProfile& pts, double x0, double x1, double r, double speed, double press,
                              double& slide_start, double& slide_end) {
-    auto height = [&](double x) { return resting_height(pts, x, r) - press; };
+    std::size_t at = 0, ahead = 0, behind = 0;  // where each of the three heights was last found
+    auto height = [&](double x, std::size_t& hint) { return resting_height(pts, x, r, hint) - press; };
     auto slope = [&](double x) {
         constexpr double h = 0.015;  // m
-        return std::clamp(std::atan2(height(x + h) - height(x - h), 2.0 * h), -1.4, 1.4);  // rad
+        return std::clamp(std::atan2(height(x + h, ahead) - height(x - h, behind), 2.0 * h), -1.4, 1.4);  // rad
     };
     std::vector<drivers::PathSample> out;
     double t = 0.0;
-    const double y0 = height(x0), phi0 = slope(x0);
+    const double y0 = height(x0, at), phi0 = slope(x0);
     const Vec2 above{x0, y0 + 0.015};
     auto push = [&](Vec2 x, double phi) {
         out.push_back({t, x, phi});
@@ -71,7 +64,7 @@ drivers::HandPath slide_path(const std::vector<Vec2>& pts, double x0, double x1,
     const int n = static_cast<int>(std::ceil(std::abs(x1 - x0) / (speed * kSample)));
     for (int i = 0; i <= n; ++i) {
         const double x = x0 + (x1 - x0) * i / n;
-        push({x, height(x)}, slope(x));
+        push({x, height(x, at)}, slope(x));
     }
     slide_end = t;
     const drivers::PathSample last = out.back();
@@ -122,7 +115,7 @@ Stimulus make_stimulus(const Protocol& p, const Condition& c, const PlannedTrial
             def.length = p.traced_length;
             st.scene = generate_bumps(def).scene;
             set_finger_and_force(st.scene, p);
-            const std::vector<Vec2> pts = surface_points(st.scene);
+            const SurfaceProfile pts = profile_of(surface_points(st.scene));
             st.path = slide_path(pts, 0.01, p.traced_length - 0.01, p.finger_radius, p.hand_speed, p.hand_press,
                                  st.slide_start, st.slide_end);
             break;
@@ -130,7 +123,7 @@ Stimulus make_stimulus(const Protocol& p, const Condition& c, const PlannedTrial
         case Task::curvature: {
             st.scene = generate_arc(p.chord, t.stimulus);
             set_finger_and_force(st.scene, p);
-            const std::vector<Vec2> pts = surface_points(st.scene);
+            const SurfaceProfile pts = profile_of(surface_points(st.scene));
             const double half = 0.5 * p.chord + 0.02;  // m: from before the arc to after it
             const double x0 = c.motion == "B" ? half : -half;
             st.path = slide_path(pts, x0, -x0, p.finger_radius, p.hand_speed, p.hand_press, st.slide_start, st.slide_end);

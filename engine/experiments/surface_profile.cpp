@@ -1,0 +1,61 @@
+// surface_profile.cpp — resting heights of a circle on a sampled contour (surface_profile.hpp).
+#include "engine/experiments/surface_profile.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace contactlab::experiments {
+
+SurfaceProfile profile_of(std::vector<Vec2> pts) {
+    std::sort(pts.begin(), pts.end(), [](const Vec2& a, const Vec2& b) { return a.x < b.x; });
+    SurfaceProfile p;
+    p.block_top.assign((pts.size() + SurfaceProfile::kBlock - 1) / SurfaceProfile::kBlock, -1e300);
+    for (std::size_t i = 0; i < pts.size(); ++i)
+        p.block_top[i / SurfaceProfile::kBlock] = std::max(p.block_top[i / SurfaceProfile::kBlock], pts[i].y);
+    p.pts = std::move(pts);
+    return p;
+}
+
+// The maximum is taken without scanning every point (that scan, O(points) a sample, was half of
+// a simulated trial's time), and it is the same maximum: only points within r of x (+ 1 nm; the
+// |dx| <= r test decides) are looked at, the block of the last answer (`hint`) first, and a block
+// is skipped when its highest point plus its nearest reach cannot beat the best so far. Rounding
+// cannot break that bound: each step of it is a monotone rounded operation on inputs no smaller
+// than a point's own. A maximum does not depend on the order it is taken in.
+double resting_height(const SurfaceProfile& s, double x, double r, std::size_t& hint) {
+    constexpr std::size_t B = SurfaceProfile::kBlock;
+    const double margin = 1e-9;  // m
+    const auto by_x = [](const Vec2& q, double v) { return q.x < v; };
+    const std::size_t lo = std::lower_bound(s.pts.begin(), s.pts.end(), x - r - margin, by_x) - s.pts.begin();
+    const std::size_t hi = std::lower_bound(s.pts.begin() + lo, s.pts.end(), std::nextafter(x + r + margin, 1e300), by_x) -
+                           s.pts.begin();  // one past the last point with q.x <= x + r + margin
+    double best = -1e9;
+    std::size_t best_at = hint;
+    auto scan = [&](std::size_t a, std::size_t b) {
+        for (std::size_t i = a; i < b; ++i) {
+            const double dx = s.pts[i].x - x;
+            if (std::abs(dx) <= r) {
+                const double h = s.pts[i].y + std::sqrt(r * r - dx * dx);
+                if (h > best) best = h, best_at = i;
+            }
+        }
+    };
+    if (lo >= hi) return best;
+    // First the block that held the last sample's highest point (the hand moves a few um a
+    // sample, so it is usually the answer, and the bound below then skips most blocks).
+    const std::size_t first = std::clamp(hint, lo, hi - 1) / B;
+    scan(std::max(lo, first * B), std::min(hi, (first + 1) * B));
+    // Every point of a block is at least `gap` from x (the same rounded subtraction as its dx), so
+    // none rises above the block's top + sqrt(r^2 - gap^2).
+    for (std::size_t k = lo / B; k * B < hi; ++k) {
+        if (k == first) continue;
+        const std::size_t a = std::max(lo, k * B), b = std::min(hi, (k + 1) * B);
+        const double gap = s.pts[b - 1].x < x ? x - s.pts[b - 1].x : s.pts[a].x > x ? s.pts[a].x - x : 0.0;  // m
+        const double reach = gap >= r ? 0.0 : std::sqrt(r * r - gap * gap);  // m
+        if (s.block_top[k] + reach > best) scan(a, b);
+    }
+    hint = best_at;
+    return best;
+}
+
+}  // namespace contactlab::experiments
