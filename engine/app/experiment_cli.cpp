@@ -6,6 +6,7 @@
 // [--json OUT.json] [--report DIR] [--confidence C] [--pool-protocols]` prints the figures per
 // condition, the tests' rule and any warnings, and writes them as JSON (schema:
 // scenes/README.md) with each file's provenance, and as a Markdown page with plots.
+#include "engine/app/command_line.hpp"
 #include "engine/app/experiment_report.hpp"
 #include "engine/app/progress_bar.hpp"
 #include "engine/app/subcommands.hpp"
@@ -34,19 +35,6 @@ struct RunArgs {
     int jobs = 0;  // 0: every core
     bool no_traces = false, overwrite = false;
 };
-
-// The command line as typed (argv joined by spaces), for the results' meta: Linux keeps it in
-// /proc/self/cmdline, NUL-separated, so no argv has to be threaded through main().
-std::string command_line() {
-    std::ifstream in("/proc/self/cmdline", std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    std::string c = s.str();
-    while (!c.empty() && c.back() == '\0') c.pop_back();
-    for (char& ch : c)
-        if (ch == '\0') ch = ' ';
-    return c;
-}
 
 // "sim" -> {1}; "sim:3" -> {3}; "sim:1-20" -> {1..20}.
 std::vector<std::uint64_t> sim_participants(const std::string& spec, const char* option) {

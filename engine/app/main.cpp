@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
     register_devices_command(app, rc);
     register_fuzz_contact_command(app, rc);
     register_experiment_command(app, rc);
+    register_experiment_power_command(app, rc);
     register_falcon_kinematics_command(app, rc);
 
     try {

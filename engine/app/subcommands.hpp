@@ -36,6 +36,8 @@ int run_edit_command();
 void register_devices_command(CLI::App& app, int& rc);  // devices (devices_cli.cpp)
 void register_fuzz_contact_command(CLI::App& app, int& rc);  // fuzz-contact (fuzz_contact_cli.cpp)
 void register_experiment_command(CLI::App& app, int& rc);  // experiment run|analyze (experiment_cli.cpp)
+// experiment power (experiment_power_cli.cpp); after register_experiment_command, whose subcommand it joins
+void register_experiment_power_command(CLI::App& app, int& rc);
 void register_falcon_kinematics_command(CLI::App& app, int& rc);  // falcon-kinematics (falcon_kinematics_cli.cpp)
 
 }  // namespace contactlab::app

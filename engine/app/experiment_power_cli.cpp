@@ -1,0 +1,216 @@
+// experiment_power_cli.cpp — `contactlab experiment power PROTOCOL --measure NAME --participants
+// A-B --pool N --resamples M [--alpha 0.05] [--seed S] [--jobs J] --json OUT [--report DIR]
+// [--conditions A,B] [--overwrite]`: how many participants a protocol needs
+// (engine/experiments/power_analysis.hpp). The pool of N simulated participants runs once through
+// the servo into OUT's stem + ".pool.csv" (an `experiment run` results file with its meta: kept,
+// resumable, and reused when the same command runs again), then groups of A..B participants are
+// resampled from it. The JSON carries the pool file's provenance (version, protocol and its hash,
+// seed, device, rate) and its own hash; --report draws power against group size.
+#include "engine/app/command_line.hpp"
+#include "engine/app/experiment_figures.hpp"
+#include "engine/app/progress_bar.hpp"
+#include "engine/app/subcommands.hpp"
+#include "engine/experiments/analysis.hpp"
+#include "engine/experiments/experiment_run.hpp"
+#include "engine/experiments/pooling.hpp"
+#include "engine/experiments/power_analysis.hpp"
+#include "engine/experiments/protocol.hpp"
+#include "engine/experiments/sha256.hpp"
+#include "engine/render/chart_image.hpp"
+#include "engine/render/context.hpp"
+#include "haptics/atomic_file.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+namespace contactlab::app {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct PowerArgs {
+    std::string protocol, measure = "it_est_bits", participants, json, report, conditions;
+    int pool = 20, resamples = 1000, jobs = 0;
+    double alpha = 0.05;
+    unsigned long long seed = 1;
+    bool overwrite = false;
+};
+
+// "4-16" -> 4..16; "10" -> {10}.
+std::vector<int> group_sizes(const std::string& spec) {
+    int a = 0, b = 0;
+    char dash = 0, extra = 0;
+    const int n = std::sscanf(spec.c_str(), "%d%c%d%c", &a, &dash, &b, &extra);
+    if (n == 1) b = a;
+    else if (!(n == 3 && dash == '-')) throw BadInput("--participants: expected group sizes A-B (e.g. 4-16) or N, got \"" + spec + "\"");
+    if (a < 2 || b < a || b > 10000)
+        throw BadInput("--participants: group sizes A-B need 2 <= A <= B <= 10000 (a paired t test needs 2), got \"" + spec + "\"");
+    std::vector<int> out;
+    for (int i = a; i <= b; ++i) out.push_back(i);
+    return out;
+}
+
+std::string file_text(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// Power against group size with the Wilson intervals, alpha and 0.8 (the usual target) marked.
+render::Chart power_chart(const json& r) {
+    render::Chart c = report_chart("Power of the paired t test on " + r["measure"].get<std::string>() + " (" +
+                                       r["conditions"][0].get<std::string>() + " vs " + r["conditions"][1].get<std::string>() + ")",
+                                   "participants per group", "power (share of groups with p < alpha)");
+    c.y.min = 0.0;
+    c.y.max = 1.0;
+    render::ChartSeries s = marker_series("power, 95 % Wilson", 0);
+    // Group sizes are counts: one category each, no fractional ticks between them.
+    for (const auto& p : r["points"]) {
+        c.x.categories.push_back(std::to_string(p["participants"].get<int>()));
+        s.x.push_back(static_cast<double>(s.x.size()));
+        s.y.push_back(p["power"].get<double>());
+        s.y_low.push_back(p["power_ci"][0].get<double>());
+        s.y_high.push_back(p["power_ci"][1].get<double>());
+    }
+    c.series.push_back(s);
+    c.references.push_back({"0.8 (a usual target)", false, 0.8});
+    c.references.push_back({"alpha " + render::tick_label(r["alpha"].get<double>()), false, r["alpha"].get<double>()});
+    return c;
+}
+
+// Four significant digits, "-" for null.
+std::string fmt(const json& v) {
+    if (!v.is_number()) return "-";
+    char b[32];
+    std::snprintf(b, sizeof b, "%.4g", v.get<double>());
+    return b;
+}
+
+void write_report(const json& r, const std::string& dir) {
+    fs::create_directories(dir);
+    std::ostringstream md;
+    md << "# Power: " << r["measure"].get<std::string>() << "\n\n"
+       << "- test: " << r["test"].get<std::string>() << "\n- sampling: " << r["sampling"].get<std::string>()
+       << "\n- pool: " << r["pool"] << " participants; effect in the pool: mean difference "
+       << fmt(r["pool_effect"]["mean_difference"]) << ", sd " << fmt(r["pool_effect"]["sd_difference"]) << ", d_z "
+       << fmt(r["pool_effect"]["dz"]) << "\n- alpha " << r["alpha"] << ", seed " << r["seed"] << "\n\n"
+       << "| participants | power | 95 % interval | undefined tests | median p |\n| ---: | ---: | --- | ---: | ---: |\n";
+    for (const auto& p : r["points"]) {
+        char line[160];
+        std::snprintf(line, sizeof line, "| %d | %.3f | %.3f .. %.3f | %ld | %s |\n", p["participants"].get<int>(), p["power"].get<double>(),
+                      p["power_ci"][0].get<double>(), p["power_ci"][1].get<double>(), p["undefined"].get<long>(),
+                      fmt(p["median_p"]).c_str());
+        md << line;
+    }
+    try {
+        const render::VulkanContext ctx(render::ContextOptions{});
+        render::write_chart_png(ctx, power_chart(r), (fs::path(dir) / "power.png").string());
+        md << "\n![power](power.png)\n\nEach point: the share of resampled groups of that size whose paired t test had p < alpha, "
+              "with its 95 % Wilson interval over the groups (Monte Carlo error only).\n";
+    } catch (const std::exception& e) {
+        md << "\n(no plot: " << e.what() << ")\n";
+    }
+    write_file_atomically((fs::path(dir) / "report.md").string(), md.str());
+}
+
+int run_power(const PowerArgs& a) {
+    if (a.json.empty()) throw BadInput("experiment power: --json OUT is required");
+    if (a.pool < 2 || a.pool > 10000) throw BadInput("--pool: the pool needs 2..10000 simulated participants");
+    if (a.resamples < 1 || a.resamples > 1000000) throw BadInput("--resamples: 1..1000000 groups per size");
+    if (!(a.alpha > 0.0 && a.alpha < 1.0)) throw BadInput("--alpha: must lie in (0, 1), e.g. 0.05");
+    experiments::PowerOptions o;
+    o.measure = a.measure == "IT_est" ? "it_est_bits" : a.measure;
+    o.sizes = group_sizes(a.participants);
+    o.resamples = a.resamples;
+    o.alpha = a.alpha;
+    o.seed = a.seed;
+    if (!a.conditions.empty()) {
+        const auto comma = a.conditions.find(',');
+        if (comma == std::string::npos) throw BadInput("--conditions: expected A,B, got \"" + a.conditions + "\"");
+        o.condition_a = a.conditions.substr(0, comma);
+        o.condition_b = a.conditions.substr(comma + 1);
+    }
+    const fs::path out(a.json);
+    const std::string pool_path = (out.parent_path() / (out.stem().string() + ".pool.csv")).string();
+    json result;
+    try {
+        const experiments::Protocol p = experiments::load_protocol(a.protocol);
+        experiments::RunOptions ro;
+        for (int i = 1; i <= a.pool; ++i) ro.participants.push_back(static_cast<std::uint64_t>(i));
+        ro.seed = a.seed;
+        ro.output = pool_path;
+        ro.protocol_path = a.protocol;
+        ro.command = command_line();
+        ro.traces = false;
+        ro.overwrite = a.overwrite;
+        ro.jobs = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+        ro.progress = [](std::size_t done, std::size_t total) {
+            show_progress("power pool", static_cast<std::int64_t>(done), static_cast<std::int64_t>(total), "trials");
+        };
+        const auto t0 = std::chrono::steady_clock::now();
+        const experiments::RunSummary s = experiments::run_experiment(p, ro);
+        const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        std::fprintf(stderr, "experiment power: pool of %d participants in %s (%s, %.1f s)\n", a.pool, pool_path.c_str(),
+                     s.already_complete ? "already complete" : "simulated", secs);
+        const experiments::PooledResults pooled = experiments::pool_results({pool_path}, false);
+        const json analysis = experiments::analyze_results(pooled.table);
+        result = experiments::power_analysis(analysis, o);
+        result["pool_results"] = {{"file", pool_path}, {"sha256", experiments::sha256_hex(file_text(pool_path))},
+                                  {"meta", pooled.provenance[pool_path]}};
+        result["command"] = command_line();
+    } catch (const experiments::ExperimentError& e) {
+        throw BadInput(e.what());
+    }
+    std::printf("power of the %s (alpha %g, pool %d, %d groups per size):\n", result["test"].get<std::string>().c_str(), a.alpha,
+                result["pool"].get<int>(), a.resamples);
+    std::printf("  participants  power  95 %% interval\n");
+    for (const auto& pt : result["points"])
+        std::printf("  %12d  %.3f  %.3f .. %.3f\n", pt["participants"].get<int>(), pt["power"].get<double>(),
+                    pt["power_ci"][0].get<double>(), pt["power_ci"][1].get<double>());
+    for (const auto& l : result["left_out"])
+        std::fprintf(stderr, "experiment power: participant %s left out: %s\n", l["participant"].get<std::string>().c_str(),
+                     l["reason"].get<std::string>().c_str());
+    write_file_atomically(a.json, result.dump(2) + "\n");
+    if (!a.report.empty()) {
+        write_report(result, a.report);
+        std::printf("report: %s\n", (fs::path(a.report) / "report.md").string().c_str());
+    }
+    return 0;
+}
+
+}  // namespace
+
+void register_experiment_power_command(CLI::App& app, int& rc) {
+    CLI::App* exp = app.get_subcommand("experiment");
+    auto args = std::make_shared<PowerArgs>();
+    CLI::App* c = exp->add_subcommand("power", "How many participants a protocol needs: resampled power of its paired comparison");
+    c->add_option("protocol", args->protocol, "Protocol file (JSON, scenes/README.md)")->required();
+    c->add_option("--measure", args->measure,
+                  "Per-participant measure compared: it_est_bits (or IT_est), proportion_correct, cramers_phi, time_s, "
+                  "failure_proportion")
+        ->default_val("it_est_bits");
+    c->add_option("--participants", args->participants, "Group sizes A-B (e.g. 4-16), or one size N")->required();
+    c->add_option("--pool", args->pool, "Simulated participants run once through the servo, the population resampled")->default_val(20);
+    c->add_option("--resamples", args->resamples, "Groups drawn per size")->default_val(1000);
+    c->add_option("--alpha", args->alpha, "Two-sided significance level")->default_val(0.05);
+    c->add_option("--seed", args->seed, "Seed of the pool's run and of the draws")->default_val(1);
+    c->add_option("--jobs", args->jobs, "Pool participants run in parallel (0: every core)")->default_val(0);
+    c->add_option("--conditions", args->conditions, "The two conditions compared, A,B (default: the protocol's two)");
+    c->add_option("--json", args->json, "Write the power per group size as JSON (the pool goes to OUT's stem + .pool.csv)")->required();
+    c->add_option("--report", args->report, "Write report.md and power.png into this folder");
+    c->add_flag("--overwrite", args->overwrite, "Replace a pool file made by another run (without it such a file is refused)");
+    c->callback([args, &rc] {
+        args->protocol = installed_data_path(args->protocol);
+        rc = run_power(*args);
+    });
+}
+
+}  // namespace contactlab::app
