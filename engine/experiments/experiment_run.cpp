@@ -8,6 +8,7 @@
 #include "engine/experiments/servo_trial.hpp"
 #include "engine/experiments/sim_participant.hpp"
 #include "engine/experiments/trial_plan.hpp"
+#include "engine/experiments/wearable_trial.hpp"
 #include "haptics/atomic_file.hpp"
 
 #include <algorithm>
@@ -22,9 +23,21 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The trial's trace: what the CLD rig displayed (finger, force, roller), or on the wearable
+// platform its tilt, press force and cable tensions with the arc's slope under the contact.
 std::string trace_csv(const TrialOutcome& o) {
-    std::string s = "t,x,y,phi,contact,fx,fy,roller_l,l_d\n";
     char line[256];
+    if (!o.platform.empty()) {
+        std::string s = "t,contact_x,surface_angle,tilt,force,q1,q2,q3,contact,fault\n";
+        for (const drivers::sim::CurvatureSample& r : o.platform) {
+            std::snprintf(line, sizeof line, "%.4f,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%d\n", r.t, r.contact_x, r.surface_angle,
+                          r.platform_tilt, r.platform_force, r.tension(0), r.tension(1), r.tension(2), r.contact ? 1 : 0,
+                          r.fault ? 1 : 0);
+            s += line;
+        }
+        return s;
+    }
+    std::string s = "t,x,y,phi,contact,fx,fy,roller_l,l_d\n";
     for (const drivers::TickRecord& r : o.shown) {
         std::snprintf(line, sizeof line, "%.4f,%.6g,%.6g,%.6g,%d,%.6g,%.6g,%.6g,%.6g\n", r.t, r.finger.x, r.finger.y, r.phi,
                       r.contact ? 1 : 0, r.force.x, r.force.y, r.roller_l, r.l_d);
@@ -104,7 +117,7 @@ void run_participant(Shared& sh, std::size_t index, const std::vector<std::vecto
                 rec.contact_breaks = r.contact_breaks;
                 rec.peak_force = r.peak_force;
                 rec.touched = r.touched;
-                rec.device = kTrialDevice;
+                rec.device = p.device;
                 rec.small_bumps = r.small_bumps;
                 rec.large_bumps = r.large_bumps;
                 row = results_row(p, rec);
@@ -151,8 +164,9 @@ RunSummary run_experiment(const Protocol& p, const RunOptions& o) {
     id.protocol = &p;
     id.seed = o.seed;
     for (std::uint64_t n : o.participants) id.participants.push_back(participant_id(n));
-    id.device = kTrialDevice;
-    id.servo_rate_hz = kTrialRate;
+    id.device = p.device;
+    // The wearable platform's host loop is its 100 Hz serial link (haptics/wearable/rig.hpp).
+    id.servo_rate_hz = p.device == "sim-wearable" ? kWearableLinkRate : kTrialRate;
     id.traces = o.traces;
     nlohmann::json meta = make_meta(id, o.command);
 

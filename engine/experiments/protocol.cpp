@@ -162,7 +162,7 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
         r.fail("", std::string("invalid JSON: ") + e.what());
     }
     r.only(root, "", {"format", "version", "name", "seed", "task", "conditions", "stimuli", "repetitions", "trials", "warmup",
-                      "repeat_invalid", "answers", "hand", "finger", "force", "bumps", "arc", "block", "participant"});
+                      "repeat_invalid", "answers", "hand", "finger", "force", "bumps", "arc", "block", "participant", "device"});
     if (r.text(r.need(root, "", "format"), "format") != "contactlab experiment protocol")
         r.fail("format", "expected \"contactlab experiment protocol\"");
     if (r.integer(root, "", "version", 1, 1, 0) != 1) r.fail("version", "missing (this ContactLab reads version 1)");
@@ -173,6 +173,13 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
     p.name = r.text(r.need(root, "", "name"), "name");
     p.seed_paper = r.text(r.need(root, "", "seed"), "seed");
     p.task = task_of(r, r.text(r.need(root, "", "task"), "task"));
+    if (root.contains("device")) {
+        p.device = r.text(root["device"], "device");
+        if (p.device != "sim-cld" && p.device != "sim-wearable")
+            r.fail("device", "expected \"sim-cld\" (the contact location display rig) or \"sim-wearable\" (seed 003's platform)");
+        if (p.device == "sim-wearable" && p.task != Task::curvature)
+            r.fail("device", "sim-wearable runs the curvature task only (seed 003's platform displays an arc's slope)");
+    }
 
     const json& conds = r.need(root, "", "conditions");
     if (!conds.is_array() || conds.empty()) r.fail("conditions", "expected a non-empty array");
@@ -275,7 +282,7 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
     if (root.contains("participant")) {
         const json& m = root["participant"];
         r.only(m, "participant", {"force_angle_threshold_deg", "force_angle_noise_deg", "location_threshold_mm",
-                                  "location_noise_mm", "stiffness_noise", "reaction_time_s"});
+                                  "location_noise_mm", "stiffness_noise", "reaction_time_s", "tilt_range_noise"});
         ParticipantModel& pm = p.participant;
         pm.force_angle_threshold_deg = r.number(m, "participant", "force_angle_threshold_deg", 0.0, 90.0, "deg", pm.force_angle_threshold_deg);
         pm.force_angle_noise_deg = r.number(m, "participant", "force_angle_noise_deg", 0.0, 90.0, "deg", pm.force_angle_noise_deg);
@@ -283,6 +290,7 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
         pm.location_noise_mm = r.number(m, "participant", "location_noise_mm", 0.0, 50.0, "mm", pm.location_noise_mm);
         pm.stiffness_noise = r.number(m, "participant", "stiffness_noise", 0.0, 10.0, "", pm.stiffness_noise);
         pm.reaction_time_s = r.number(m, "participant", "reaction_time_s", 0.0, 5.0, "s", pm.reaction_time_s);
+        pm.tilt_range_noise = r.number(m, "participant", "tilt_range_noise", 0.0, 1.0, "", pm.tilt_range_noise);
     }
     return p;
 }

@@ -41,6 +41,11 @@ struct ParticipantModel {
     double location_noise_mm = 1.0;
     double stiffness_noise = 0.15;           // seed 004: relative noise on felt stiffness
     double reaction_time_s = 0.25;           // from noticing a cue to acting on it
+    // Seed 003 on the wearable platform: relative noise (sd, a Weber fraction) on the range of
+    // tilt the platform swept under the finger (wearable_trial.hpp). Relative, because people
+    // judge a curvature by the difference of slope across the contact, and a range twice as large
+    // is as discriminable from its neighbours as the smaller one is from its own.
+    double tilt_range_noise = 0.15;
 };
 
 struct Protocol {
@@ -52,6 +57,10 @@ struct Protocol {
     std::string name;
     std::string seed_paper;  // "000", "002", "003", "004"
     Task task = Task::bump_counting;
+    // The simulated device the trials run on (the results' `device` column): "sim-cld", the
+    // contact location display rig (every task), or "sim-wearable", seed 003's fingertip platform
+    // (the curvature task only: the finger held still, the arc moving under it; wearable_trial.hpp).
+    std::string device = "sim-cld";
     std::vector<Condition> conditions;
     // Stimuli: the judged quantity's values (seed 000: d in m; 002: bump counts; 003: heights
     // in m; 004: field angles in deg).

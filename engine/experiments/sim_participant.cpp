@@ -4,6 +4,7 @@
 #include "engine/experiments/results_row.hpp"
 #include "engine/experiments/servo_trial.hpp"
 #include "engine/experiments/stimulus.hpp"
+#include "engine/experiments/wearable_trial.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -204,7 +205,9 @@ TrialOutcome perform_sim_trial(const Protocol& p, const PlannedTrial& t) {
     switch (p.task) {
         case Task::contour_following: o = contour_following(p, c, t, rng); break;
         case Task::bump_counting: o = bump_counting(p, c, t, rng); break;
-        case Task::curvature: o = curvature(p, c, t, rng); break;
+        case Task::curvature:
+            o = p.device == "sim-wearable" ? wearable_curvature_trial(p, c, t, rng) : curvature(p, c, t, rng);
+            break;
         case Task::surface_orientation: o = surface_orientation(p, c, t, rng); break;
     }
     o.correct = graded_correct(p, t.stimulus, o.response);

@@ -25,6 +25,7 @@
 #include "engine/experiments/protocol.hpp"
 #include "engine/experiments/trial_plan.hpp"
 
+#include "drivers/sim/wearable_tasks.hpp"
 #include "drivers/tick_record.hpp"
 
 #include <string>
@@ -45,6 +46,9 @@ struct TrialOutcome {
     // What the device displayed in the trial as performed, every 10th tick (100 Hz), for the
     // per-trial trace files.
     std::vector<drivers::TickRecord> shown;
+    // On the wearable platform (Protocol::device "sim-wearable") instead: the platform's tilt,
+    // press force and cable tensions at the link's 100 Hz (wearable_trial.hpp).
+    std::vector<drivers::sim::CurvatureSample> platform;
 };
 
 TrialOutcome perform_sim_trial(const Protocol& p, const PlannedTrial& t);

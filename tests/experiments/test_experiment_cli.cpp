@@ -62,7 +62,7 @@ TEST_CASE("experiment analyze: a bad results file exits 2 naming the file, line 
 TEST_CASE("experiment run: seed 003's protocol with two simulated participants, then analyze") {
     TempDir dir;
     const std::string out = dir.file("r.csv");
-    const auto p = run_contactlab({"experiment", "run", (source_dir() / "scenes/experiments/003-curvature.json").string(),
+    const auto p = run_contactlab({"experiment", "run", (source_dir() / "scenes/experiments/003-curvature-cld.json").string(),
                                    "--participants", "sim:1-2", "--seed", "3", "--jobs", "2", "-o", out});
     INFO("stderr: " << p.err);
     REQUIRE(p.exit_code == 0);
@@ -84,7 +84,7 @@ TEST_CASE("experiment run: seed 003's protocol with two simulated participants, 
 
 TEST_CASE("experiment run: a person as participant, or a bad protocol, exits 2 and says why") {
     TempDir dir;
-    const std::string proto = (source_dir() / "scenes/experiments/003-curvature.json").string();
+    const std::string proto = (source_dir() / "scenes/experiments/003-curvature-cld.json").string();
     const auto person = run_contactlab({"experiment", "run", proto, "--participant", "P07", "-o", dir.file("r.csv")});
     CHECK(person.exit_code == 2);
     CHECK(contains(person.err, "editor's experiment mode"));
@@ -109,7 +109,7 @@ TEST_CASE("experiment analyze: invalid UTF-8 and 1e999 exit 2 naming the file an
 
 TEST_CASE("experiment analyze: provenance per file in the JSON, files of different protocols pooled only when asked") {
     TempDir dir;
-    const std::string proto = (source_dir() / "scenes/experiments/003-curvature.json").string();
+    const std::string proto = (source_dir() / "scenes/experiments/003-curvature-cld.json").string();
     // Two runs of different participants: one protocol, so they pool.
     for (const char* who : {"sim:1", "sim:2"}) {
         const auto r = run_contactlab({"experiment", "run", proto, "--participant", who, "-o", dir.file(std::string(who + 4) + ".csv"),

@@ -1,5 +1,5 @@
 // test_power_cli.cpp — the real `contactlab experiment power`: a pool simulated through the servo
-// (seed 003's protocol, 3 participants), resampled; its JSON, provenance, report, reuse of the
+// (seed 003's protocol on the CLD rig, 3 participants), resampled; its JSON, provenance, report, reuse of the
 // pool, and errors.
 #include "process.hpp"
 
@@ -12,7 +12,7 @@ using namespace cli_test;
 
 TEST_CASE("experiment power: a pool through the servo, power per group size with provenance and a plot") {
     TempDir dir;
-    const std::string proto = (source_dir() / "scenes/experiments/003-curvature.json").string();
+    const std::string proto = (source_dir() / "scenes/experiments/003-curvature-cld.json").string();
     const std::vector<std::string> args = {"experiment", "power", proto, "--measure", "proportion_correct", "--participants", "2-5",
                                            "--pool", "3", "--resamples", "300", "--seed", "4", "--jobs", "2",
                                            "--json", dir.file("p.json"), "--report", dir.file("rep")};
@@ -52,7 +52,7 @@ TEST_CASE("experiment power: a pool through the servo, power per group size with
 
 TEST_CASE("experiment power: bad sizes, an unknown measure and a pool of another run exit 2 and say why") {
     TempDir dir;
-    const std::string proto = (source_dir() / "scenes/experiments/003-curvature.json").string();
+    const std::string proto = (source_dir() / "scenes/experiments/003-curvature-cld.json").string();
     auto power = [&](std::vector<std::string> extra) {
         std::vector<std::string> a = {"experiment", "power", proto, "--pool", "2", "--resamples", "50", "--json", dir.file("p.json")};
         a.insert(a.end(), extra.begin(), extra.end());

@@ -49,6 +49,8 @@ TEST_CASE("protocols: the four shipped protocols load with the seeds' designs") 
     const Protocol p3 = load_protocol(protocol_path("003-curvature.json"));
     CHECK(p3.conditions.size() == 2);
     CHECK(p3.repetitions == 4);
+    CHECK(p3.device == "sim-wearable");  // seed 003's own device; the CLD rig's variant beside it
+    CHECK(load_protocol(protocol_path("003-curvature-cld.json")).device == "sim-cld");
     const Protocol p4 = load_protocol(protocol_path("004-surface-orientation.json"));
     CHECK(p4.conditions.size() == 9);  // (e, k) pairs
     CHECK(p4.repetitions == 10);
@@ -106,7 +108,7 @@ TEST_CASE("protocols: trial plans are reproducible, balanced across participants
 }
 
 TEST_CASE("protocols: the results file does not depend on the number of jobs") {
-    const Protocol p = load_protocol(protocol_path("003-curvature.json"));
+    const Protocol p = load_protocol(protocol_path("003-curvature-cld.json"));
     TempDir dir;
     RunOptions o;
     o.participants = {1, 2, 3};
@@ -182,7 +184,7 @@ TEST_CASE("passivity: every shipped protocol runs two simulated participants wit
         double speed;  // m/s; 0: the protocol's
     };
     for (const Case c : {Case{"002-bump-counting.json", 0.0}, Case{"002-bump-counting.json", 0.10},
-                         Case{"000-contour-following.json", 0.0}, Case{"003-curvature.json", 0.0},
+                         Case{"000-contour-following.json", 0.0}, Case{"003-curvature-cld.json", 0.0},
                          Case{"004-surface-orientation.json", 0.0}}) {
         Protocol p = load_protocol(protocol_path(c.file));
         if (p.task == Task::bump_counting) p.trials = 40;
@@ -233,6 +235,7 @@ TEST_CASE("protocols: answers are checked against what each task can answer and 
     CHECK_THROWS_WITH_AS(parse_protocol(proto("curvature", "[0.01, 0.02]", R"(["10", "25"])", R"(, "motion": "A")"), "p.json"),
                          "p.json: answers: curvature answers are the stimuli's heights in mm: \"10\", \"20\"", ExperimentError);
     // Every shipped protocol passes.
-    for (const char* f : {"000-contour-following.json", "002-bump-counting.json", "003-curvature.json", "004-surface-orientation.json"})
+    for (const char* f : {"000-contour-following.json", "002-bump-counting.json", "003-curvature.json", "003-curvature-cld.json",
+                          "004-surface-orientation.json"})
         CHECK_NOTHROW(load_protocol(protocol_path(f)));
 }
