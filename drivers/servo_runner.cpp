@@ -1,6 +1,7 @@
 // servo_runner.cpp — the real-time deadline loop (see servo_runner.hpp).
 #include "drivers/servo_runner.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -19,6 +20,10 @@ void add_ns(timespec& t, long ns) {
     while (t.tv_nsec >= 1000000000L) {
         t.tv_nsec -= 1000000000L;
         ++t.tv_sec;
+    }
+    while (t.tv_nsec < 0) {
+        t.tv_nsec += 1000000000L;
+        --t.tv_sec;
     }
 }
 
@@ -78,6 +83,8 @@ void ServoRunner::run() noexcept {
     } else {
         memory_lock_ = "memory not locked";
     }
+    const long spin_ns = opt_.core >= 0 ? std::clamp(opt_.spin_ns, 0L, std::lround(loop_.period() * 1e9) / 5) : 0;  // ns
+    if (spin_ns > 0) scheduling_ += ", the last " + std::to_string(spin_ns / 1000) + " us of each wait polled";
     sched_ready_.store(true, std::memory_order_release);
 
     const double nominal = loop_.period();  // s
@@ -104,7 +111,18 @@ void ServoRunner::run() noexcept {
             overruns_.fetch_add(1, std::memory_order_relaxed);
             next = after;
         }
-        while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &next, nullptr) == EINTR) {
+        if (spin_ns > 0) {
+            // Asleep to spin_ns before the deadline, then the clock polled up to it.
+            timespec wake = next;
+            add_ns(wake, -spin_ns);
+            while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &wake, nullptr) == EINTR) {
+            }
+            timespec t{};
+            do clock_gettime(CLOCK_MONOTONIC, &t);
+            while (later(next, t));
+        } else {
+            while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &next, nullptr) == EINTR) {
+            }
         }
     }
     if (opt_.zero_on_exit) {

@@ -35,6 +35,12 @@ struct RunnerOptions {
     // a force held on the device).
     bool zero_on_exit = false;
     TickBoundaryHook* hook = nullptr;
+    // The last part of each wait (ns) is spent polling the clock instead of asleep: a timer
+    // wake-up comes tens of us late now and then (a VM's timer, the kernel finishing other work
+    // on the CPU), which at 10 kHz is most of a 100 us period and the cause of the overruns seen
+    // beside the editor. Used only on a pinned thread (`core` >= 0: the CPU is the servo's own,
+    // so the polling takes nothing from anyone), and at most a fifth of the period.
+    long spin_ns = 20000;
 };
 
 // Splits the process's CPUs: removes the last one from the calling thread's affinity (so every

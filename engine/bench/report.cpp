@@ -179,6 +179,10 @@ nlohmann::json results_json(const BenchResults& r) {
         j["servo_beside_renderer"] = {{"alone", period(sb.alone)},
                                       {"beside", period(sb.beside)},
                                       {"p99_ratio", sb.alone.p99 > 0.0 ? sb.beside.p99 / sb.alone.p99 : 0.0},
+                                      {"rate_10k",
+                                       {{"alone", period(sb.alone_10k)},
+                                        {"beside", period(sb.beside_10k)},
+                                        {"p99_ratio", sb.alone_10k.p99 > 0.0 ? sb.beside_10k.p99 / sb.alone_10k.p99 : 0.0}}},
                                       {"fps", sb.fps},
                                       {"device", sb.device},
                                       {"scheduling", sb.scheduling}};
@@ -346,7 +350,7 @@ std::string results_markdown(const BenchResults& r, const ReportPlots* plots) {
         md += figure(plots, "render_frame.png");
     }
     const ServoBesideRenderer& sb = r.servo_beside;
-    md += "\n## Servo beside renderer (1 kHz, sim-cld block task)\n\n";
+    md += "\n## Servo beside renderer (1 kHz and 10 kHz, sim-cld block task)\n\n";
     if (!sb.skipped.empty()) {
         md += "Skipped: " + sb.skipped + "\n";
     } else {
@@ -357,10 +361,13 @@ std::string results_markdown(const BenchResults& r, const ReportPlots* plots) {
             md += std::string("| ") + name + " | " + duration(f.p50 * 1e9) + " | " + duration(f.p99 * 1e9) + " | " +
                   duration(f.max * 1e9) + " | " + std::to_string(f.overruns) + " / " + std::to_string(f.ticks) + " |\n";
         };
-        row("alone", sb.alone);
-        row("beside the renderer", sb.beside);
-        md += fmt("\np99 beside / alone: %.3f (issue 15's goal: at most 1.1).\n",
-                  sb.alone.p99 > 0.0 ? sb.beside.p99 / sb.alone.p99 : 0.0);
+        row("1 kHz, alone", sb.alone);
+        row("1 kHz, beside the renderer", sb.beside);
+        row("10 kHz, alone", sb.alone_10k);
+        row("10 kHz, beside the renderer", sb.beside_10k);
+        md += fmt("\np99 beside / alone: %.3f at 1 kHz, ", sb.alone.p99 > 0.0 ? sb.beside.p99 / sb.alone.p99 : 0.0) +
+              fmt("%.3f at 10 kHz (goal: at most 1.1; at 10 kHz also at most 1 overrun per 10,000 ticks).\n",
+                  sb.alone_10k.p99 > 0.0 ? sb.beside_10k.p99 / sb.alone_10k.p99 : 0.0);
     }
     return md;
 }

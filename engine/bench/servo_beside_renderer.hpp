@@ -4,6 +4,7 @@
 //
 // The servo is the one deadline loop (drivers/servo_runner.hpp: SCHED_FIFO when granted, pinned to
 // the last CPU, the one the editor reserves) on sim-cld running seed 000's block task. The
+// Both at 1 kHz and at 10 kHz. The
 // renderer is the offscreen path (scene -> draw list -> lavapipe or a GPU -> read back) with its
 // threads kept off the servo's CPU, as in the editor. What is left out is the editor's window:
 // under Xvfb the X server's frame copies are a third party the editor moves off the servo's CPU
@@ -26,7 +27,8 @@ struct ServoBesideRenderer {
     std::string scheduling;  // what the OS granted the servo thread
     std::string device;      // the renderer's Vulkan device
     double seconds = 0.0;    // s of each phase
-    ServoPeriodFigures alone, beside;
+    ServoPeriodFigures alone, beside;          // at 1 kHz (seed 000's rate)
+    ServoPeriodFigures alone_10k, beside_10k;  // at 10 kHz: a 100 us period, where wake-up latency shows
     std::uint64_t frames = 0;  // rendered during the "beside" phase
     double fps = 0.0;
 };
