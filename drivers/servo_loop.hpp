@@ -81,7 +81,8 @@ struct RealtimeReport {
 };
 
 // Runs loop.step() on its own thread at the loop's period for `ticks` ticks with absolute
-// deadlines (ServoRunner, servo_runner.hpp: the one deadline loop). Blocks until done.
+// deadlines (ServoRunner, servo_runner.hpp: the one deadline loop), pinned to the last CPU with
+// the calling thread kept off it meanwhile (reserve_servo_core). Blocks until done.
 RealtimeReport run_realtime(ServoLoop& loop, std::uint64_t ticks, int fifo_priority = 80);
 
 }  // namespace contactlab::drivers
