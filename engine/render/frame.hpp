@@ -50,10 +50,26 @@ struct FrameContent {
     float top_inset_px = 0.0f;
     float left_inset_px = 0.0f;
     float bottom_inset_px = 0.0f;
+    // px of the right edge covered (the editor's right column of panels): the force-scale bar is
+    // drawn left of it, never under the Plots panel.
+    float right_inset_px = 0.0f;
     // The proxy's state as a line of text at the top left (with `text`). The editor shows it in
     // a row of its own instead (proxy_status_text).
     bool status_line = true;
 };
+
+// Where the legend's bars go (px, top-left origin, their labels included): the length scale bar at
+// the bottom left and the force-scale bar (the arrow length of max_force) at the bottom right,
+// inside the insets. draw_legend draws exactly these; the editor's layout check reads them.
+struct PxBox {
+    float x = 0.0f, y = 0.0f, w = 0.0f, h = 0.0f;
+};
+struct LegendLayout {
+    PxBox scale_bar;
+    std::optional<PxBox> force_bar;  // with a finger only
+    double scale_bar_m = 0.01;       // m the scale bar stands for
+};
+LegendLayout legend_layout(const FrameContent& content, const View& view);
 
 // "x_f (1.0, 2.0) mm  phi 0.0 deg  contacts 1  |F| 0.500 N  l_d +0.00 mm": the status line.
 std::string proxy_status_text(const ProxyOutput& o);
