@@ -20,6 +20,14 @@ View default_view(const FrameContent& content, int width, int height) {
     return fit_view(box, width, height);
 }
 
+View fingertip_view(const FrameContent& content, int width, int height) {
+    Aabb box;
+    const double reach = 1.3 * content.shape.radius;  // m
+    box.grow(content.finger->finger - Vec2(reach));
+    box.grow(content.finger->finger + Vec2(reach));
+    return fit_view(box, width, height);
+}
+
 namespace parts {
 
 Metrics metrics_for(const View& view) {

@@ -67,6 +67,7 @@ struct PxBox {
 struct LegendLayout {
     PxBox scale_bar;
     std::optional<PxBox> force_bar;  // with a finger only
+    std::optional<PxBox> platform_key;  // with the wearable platform and text: its colours, top right
     double scale_bar_m = 0.01;       // m the scale bar stands for
 };
 LegendLayout legend_layout(const FrameContent& content, const View& view);
@@ -79,6 +80,10 @@ inline constexpr double kFlattenTolerancePx = 0.2;
 
 // The view that shows the whole scene and the finger (with its body), with a margin.
 View default_view(const FrameContent& content, int width, int height);
+// The view zoomed on the fingertip: the pad's circle and 30 % of R around it (seed 003's platform,
+// its cables and their anchors on the nail side all lie inside). The default view of a scene
+// 30 cm wide drew the 14 mm platform a few pixels long. Needs content.finger.
+View fingertip_view(const FrameContent& content, int width, int height);
 
 // Fills `out` (its size is the view's) with the frame: build_scene_layer, then build_overlay_layer.
 void build_frame(const FrameContent& content, const View& view, const Theme& theme, DrawList& out);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 namespace contactlab::render::parts {
 namespace {
@@ -72,6 +73,7 @@ void draw_legend(const FrameContent& c, const View& view, const Theme& theme, co
             draw_text(out, {xr - size.x, b.y}, label, theme.force, m.text_scale);
         }
     }
+    draw_platform_key(c, view, theme, out);  // the wearable's colours, with the text
     // Status line, top left: the proxy's state in the UI's units (mm, N, degrees).
     const float pad = std::round(m.dot_radius * 2.0f);
     if (c.text && c.finger && c.status_line)
@@ -82,6 +84,38 @@ void draw_legend(const FrameContent& c, const View& view, const Theme& theme, co
 }  // namespace contactlab::render::parts
 
 namespace contactlab::render {
+namespace {
+
+constexpr float kKeySwatch = 12.0f;  // px (times the text scale) of each key entry's colour line
+
+// The wearable's key: what each colour means and the arrows' full lengths.
+std::vector<std::string> platform_key_lines(const FrameContent& c) {
+    char cable[96], force[96];
+    std::snprintf(cable, sizeof cable, "cable tension (full arrow %.2f N)", c.platform->full_tension);
+    std::snprintf(force, sizeof force, "force on the finger (full arrow %.2f N)", c.max_force);
+    return {cable, force};
+}
+
+}  // namespace
+
+void parts::draw_platform_key(const FrameContent& c, const View& view, const Theme& theme, DrawList& out) {
+    const LegendLayout l = legend_layout(c, view);
+    if (!l.platform_key) return;
+    const parts::Metrics m = parts::metrics_for(view);
+    const float pad = std::round(m.dot_radius * 2.0f), s = static_cast<float>(m.text_scale);
+    const PxBox& b = *l.platform_key;
+    out.fill_rect({b.x, b.y}, {b.x + b.w, b.y + b.h}, theme.background.with_alpha(200));
+    float y = b.y + 0.5f * pad;
+    const Color colours[2] = {theme.cable, theme.force};
+    int i = 0;
+    for (const std::string& line : platform_key_lines(c)) {
+        const P2 sz = text_size(line, m.text_scale);
+        out.line({b.x + pad, y + 0.5f * sz.y}, {b.x + pad + kKeySwatch * s - 3.0f * s, y + 0.5f * sz.y}, m.arrow_width,
+                 colours[i++]);
+        draw_text(out, {b.x + pad + kKeySwatch * s, y}, line, theme.legend, m.text_scale);
+        y += sz.y + 4.0f * s;
+    }
+}
 
 LegendLayout legend_layout(const FrameContent& c, const View& view) {
     const parts::Metrics m = parts::metrics_for(view);
@@ -106,6 +140,17 @@ LegendLayout legend_layout(const FrameContent& c, const View& view) {
         const float w = std::max(m.arrow_full, size.x);
         const float xr = static_cast<float>(view.width) - c.right_inset_px - pad;
         l.force_bar = PxBox{xr - w, top, w, y - top};
+    }
+    if (c.platform && c.text) {
+        float w = 0.0f, h = 0.0f;
+        for (const std::string& line : platform_key_lines(c)) {
+            const P2 sz = text_size(line, m.text_scale);
+            w = std::max(w, sz.x);
+            h += sz.y + 4.0f * static_cast<float>(m.text_scale);
+        }
+        w += kKeySwatch * static_cast<float>(m.text_scale) + 2.0f * pad;
+        const float xr = static_cast<float>(view.width) - c.right_inset_px - pad;
+        l.platform_key = PxBox{xr - w, c.top_inset_px + pad, w, h + pad};
     }
     return l;
 }
