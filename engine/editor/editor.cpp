@@ -111,7 +111,7 @@ void handle_real_input(EditorState& s, GLFWwindow* window) {
         struct K { int key; const char* name; const char* ctrl_name; };
         static const K keys[] = {
             {GLFW_KEY_SPACE, "space", nullptr}, {GLFW_KEY_DELETE, "delete", nullptr},
-            {GLFW_KEY_BACKSPACE, "delete", nullptr}, {GLFW_KEY_Z, nullptr, "ctrl+z"},
+            {GLFW_KEY_BACKSPACE, "delete", nullptr}, {GLFW_KEY_Z, "z", "ctrl+z"},
             {GLFW_KEY_Y, nullptr, "ctrl+y"}, {GLFW_KEY_S, nullptr, "ctrl+s"},
             {GLFW_KEY_ESCAPE, "escape", nullptr}, {GLFW_KEY_F, "f", nullptr},
             {GLFW_KEY_1, "1", nullptr}, {GLFW_KEY_2, "2", nullptr}, {GLFW_KEY_3, "3", nullptr},
@@ -488,6 +488,7 @@ int run_editor(const EditorOptions& o) {
                 };
                 std::vector<PanelPart> bars{{"scale bar", ui_rect(legend.scale_bar)}};
                 if (legend.force_bar) bars.push_back({"force-scale bar", ui_rect(*legend.force_bar)});
+                if (legend.platform_key) bars.push_back({"platform key", ui_rect(*legend.platform_key)});
                 set_canvas_parts(std::move(bars));
             }
             shown_proxy = content.finger;

@@ -95,6 +95,7 @@ void menu_bar(EditorState& s) {
         }
         if (ImGui::BeginMenu("View")) {
             if (ImGui::MenuItem("Fit to scene", "F")) cmd_fit(s);
+            if (ImGui::MenuItem("Zoom to fingertip", "Z")) cmd_zoom_fingertip(s);
             ImGui::MenuItem("C-space boundary", nullptr, &s.overlays.cspace);
             ImGui::MenuItem("Anticipation zones", nullptr, &s.overlays.zones);
             ImGui::MenuItem("Labels", nullptr, &s.labels);

@@ -120,7 +120,7 @@ TEST_CASE("layout: with sim-wearable and sim-cld at 1280x720 every plot and scal
     const std::string script = dir.file("devices.txt");
     write_text(script,
                "generate bumps\nfinger 0 5\n"
-               "device sim-wearable\nframes 5\nlayout\n"
+               "device sim-wearable\nkey z\nframes 5\nlayout\n"
                "device sim-cld\nframes 5\nlayout\n"
                "device mouse\nframes 5\nlayout\nquit\n");
     const auto p = run_under_xvfb({"edit", "--software", "--validation", "--width", "1280", "--height", "720",
@@ -131,6 +131,7 @@ TEST_CASE("layout: with sim-wearable and sim-cld at 1280x720 every plot and scal
     const auto blocks = layout_blocks(p.err);
     REQUIRE(blocks.size() == 3);
     check_block(blocks[0], 1280, 720, false);  // the wearable: no roller, no "roller err"
+    CHECK(named(blocks[0], "platform key") != nullptr);  // the cables' colour explained, uncovered
     const Part* section = named(blocks[0], "Tuning > Wearable platform (seed 003, live, not in the scene)");
     const Part* tuning = named(blocks[0], "Tuning");
     REQUIRE(section != nullptr);
