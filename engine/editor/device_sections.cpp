@@ -21,7 +21,8 @@ constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 bool section(const char* name) {
     const bool open = ImGui::CollapsingHeader(name, ImGuiTreeNodeFlags_DefaultOpen);
     const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
-    note_panel_part(std::string("Tuning > ") + name, Rect{a.x, a.y, b.x - a.x, b.y - a.y});
+    // Only what is on screen (a header scrolled out of the panel's sight is not).
+    if (ImGui::IsItemVisible()) note_panel_part(std::string("Tuning > ") + name, Rect{a.x, a.y, b.x - a.x, b.y - a.y});
     return open;
 }
 

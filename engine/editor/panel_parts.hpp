@@ -17,7 +17,7 @@ struct PanelPart {
 };
 
 // Panels: begin_panel_parts() at the start of the panels' frame, note_panel_part() as each is
-// drawn, end_panel_parts() at the end (the list then replaces the last frame's).
+// drawn (only when on screen: ImGui::IsItemVisible), end_panel_parts() at the end (the list then replaces the last frame's).
 void begin_panel_parts();
 void note_panel_part(std::string name, const Rect& r);
 void end_panel_parts();

@@ -332,7 +332,7 @@ void status_window(EditorState& s, const FrameInfo& info, const EditorLayout& la
         if (ImGui::Button(stopped ? "RELEASE STOP (space)" : "EMERGENCY STOP (space)", ImVec2(-1, 34))) cmd_toggle_stop(s);
         ImGui::PopStyleColor();
         const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
-        note_panel_part("Haptics > emergency stop", Rect{a.x, a.y, b.x - a.x, b.y - a.y});
+        if (ImGui::IsItemVisible()) note_panel_part("Haptics > emergency stop", Rect{a.x, a.y, b.x - a.x, b.y - a.y});
     }
     device_controls(s);
     if (s.servo) {
@@ -418,7 +418,7 @@ void plots_window(EditorState& s, const EditorLayout& layout, ImGuiCond cond) {
     const double window = std::min(5.0, static_cast<double>(s.history.capacity()) / rate);
     const auto plot = [&](const char* name, const char* unit, PlotHistory::Column c, float lo, float hi) {
         const Rect r = draw_live_plot(name, s.history.column(c), span, window, LivePlotSpec{name, unit, lo, hi});
-        note_panel_part(std::string(title) + " > " + name, r);
+        if (ImGui::IsItemVisible()) note_panel_part(std::string(title) + " > " + name, r);  // on screen only
     };
     const float fmax = static_cast<float>(std::max(0.1, s.doc.scene().force.max_force));
     const float nan = std::nanf("");
@@ -431,7 +431,7 @@ void plots_window(EditorState& s, const EditorLayout& layout, ImGuiCond cond) {
     // generated, net of what the device dissipated; a user raising Ke sees it climb.
     plot("budget used", "%", PlotHistory::budget_pct, 0.0f, 100.0f);
     const Rect axis = draw_time_axis(window);
-    note_panel_part(std::string(title) + " > time axis", axis);
+    if (ImGui::IsItemVisible()) note_panel_part(std::string(title) + " > time axis", axis);
     ImGui::End();
 }
 
