@@ -266,11 +266,7 @@ void cmd_fit(EditorState& s) {
 
 void cmd_zoom_fingertip(EditorState& s) {
     const Vec2 finger = s.pose_input || !s.servo || s.servo->snapshot().ticks == 0 ? s.pose.finger : s.servo->snapshot().finger;
-    const double reach = 1.3 * s.doc.scene().finger.radius;  // m, as render::fingertip_view
-    Aabb box;
-    box.grow(finger - Vec2(reach));
-    box.grow(finger + Vec2(reach));
-    s.camera.fit(box);
+    s.camera.fit(render::fingertip_box(finger, s.pose.phi, s.doc.scene().finger.radius));  // as `render --wearable`
     s.say("zoomed on the fingertip (F: the whole scene)");
 }
 

@@ -25,8 +25,8 @@ void cmd_undo(EditorState& s);
 void cmd_redo(EditorState& s);
 void cmd_delete(EditorState& s);
 void cmd_fit(EditorState& s);
-// Zooms on the fingertip (render::fingertip_view's box: the pad's circle and 30 % of R around it),
-// where seed 003's platform, its cables and the contact frame show; F goes back to the scene.
+// Zooms on the fingertip (render::fingertip_box: the pad's middle and R / 2 around it), where
+// seed 003's platform, its tension arrows and the contact frame show; F goes back to the scene.
 void cmd_zoom_fingertip(EditorState& s);
 void cmd_toggle_stop(EditorState& s);
 void cmd_set_tool(EditorState& s, Tool t);

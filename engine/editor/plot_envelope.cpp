@@ -56,15 +56,28 @@ std::vector<double> nice_ticks(double lo, double hi, int max_ticks) {
     std::vector<double> ticks;
     if (!(hi > lo) || !std::isfinite(lo) || !std::isfinite(hi) || max_ticks < 2) return ticks;
     const double raw = (hi - lo) / (max_ticks - 1);
-    const double decade = std::pow(10.0, std::floor(std::log10(raw)));
-    double step = decade;
-    for (double k : {1.0, 2.0, 5.0, 10.0})
-        if (k * decade >= raw) {
-            step = k * decade;
-            break;
+    // The ladder 1, 2, 5 x 10^k: the smallest step >= raw, then smaller ones while fewer than two
+    // round values fall inside (912..1088 us: 100 gives only 1000, 50 gives 950, 1000, 1050).
+    double decade = std::pow(10.0, std::floor(std::log10(raw)));
+    int k = 0;  // index into {1, 2, 5}
+    const double mult[3] = {1.0, 2.0, 5.0};
+    while (mult[k] * decade < raw) {
+        if (++k == 3) {
+            k = 0;
+            decade *= 10.0;
         }
-    for (double t = std::ceil(lo / step - 1e-9) * step; t <= hi + 1e-9 * step; t += step)
-        ticks.push_back(std::abs(t) < 1e-12 * step ? 0.0 : t);
+    }
+    for (int tries = 0; tries < 6; ++tries) {
+        const double step = mult[k] * decade;
+        ticks.clear();
+        for (double t = std::ceil(lo / step - 1e-9) * step; t <= hi + 1e-9 * step; t += step)
+            ticks.push_back(std::abs(t) < 1e-12 * step ? 0.0 : t);
+        if (ticks.size() >= 2) break;
+        if (--k < 0) {
+            k = 2;
+            decade /= 10.0;
+        }
+    }
     if (ticks.size() < 2) ticks = {lo, hi};  // a span narrower than one step: its ends
     return ticks;
 }

@@ -23,8 +23,9 @@ std::vector<ColumnRange> column_envelope(const std::vector<float>& values, int c
 // 1e-6 of their size, so a constant trace gets an axis).
 void value_range(const std::vector<float>& values, float& lo, float& hi);
 
-// Round tick values (1, 2 or 5 times a power of ten apart) from lo to hi, at most max_ticks of
-// them, at least 2 when lo < hi.
+// Round tick values (1, 2 or 5 times a power of ten apart) from lo to hi: at most max_ticks of
+// them unless fewer than two round values would fall inside at that spacing (then the next finer
+// step), and at least 2 when lo < hi.
 std::vector<double> nice_ticks(double lo, double hi, int max_ticks);
 
 }  // namespace contactlab::editor

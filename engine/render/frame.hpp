@@ -80,9 +80,12 @@ inline constexpr double kFlattenTolerancePx = 0.2;
 
 // The view that shows the whole scene and the finger (with its body), with a margin.
 View default_view(const FrameContent& content, int width, int height);
-// The view zoomed on the fingertip: the pad's circle and 30 % of R around it (seed 003's platform,
-// its cables and their anchors on the nail side all lie inside). The default view of a scene
-// 30 cm wide drew the 14 mm platform a few pixels long. Needs content.finger.
+// The view zoomed on the fingertip: the pad's middle and half the pad radius R around it, where
+// seed 003's platform (14 mm), its tension arrows and the contact frame lie (the cables run on,
+// out of the picture, to the nail side). The default view of a scene 30 cm wide drew the platform
+// a few pixels long. fingertip_box is the part of the world it frames (m); the view needs
+// content.finger.
+Aabb fingertip_box(Vec2 finger, double phi, double radius);
 View fingertip_view(const FrameContent& content, int width, int height);
 
 // Fills `out` (its size is the view's) with the frame: build_scene_layer, then build_overlay_layer.

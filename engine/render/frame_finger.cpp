@@ -116,8 +116,11 @@ void draw_proxy_state(const FrameContent& c, const View& view, const Theme& them
         if (c.text) {
             draw_text(out, t_end + P2(3.0f, 3.0f), "t", theme.legend, m.text_scale);
             draw_text(out, n_end + P2(3.0f, -3.0f), "n", theme.legend, m.text_scale);
+            // Under the origin, on the side away from the finger (n points into it).
             const P2 size = text_size("contact frame", m.text_scale);
-            draw_text(out, o_px - P2(size.x + 6.0f, -4.0f), "contact frame", theme.legend, m.text_scale);
+            const P2 away = -n_px / glm::length(n_px);
+            const P2 at = o_px + away * (2.5f * m.dot_radius + 0.5f * size.y) - 0.5f * size;
+            draw_text(out, at, "contact frame", theme.legend, m.text_scale);
         }
     }
 
