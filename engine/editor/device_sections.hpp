@@ -15,7 +15,7 @@ bool device_has_platform(const EditorState& s);
 int live_plot_count(const EditorState& s);
 
 inline constexpr const char* kRollerSection = "Roller PID (live, not in the scene)";
-inline constexpr const char* kWearableSection = "Wearable platform (seed 003, live, not in the scene)";
+inline constexpr const char* kWearableSection = "Wearable platform (seed 003, live)";
 
 // Each draws its collapsing section (nothing for a device without the part) and notes its header
 // as "Tuning > NAME" for the `layout` command (panel_parts.hpp).

@@ -132,7 +132,7 @@ TEST_CASE("layout: with sim-wearable and sim-cld at 1280x720 every plot and scal
     REQUIRE(blocks.size() == 3);
     check_block(blocks[0], 1280, 720, false);  // the wearable: no roller, no "roller err"
     CHECK(named(blocks[0], "platform key") != nullptr);  // the cables' colour explained, uncovered
-    const Part* section = named(blocks[0], "Tuning > Wearable platform (seed 003, live, not in the scene)");
+    const Part* section = named(blocks[0], "Tuning > Wearable platform (seed 003, live)");
     const Part* tuning = named(blocks[0], "Tuning");
     REQUIRE(section != nullptr);
     REQUIRE(tuning != nullptr);
