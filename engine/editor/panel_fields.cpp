@@ -1,12 +1,14 @@
 // panel_fields.cpp — the Tuning panel's field widgets (see panel_fields.hpp).
 #include "engine/editor/panel_fields.hpp"
 
+#include "engine/editor/panel_parts.hpp"
 #include "engine/editor/parameter_edit.hpp"
 
 #include <imgui.h>
 
 #include <algorithm>
 #include <cstdio>
+#include <string>
 
 namespace contactlab::editor {
 
@@ -41,11 +43,18 @@ void edit_field(EditorState& s, const char* label, const char* name, double lo, 
     if (changed) set_parameter(s, name, shown / scale, EditKind::drag_step);
     if (ImGui::IsItemDeactivated()) s.doc.end_continuous();
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("drag, or Ctrl+click to type a value");
+    const bool visible = ImGui::IsItemVisible();
+    const ImVec2 s0 = ImGui::GetItemRectMin(), s1 = ImGui::GetItemRectMax();
     char value[32];
     std::snprintf(value, sizeof value, fmt, parameter_value(s, name).value_or(0.0) * scale);
     ImGui::SameLine(0.0f, ImGui::GetStyle().ItemInnerSpacing.x);
     ImGui::AlignTextToFramePadding();
     ImGui::TextUnformatted(value);
+    if (visible) {  // for the layout test: the value's box never meets the slider's
+        const ImVec2 v0 = ImGui::GetItemRectMin(), v1 = ImGui::GetItemRectMax();
+        note_panel_part(std::string("Tuning > slider ") + label, Rect{s0.x, s0.y, s1.x - s0.x, s1.y - s0.y});
+        note_panel_part(std::string("Tuning > value ") + label, Rect{v0.x, v0.y, v1.x - v0.x, v1.y - v0.y});
+    }
     ImGui::SameLine(x0 + total + ImGui::GetStyle().ItemInnerSpacing.x);
     ImGui::TextUnformatted(label);
     ImGui::PopID();

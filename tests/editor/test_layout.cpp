@@ -91,6 +91,19 @@ void check_block(const std::vector<Part>& parts, double width, double height, bo
         CHECK(q->y + q->h <= plots->y + plots->h + in_eps);
     }
     CHECK((named(parts, "Plots (last 5 s) > roller err") != nullptr) == roller);
+    // A slider's value has its own box beside the slider: the handle never covers the digits.
+    int sliders = 0;
+    for (const Part& sl : parts) {
+        const std::string tag = "Tuning > slider ";
+        if (sl.name.rfind(tag, 0) != 0) continue;
+        ++sliders;
+        const Part* v = named(parts, "Tuning > value " + sl.name.substr(tag.size()));
+        CAPTURE(sl.name);
+        REQUIRE(v != nullptr);
+        CHECK(v->w > 0.0);
+        CHECK(v->x >= sl.x + sl.w);  // right of the slider, not on it
+    }
+    CHECK(sliders >= 3);  // Ke, max force, finger R at least are on screen
     const Part* haptics = named(parts, "Haptics");
     const Part* stop = named(parts, "Haptics > emergency stop");
     if (haptics && stop) CHECK(stop->y + stop->h <= haptics->y + haptics->h + in_eps);
