@@ -247,6 +247,15 @@ void trial_values(EditorState& s) {
     ImGui::Text("mu s, d      %.2f, %.2f", law.mu_static, law.mu_dynamic);
     ImGui::Text("finger R, L  %.1f, %.1f mm", sc.finger.radius * 1e3, sc.finger.length * 1e3);
     if (s.haptics) ImGui::Text("servo        %.0f Hz", s.haptics->rate());
+    // The device's own live values, shown as the trial runs with them (not editable either).
+    if (device_has_roller(s))
+        ImGui::Text("roller kff   %.2f V s/m, cutoff %.1f Hz", s.roller.kff, s.roller.ff_cutoff_hz);
+    if (device_has_platform(s)) {
+        const wearable::RigTuning& w = s.wearable;
+        ImGui::Text("wearable     force Kp %.3g, Kd %.3g; position Kp %.3g, Kd %.3g", w.force_kp, w.force_kd,
+                    w.position_kp, w.position_kd);
+        ImGui::Text("             fit %s, FSR noise %.4f N", w.seed_fit ? "seed" : "none", w.fsr_noise);
+    }
 }
 
 void tuning_window(EditorState& s, const EditorLayout& layout, ImGuiCond cond) {
