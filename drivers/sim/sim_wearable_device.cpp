@@ -111,6 +111,12 @@ void SimWearableDevice::write(const DeviceCommand& cmd) noexcept {
 
 void SimWearableDevice::advance(double dt) noexcept {
     if (!rig_ || !(dt > 0.0) || state_ == DeviceState::disconnected) return;
+    if (const std::uint64_t serial = tuning_serial_.load(std::memory_order_acquire); serial != tuning_applied_) {
+        const RigTuning t = tuning_.load();
+        apply_tuning(p_.rig, t);  // a later open() assembles the rig as tuned
+        rig_->retune(t);
+        tuning_applied_ = serial;
+    }
     since_command_ += dt;
     if (since_command_ > p_.watchdog_timeout && state_ != DeviceState::fault)
         set_fault(DeviceFaultCode::watchdog, "no command within the watchdog timeout");
@@ -121,6 +127,10 @@ void SimWearableDevice::advance(double dt) noexcept {
     const Pose& rest = p_.rig.plant.platform.rest;
     v.roll = xi(3) - rest(3);
     v.press = xi(2) - rest(2);
+    v.pitch = xi(4) - rest(4);
+    v.tension_limit = stall_cable_force(p_.rig.plant.motor);
+    v.control = rig_->output().status;
+    v.position_mode = rig_->mode() == RigMode::position;
     for (int i = 0; i < 3; ++i) {
         v.tension[i] = rig_->plant().tension()(i);
         v.fsr[i] = rig_->fsr()(i);

@@ -21,6 +21,10 @@
 #include "drivers/hand_path.hpp"
 #include "haptics/servo_seqlock.hpp"
 #include "haptics/wearable/rig.hpp"
+#include "haptics/wearable/rig_tuning.hpp"
+
+#include <atomic>
+#include <cstdint>
 
 #include <optional>
 
@@ -32,8 +36,12 @@ struct WearablePlatformView {
     bool valid = false;                 // false before open()
     double roll = 0.0;                  // rad, from the rest pose
     double press = 0.0;                 // m, p_z from the rest pose (+ into the pad)
+    double pitch = 0.0;                 // rad, beta from the rest pose
     std::array<double, 3> tension{};    // N, the plant's
     std::array<double, 3> fsr{};        // N, the last readings
+    double tension_limit = 0.0;         // N, the motors' stall cable force (no cable holds more)
+    wearable::ControlStatus control = wearable::ControlStatus::ok;  // the PD loop's last tick
+    bool position_mode = false;         // the rig's loop: position (Fig. 6) or force (Fig. 5)
 };
 
 struct SimWearableParams {
@@ -63,6 +71,13 @@ public:
     const wearable::WearableRig* rig() const noexcept { return rig_ ? &*rig_ : nullptr; }
     // The platform for drawing, from any thread.
     WearablePlatformView platform_view() const noexcept { return view_.load(); }
+    // Live gains, fit mode and FSR noise (checked by the caller: rig_tuning_problem), from any
+    // thread; the servo thread applies them at its next advance(). Kept across close/open.
+    void set_tuning(const wearable::RigTuning& t) noexcept {
+        tuning_.store(t);
+        tuning_serial_.fetch_add(1, std::memory_order_release);
+    }
+    wearable::RigTuning tuning() const noexcept { return tuning_.load(); }
 
 private:
     void set_fault(DeviceFaultCode code, const char* detail) noexcept;
@@ -75,6 +90,9 @@ private:
     DeviceFault fault_;
     double since_command_ = 0.0;  // s
     Seqlock<WearablePlatformView> view_;
+    Seqlock<wearable::RigTuning> tuning_{wearable::tuning_of(p_.rig)};
+    std::atomic<std::uint64_t> tuning_serial_{0};  // bumped by set_tuning
+    std::uint64_t tuning_applied_ = 0;             // servo thread: the serial in effect
 };
 
 }  // namespace contactlab::drivers::sim

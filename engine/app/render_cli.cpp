@@ -1,7 +1,8 @@
 // render_cli.cpp — the `render` subcommand: a scene drawn offscreen with Vulkan into a PNG.
 //
 //   contactlab render SCENE.json --output OUT.png [--width 1280] [--height 720]
-//       [--finger x,y,phi] [--overlay cspace,zones] [--theme dark|light] [--wearable] [--software]
+//       [--finger x,y,phi] [--overlay cspace,zones] [--theme dark|light] [--wearable]
+//       [--view X Y W H] [--software]
 //
 // The finger, proxy, force and contacts are what the haptics Proxy computes for that finger
 // configuration approached from free space (engine/render/finger_state.hpp). Without a Vulkan
@@ -30,6 +31,7 @@ struct RenderArgs {
     bool software = false;
     bool no_text = false;
     bool wearable = false;
+    std::vector<double> view_mm;       // X Y W H (mm): lower-left corner, width, height
 #ifdef NDEBUG
     bool validation = false;
 #else
@@ -76,6 +78,17 @@ int render_main(const RenderArgs& args) {
     req.theme = *theme;
     req.text = !args.no_text;
     req.wearable = args.wearable;
+    if (!args.view_mm.empty()) {
+        const auto& v = args.view_mm;
+        if (v.size() != 4) throw BadInput("--view: expected X Y W H (mm), got " + std::to_string(v.size()) + " number(s)");
+        for (double d : v)
+            if (!std::isfinite(d)) throw BadInput("--view: X Y W H must be finite numbers (mm)");
+        if (!(v[2] > 0.0 && v[3] > 0.0)) throw BadInput("--view: W and H must be > 0 mm");
+        Aabb box;
+        box.grow(Vec2(v[0], v[1]) * 1e-3);
+        box.grow(Vec2(v[0] + v[2], v[1] + v[3]) * 1e-3);
+        req.view_box = box;
+    }
 
     render::ContextOptions options;
     options.software = args.software;
@@ -117,7 +130,13 @@ void register_render_command(CLI::App& app, int& rc) {
     cmd->add_flag("--no-text", args.no_text, "Leave out the labels (scale and force values, status line)");
     cmd->add_flag("--wearable", args.wearable,
                   "Draw seed 003's wearable platform under the pad as the servo would command it for this contact "
-                  "(tilt, press, cables and their tensions)");
+                  "(tilt, press, cables and their tensions, the contact frame), zoomed on the fingertip unless --view");
+    cmd->add_option("--view", args.view_mm,
+                    "The part of the world to draw: X Y W H in mm (lower-left corner, width, height; also X,Y,W,H), "
+                    "fitted to the image; default: the whole scene (with --wearable: the fingertip)")
+        ->expected(4)
+        ->delimiter(',')
+        ->allow_extra_args(false);
     cmd->add_flag("--software", args.software, "Use the CPU Vulkan device (lavapipe): bit-stable output");
     cmd->add_flag("--validation,!--no-validation", args.validation,
                   "Vulkan validation layers (default: on in debug builds); any validation message makes the "

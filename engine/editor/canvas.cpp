@@ -264,6 +264,12 @@ void cmd_fit(EditorState& s) {
     s.camera.fit(box);
 }
 
+void cmd_zoom_fingertip(EditorState& s) {
+    const Vec2 finger = s.pose_input || !s.servo || s.servo->snapshot().ticks == 0 ? s.pose.finger : s.servo->snapshot().finger;
+    s.camera.fit(render::fingertip_box(finger, s.pose.phi, s.doc.scene().finger.radius));  // as `render --wearable`
+    s.say("zoomed on the fingertip (F: the whole scene)");
+}
+
 void cmd_toggle_stop(EditorState& s) {
     if (!s.servo) return;
     if (s.servo->stopped()) {
@@ -315,6 +321,7 @@ bool canvas_key(EditorState& s, const std::string& name) {
     else if (name == "ctrl+s") cmd_save(s, {});
     else if (name == "escape") s.pending.clear();
     else if (name == "f") cmd_fit(s);
+    else if (name == "z") cmd_zoom_fingertip(s);
     else if (name == "1") cmd_set_tool(s, Tool::finger);
     else if (name == "2") cmd_set_tool(s, Tool::select);
     else if (name == "3") cmd_set_tool(s, Tool::line);

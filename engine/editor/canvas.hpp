@@ -25,6 +25,9 @@ void cmd_undo(EditorState& s);
 void cmd_redo(EditorState& s);
 void cmd_delete(EditorState& s);
 void cmd_fit(EditorState& s);
+// Zooms on the fingertip (render::fingertip_box: the pad's middle and R / 2 around it), where
+// seed 003's platform, its tension arrows and the contact frame show; F goes back to the scene.
+void cmd_zoom_fingertip(EditorState& s);
 void cmd_toggle_stop(EditorState& s);
 void cmd_set_tool(EditorState& s, Tool t);
 void cmd_rotate_finger(EditorState& s, double dphi);  // rad

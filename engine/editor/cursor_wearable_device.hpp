@@ -18,6 +18,9 @@ public:
     // --- UI thread ---------------------------------------------------------------------------
     void set_pose(const MousePose& p) noexcept override { pose_.store(p); }
     drivers::sim::WearablePlatformView platform_view() const noexcept { return inner_.platform_view(); }
+    // The Wearable section's live gains, fit mode and FSR noise (parameter_edit.hpp checks them).
+    void set_tuning(const wearable::RigTuning& t) noexcept { inner_.set_tuning(t); }
+    wearable::RigTuning tuning() const noexcept { return inner_.tuning(); }
 
     // --- drivers::Device (servo thread, except open/close) ------------------------------------
     const char* name() const noexcept override { return "sim-wearable"; }

@@ -10,6 +10,8 @@
 #include "engine/editor/haptics_commands.hpp"
 #include "engine/editor/imgui_layer.hpp"
 #include "engine/editor/panels.hpp"
+#include "engine/editor/device_sections.hpp"
+#include "engine/editor/panel_parts.hpp"
 #include "engine/editor/redraw_policy.hpp"
 #include "engine/editor/experiment_mode.hpp"
 #include "engine/experiments/run_meta.hpp"
@@ -109,7 +111,7 @@ void handle_real_input(EditorState& s, GLFWwindow* window) {
         struct K { int key; const char* name; const char* ctrl_name; };
         static const K keys[] = {
             {GLFW_KEY_SPACE, "space", nullptr}, {GLFW_KEY_DELETE, "delete", nullptr},
-            {GLFW_KEY_BACKSPACE, "delete", nullptr}, {GLFW_KEY_Z, nullptr, "ctrl+z"},
+            {GLFW_KEY_BACKSPACE, "delete", nullptr}, {GLFW_KEY_Z, "z", "ctrl+z"},
             {GLFW_KEY_Y, nullptr, "ctrl+y"}, {GLFW_KEY_S, nullptr, "ctrl+s"},
             {GLFW_KEY_ESCAPE, "escape", nullptr}, {GLFW_KEY_F, "f", nullptr},
             {GLFW_KEY_1, "1", nullptr}, {GLFW_KEY_2, "2", nullptr}, {GLFW_KEY_3, "3", nullptr},
@@ -382,7 +384,7 @@ int run_editor(const EditorOptions& o) {
             draw_panels(s, info, shown_proxy);
             // The fixed parts' px (ImGui units times the framebuffer scale).
             const float ui_scale = ImGui::GetIO().DisplayFramebufferScale.y;
-            const EditorLayout layout = current_layout();
+            const EditorLayout layout = current_layout(live_plot_count(s));
             ui_timer.stop();
             StageTimer imgui_timer(&stages, Stage::imgui);
             imgui.render();
@@ -432,6 +434,10 @@ int run_editor(const EditorOptions& o) {
                     s.say("servo kept its parameters: " + problem, true);
                 published = params;
             }
+            // The Wearable section's gains, fit mode and FSR noise, to the platform when they differ
+            // from its own (a new device starts with the defaults and gets them here).
+            if (auto* wd = dynamic_cast<CursorWearableDevice*>(s.device); wd && !(wd->tuning() == s.wearable))
+                wd->set_tuning(s.wearable);
             drain_servo();
 
             servo_timer.stop();
@@ -471,6 +477,20 @@ int run_editor(const EditorOptions& o) {
             content.top_inset_px = layout.canvas_top * ui_scale;
             content.left_inset_px = layout.canvas_left * ui_scale;
             content.bottom_inset_px = layout.canvas_bottom * ui_scale;
+            // The legend's bars between the panel columns: the force-scale bar used to lie under the
+            // Plots panel, the length scale bar under the Tuning panel.
+            content.left_inset_px = (layout.tuning.right() + kPanelGap) * ui_scale;
+            content.right_inset_px = (static_cast<float>(ext.width) / ui_scale - layout.haptics.x + kPanelGap) * ui_scale;
+            {
+                const render::LegendLayout legend = render::legend_layout(content, s.camera.view());
+                const auto ui_rect = [&](const render::PxBox& b) {
+                    return Rect{b.x / ui_scale, b.y / ui_scale, b.w / ui_scale, b.h / ui_scale};
+                };
+                std::vector<PanelPart> bars{{"scale bar", ui_rect(legend.scale_bar)}};
+                if (legend.force_bar) bars.push_back({"force-scale bar", ui_rect(*legend.force_bar)});
+                if (legend.platform_key) bars.push_back({"platform key", ui_rect(*legend.platform_key)});
+                set_canvas_parts(std::move(bars));
+            }
             shown_proxy = content.finger;
             const int w = static_cast<int>(ext.width), h = static_cast<int>(ext.height);
             if (scene_list.width() != w || scene_list.height() != h) {

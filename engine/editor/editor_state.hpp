@@ -11,6 +11,7 @@
 #include "engine/editor/plot_history.hpp"
 #include "engine/editor/scene_edit.hpp"
 #include "engine/render/frame.hpp"
+#include "haptics/wearable/rig_tuning.hpp"
 
 #include <optional>
 #include <string>
@@ -65,6 +66,9 @@ struct EditorState {
     char replay_path[512] = "replay.csv";
     RollerGains roller;                // published with the scene's Ke and max force
     double roller_travel = 0.0;        // m of roller travel l_d may use (0: the device's whole)
+    // Seed 003's platform, when the device is sim-wearable: its live gains, fit mode and FSR
+    // noise (the Wearable section), sent to the device whenever they differ from its own.
+    wearable::RigTuning wearable = wearable::tuning_of(wearable::seed_fit_rig());
     PlotHistory history;
     // The most recent fault the servo reported (kept after it recovers), from the tick records.
     ServoFault last_fault = ServoFault::none;

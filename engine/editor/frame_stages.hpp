@@ -13,7 +13,7 @@ namespace contactlab::editor {
 enum class Stage {
     events,          // glfwPollEvents: the window system's input
     ui,              // ImGui new frame, input or script, menus and panels (the plots apart)
-    plots,           // the Plots panel's five rolling plots
+    plots,           // the Plots panel's rolling plots (five or six, min/max envelopes)
     imgui,           // ImGui::Render: the panels' vertices
     servo_sync,      // scene/parameters published, tick records drained (plots, recording)
     scene_geometry,  // grid and solids into the draw list (or the cached layer reused)

@@ -3,7 +3,8 @@
 // labels and the Tuning panel's top). From the top: the menu bar, the status row (the proxy's
 // state), the top ruler; the left ruler down the left edge; the message row along the bottom.
 // The Tuning panel fills the left column between the rulers and the message row, the Haptics
-// and Plots panels share the right column. Panels keep the user's moves after the first frame
+// and Plots panels share the right column: the Plots panel as tall as its plots need (issue 29:
+// every plot in sight at 1280 x 720), the Haptics panel the rest. Panels keep the user's moves after the first frame
 // until the window's size changes, and collapse; the canvas is drawn under them.
 #pragma once
 
@@ -31,8 +32,13 @@ inline constexpr float kLeftRulerWidth = 44.0f;  // px: the left ruler's band (l
 inline constexpr float kTuningWidth = 372.0f;     // px: the longest Tuning label fits
 inline constexpr float kRightColumnWidth = 360.0f;
 inline constexpr float kPanelGap = 6.0f;          // px between panels and the fixed parts
+inline constexpr float kMinHapticsHeight = 150.0f; // px: the Haptics panel keeps its emergency stop in sight
 
-// `row` is ImGui's frame height (px): the menu bar's, and each status row's.
-EditorLayout editor_layout(int width, int height, float row);
+// px the Plots panel needs for `plots` plots (live_plot.hpp) and the time axis under them.
+float plots_panel_height(int plots, float row);
+
+// `row` is ImGui's frame height (px): the menu bar's, and each status row's. `plots`: how many
+// plots the Plots panel shows for the device (6 with a roller, 5 without).
+EditorLayout editor_layout(int width, int height, float row, int plots = 6);
 
 }  // namespace contactlab::editor

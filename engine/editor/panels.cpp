@@ -4,6 +4,10 @@
 #include "engine/editor/canvas.hpp"
 #include "engine/editor/haptics_commands.hpp"
 #include "engine/editor/parameter_edit.hpp"
+#include "engine/editor/panel_fields.hpp"
+#include "engine/editor/device_sections.hpp"
+#include "engine/editor/live_plot.hpp"
+#include "engine/editor/panel_parts.hpp"
 #include "engine/editor/experiment_mode.hpp"
 #include "engine/editor/recovery.hpp"
 #include "engine/render/frame.hpp"
@@ -20,44 +24,6 @@
 
 namespace contactlab::editor {
 namespace {
-
-// The refused value's message under its field (parameter_edit.hpp), until the field is set again.
-void field_error_line(const EditorState& s, const char* name) {
-    if (s.field_error_name != name) return;
-    ImGui::PushTextWrapPos(0.0f);
-    ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "refused: %s", s.field_error.c_str());
-    ImGui::PopTextWrapPos();
-}
-
-// A grey explanatory line, wrapped to the panel (never cut at its edge).
-void wrapped_hint(const char* text) {
-    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-    ImGui::TextWrapped("%s", text);
-    ImGui::PopStyleColor();
-}
-
-// An ImGui slider bound to one tunable parameter (parameter_edit.hpp names): one undoable edit
-// per drag or entry, every step through set_parameter, so a refused value (Ctrl+click lets one
-// type past the slider's range) never shows as if it were in effect. `scale` converts the SI
-// value to the displayed unit (e.g. 1e3 for mm).
-void edit_field(EditorState& s, const char* label, const char* name, double lo, double hi, const char* fmt,
-                double scale = 1.0, bool log = false) {
-    double shown = parameter_value(s, name).value_or(0.0) * scale;
-    const double slo = lo * scale, shi = hi * scale;
-    const bool changed = ImGui::SliderScalar(label, ImGuiDataType_Double, &shown, &slo, &shi, fmt,
-                                             log ? ImGuiSliderFlags_Logarithmic : 0);
-    if (ImGui::IsItemActivated()) s.doc.begin_continuous(label);
-    if (changed) set_parameter(s, name, shown / scale, EditKind::drag_step);
-    if (ImGui::IsItemDeactivated()) s.doc.end_continuous();
-    field_error_line(s, name);
-}
-
-// A live parameter outside the scene (roller gains): typed, Enter or the step buttons apply it.
-void edit_live(EditorState& s, const char* label, const char* name, double step, double fast, const char* fmt) {
-    double v = parameter_value(s, name).value_or(0.0);
-    if (ImGui::InputDouble(label, &v, step, fast, fmt, ImGuiInputTextFlags_EnterReturnsTrue)) set_parameter(s, name, v);
-    field_error_line(s, name);
-}
 
 // Seed 004's other way to set the ellipsoid field: eccentricity e = k_normal / k_tangential and
 // total stiffness k (printed formula, force_law.hpp). Both sliders write k_tangential and
@@ -81,18 +47,6 @@ void edit_accuracy(EditorState& s) {
         ImGui::SetTooltip("exact: curves become arc splines within 2e-8 m\nflatten: chords within the tolerance below");
     if (sc.curves.mode == CurveMode::flatten)
         edit_field(s, "chord tolerance (um)", "tolerance", 1e-7, 1e-3, "%.2f", 1e6, true);
-}
-
-// The roller travel l_d may use (live, not in the scene): centred in the device's travel.
-void edit_roller_travel(EditorState& s) {
-    edit_live(s, "usable travel (mm)", "travel_mm", 0.0, 0.0, "%.1f");
-    if (ImGui::SmallButton("all")) set_parameter(s, "travel_mm", 0.0);
-    ImGui::SameLine();
-    if (ImGui::SmallButton("18 mm")) set_parameter(s, "travel_mm", 18.0);  // seed 002's CLD
-    if (s.roller_travel == 0.0) {
-        ImGui::SameLine();
-        ImGui::TextDisabled("(0: all of it)");
-    }
 }
 
 void menu_bar(EditorState& s) {
@@ -141,6 +95,7 @@ void menu_bar(EditorState& s) {
         }
         if (ImGui::BeginMenu("View")) {
             if (ImGui::MenuItem("Fit to scene", "F")) cmd_fit(s);
+            if (ImGui::MenuItem("Zoom to fingertip", "Z")) cmd_zoom_fingertip(s);
             ImGui::MenuItem("C-space boundary", nullptr, &s.overlays.cspace);
             ImGui::MenuItem("Anticipation zones", nullptr, &s.overlays.zones);
             ImGui::MenuItem("Labels", nullptr, &s.labels);
@@ -292,6 +247,15 @@ void trial_values(EditorState& s) {
     ImGui::Text("mu s, d      %.2f, %.2f", law.mu_static, law.mu_dynamic);
     ImGui::Text("finger R, L  %.1f, %.1f mm", sc.finger.radius * 1e3, sc.finger.length * 1e3);
     if (s.haptics) ImGui::Text("servo        %.0f Hz", s.haptics->rate());
+    // The device's own live values, shown as the trial runs with them (not editable either).
+    if (device_has_roller(s))
+        ImGui::Text("roller kff   %.2f V s/m, cutoff %.1f Hz", s.roller.kff, s.roller.ff_cutoff_hz);
+    if (device_has_platform(s)) {
+        const wearable::RigTuning& w = s.wearable;
+        ImGui::Text("wearable     force Kp %.3g, Kd %.3g; position Kp %.3g, Kd %.3g", w.force_kp, w.force_kd,
+                    w.position_kp, w.position_kd);
+        ImGui::Text("             fit %s, FSR noise %.4f N", w.seed_fit ? "seed" : "none", w.fsr_noise);
+    }
 }
 
 void tuning_window(EditorState& s, const EditorLayout& layout, ImGuiCond cond) {
@@ -314,6 +278,7 @@ void tuning_window(EditorState& s, const EditorLayout& layout, ImGuiCond cond) {
         return;
     }
     ImGui::PushItemWidth(170);
+    wearable_section(s);  // the attached platform first: what this device has (device_sections.hpp)
     if (ImGui::CollapsingHeader("Force (scene, undoable)", ImGuiTreeNodeFlags_DefaultOpen)) {
         const Scene& sc = s.doc.scene();
         int model = sc.force.law.model == ForceModel::spring ? 0 : 1;
@@ -354,13 +319,7 @@ void tuning_window(EditorState& s, const EditorLayout& layout, ImGuiCond cond) {
         edit_accuracy(s);
     }
     if (ImGui::CollapsingHeader("Servo rate", ImGuiTreeNodeFlags_DefaultOpen)) rate_controls(s);
-    if (ImGui::CollapsingHeader("Roller PID (live, not in the scene)", ImGuiTreeNodeFlags_DefaultOpen)) {
-        edit_live(s, "Kp (V/m)", "kp", 1000.0, 10000.0, "%.0f");
-        edit_live(s, "Ki (V/(m s))", "ki", 1e4, 1e5, "%.0f");
-        edit_live(s, "Kd (V s/m)", "kd", 1.0, 10.0, "%.1f");
-        edit_live(s, "max drive (V)", "max_drive", 0.5, 1.0, "%.1f");
-        edit_roller_travel(s);
-    }
+    roller_section(s);  // with a roller only (device_sections.hpp)
     selection_editor(s);  // also drops a selection the scene no longer has, so always called
     ImGui::PopItemWidth();
     ImGui::PopTextWrapPos();
@@ -375,13 +334,19 @@ void status_window(EditorState& s, const FrameInfo& info, const EditorLayout& la
         return;
     }
     ImGui::PushTextWrapPos(0.0f);  // long lines (a device fault, the scheduling) wrap, never cut
-    device_controls(s);
     if (s.servo) {
-        const ServoSnapshot snap = s.servo->snapshot();
+        // First, so that it stays in sight however short the panel (its text below scrolls).
         const bool stopped = s.servo->stopped();
         ImGui::PushStyleColor(ImGuiCol_Button, stopped ? ImVec4(0.3f, 0.5f, 0.3f, 1) : ImVec4(0.8f, 0.1f, 0.1f, 1));
         if (ImGui::Button(stopped ? "RELEASE STOP (space)" : "EMERGENCY STOP (space)", ImVec2(-1, 34))) cmd_toggle_stop(s);
         ImGui::PopStyleColor();
+        const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+        if (ImGui::IsItemVisible()) note_panel_part("Haptics > emergency stop", Rect{a.x, a.y, b.x - a.x, b.y - a.y});
+    }
+    device_controls(s);
+    if (s.servo) {
+        const ServoSnapshot snap = s.servo->snapshot();
+        const bool stopped = s.servo->stopped();
         const bool fault = snap.state == ServoState::fault;
         ImGui::TextColored(fault ? ImVec4(1, 0.35f, 0.3f, 1) : ImVec4(0.7f, 0.9f, 0.7f, 1), "servo: %s%s%s",
                            stopped ? "STOPPED (idle)" : to_string(snap.state), fault ? " - " : "",
@@ -404,12 +369,6 @@ void status_window(EditorState& s, const FrameInfo& info, const EditorLayout& la
                            "passivity budget used %.0f %% (%.0f of %.0f uJ)%s", 100.0 * used,
                            snap.observer_used * snap.observer_threshold * 1e6, snap.observer_threshold * 1e6,
                            snap.passivity_damping > 0.0 ? ", damping added" : "");
-        {
-            const auto& v = s.history.column(PlotHistory::budget_pct);
-            ImGui::SetNextItemWidth(-1.0f);
-            ImGui::PlotLines("##budget", v.data(), static_cast<int>(v.size()), 0, "budget used, % (5 s)", 0.0f, 100.0f,
-                             ImVec2(0.0f, 30.0f));
-        }
         const auto ps = s.history.period_stats(s.servo->period());
         ImGui::Text("servo %.0f Hz (T = %.0f us)", s.servo->rate(), s.servo->period() * 1e6);
         ImGui::Text("period p50 %.0f us  p99 %.0f us  max %.0f us", ps.p50 * 1e6, ps.p99 * 1e6, ps.max * 1e6);
@@ -457,27 +416,31 @@ void recovery_window(EditorState& s) {
 void plots_window(EditorState& s, const EditorLayout& layout, ImGuiCond cond) {
     ImGui::SetNextWindowPos(ImVec2(layout.plots.x, layout.plots.y), cond);
     ImGui::SetNextWindowSize(ImVec2(layout.plots.w, layout.plots.h), cond);
-    if (!ImGui::Begin("Plots (last 5 s)")) {
+    const char* title = "Plots (last 5 s)";
+    if (!ImGui::Begin(title)) {
         ImGui::End();
         return;
     }
-    const auto plot = [&](const char* label, PlotHistory::Column c, float lo, float hi) {
-        const auto& v = s.history.column(c);
-        float cur = v.empty() ? 0.0f : v.back();
-        char overlay[64];
-        std::snprintf(overlay, sizeof overlay, "%.3f", cur);
-        ImGui::TextUnformatted(label);
-        ImGui::PushID(label);
-        ImGui::SetNextItemWidth(-1.0f);  // PlotLines takes a width of 0 as "the item width"
-        ImGui::PlotLines("##plot", v.data(), static_cast<int>(v.size()), 0, overlay, lo, hi, ImVec2(0.0f, 38.0f));
-        ImGui::PopID();
+    // The values' time span: one per servo tick, up to the history's 5 s.
+    const double rate = s.servo ? s.servo->rate() : 1000.0;
+    const double span = static_cast<double>(s.history.size()) / rate;
+    const double window = std::min(5.0, static_cast<double>(s.history.capacity()) / rate);
+    const auto plot = [&](const char* name, const char* unit, PlotHistory::Column c, float lo, float hi) {
+        const Rect r = draw_live_plot(name, s.history.column(c), span, window, LivePlotSpec{name, unit, lo, hi});
+        if (ImGui::IsItemVisible()) note_panel_part(std::string(title) + " > " + name, r);  // on screen only
     };
     const float fmax = static_cast<float>(std::max(0.1, s.doc.scene().force.max_force));
-    plot("|F| (N)", PlotHistory::force_n, 0.0f, fmax * 1.05f);
-    plot("depth (mm)", PlotHistory::depth_mm, 0.0f, FLT_MAX);
-    plot("l_d (mm)", PlotHistory::l_d_mm, -10.0f, 10.0f);
-    plot("roller err (mm)", PlotHistory::roller_error_mm, FLT_MAX, FLT_MAX);
-    plot("period (us)", PlotHistory::period_us, 0.0f, FLT_MAX);
+    const float nan = std::nanf("");
+    plot("|F|", "N", PlotHistory::force_n, 0.0f, fmax * 1.05f);
+    plot("depth", "mm", PlotHistory::depth_mm, 0.0f, nan);
+    plot("l_d", "mm", PlotHistory::l_d_mm, -10.0f, 10.0f);
+    if (device_has_roller(s)) plot("roller err", "mm", PlotHistory::roller_error_mm, nan, nan);
+    plot("period", "us", PlotHistory::period_us, 0.0f, nan);
+    // The passivity observer's budget (haptics/safety.hpp): the share of its threshold the loop
+    // generated, net of what the device dissipated; a user raising Ke sees it climb.
+    plot("budget used", "%", PlotHistory::budget_pct, 0.0f, 100.0f);
+    const Rect axis = draw_time_axis(window);
+    if (ImGui::IsItemVisible()) note_panel_part(std::string(title) + " > time axis", axis);
     ImGui::End();
 }
 
@@ -499,9 +462,9 @@ bool begin_row(const char* id, const Rect& r) {
 
 }  // namespace
 
-EditorLayout current_layout() {
+EditorLayout current_layout(int plots) {
     const ImVec2 size = ImGui::GetIO().DisplaySize;
-    return editor_layout(static_cast<int>(size.x), static_cast<int>(size.y), ImGui::GetFrameHeight());
+    return editor_layout(static_cast<int>(size.x), static_cast<int>(size.y), ImGui::GetFrameHeight(), plots);
 }
 
 std::vector<LaidOut> laid_out() {
@@ -518,18 +481,28 @@ std::vector<LaidOut> laid_out() {
         parts.push_back({w->Name, Rect{w->Pos.x, w->Pos.y, w->Size.x, w->Size.y}, overflow, !popup, w->ContentSize.x,
                          w->ContentRegionRect.GetWidth()});
     }
+    // Parts inside the panels ("Tuning > Wearable ...", each plot): inside their window by design.
+    for (const PanelPart& p : panel_parts()) parts.push_back({p.name, p.rect, false, false});
+    // The canvas's scale bars: drawn under the panels, so no panel may cover them (tiled).
+    for (const PanelPart& p : canvas_parts()) parts.push_back({p.name, p.rect, false, true});
     return parts;
 }
 
 void draw_panels(EditorState& s, const FrameInfo& info, const std::optional<ProxyOutput>& proxy) {
-    const EditorLayout layout = current_layout();
+    const int plots = live_plot_count(s);
+    const EditorLayout layout = current_layout(plots);
     // Panels go where the layout says on the first frame and again whenever the window's size
-    // changes (a panel left where it was could end up off screen or over another); in between
-    // they stay where the user moved them.
+    // or the device's set of plots changes (a panel left where it was could end up off screen or
+    // over another, or leave a plot out of sight); in between they stay where the user moved them.
     static ImVec2 laid_out_for(0.0f, 0.0f);
+    static int laid_out_plots = 0;
     const ImVec2 size = ImGui::GetIO().DisplaySize;
-    const ImGuiCond cond = size.x != laid_out_for.x || size.y != laid_out_for.y ? ImGuiCond_Always : ImGuiCond_FirstUseEver;
+    const ImGuiCond cond = size.x != laid_out_for.x || size.y != laid_out_for.y || plots != laid_out_plots
+                               ? ImGuiCond_Always
+                               : ImGuiCond_FirstUseEver;
     laid_out_for = size;
+    laid_out_plots = plots;
+    begin_panel_parts();
     menu_bar(s);
     // Status row under the menu bar: the proxy's state, never over the canvas or the rulers.
     if (begin_row("##proxy status", layout.status_row) && proxy)
@@ -548,6 +521,7 @@ void draw_panels(EditorState& s, const FrameInfo& info, const std::optional<Prox
         ImGui::TextColored(s.message_is_error ? ImVec4(1, 0.4f, 0.3f, 1) : ImVec4(0.8f, 0.85f, 0.9f, 1), "%s",
                            s.message.c_str());
     ImGui::End();
+    end_panel_parts();
 }
 
 }  // namespace contactlab::editor

@@ -25,11 +25,14 @@ struct FrameInfo {
     int validation_messages = 0;
 };
 
-// The fixed layout for this frame's size (layout.hpp), in ImGui's units.
-EditorLayout current_layout();
+// The fixed layout for this frame's size (layout.hpp), in ImGui's units, for a Plots panel of
+// `plots` plots (device_sections.hpp: live_plot_count).
+EditorLayout current_layout(int plots = 6);
 
 // What is on screen, for the layout check (`layout` in scripts): the rulers and every visible
-// Dear ImGui window as drawn last frame, and whether its content is wider than its inside.
+// Dear ImGui window as drawn last frame, and whether its content is wider than its inside; then
+// the named parts inside the panels ("PANEL > PART", not tiled: a device section's header, each
+// plot, the emergency stop) and the canvas's scale bars (tiled: no panel may cover them).
 struct LaidOut {
     std::string name;
     Rect rect;

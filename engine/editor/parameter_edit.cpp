@@ -21,6 +21,7 @@ struct Candidate {
     Scene scene;
     RollerGains roller;
     double travel = 0.0;  // m
+    wearable::RigTuning wearable;
 };
 
 double eccentricity(const ForceLaw& law) { return law.k_normal / law.k_tangential; }
@@ -86,6 +87,23 @@ std::string apply(Candidate& c, std::string_view n, double v) {
         c.roller.kd = v;
     } else if (n == "max_drive") {
         c.roller.max_drive = v;
+    } else if (n == "roller_kff") {
+        c.roller.kff = v;
+    } else if (n == "ff_cutoff_hz") {
+        c.roller.ff_cutoff_hz = v;
+    } else if (n == "wearable_force_kp") {
+        c.wearable.force_kp = v;
+    } else if (n == "wearable_force_kd") {
+        c.wearable.force_kd = v;
+    } else if (n == "wearable_position_kp") {
+        c.wearable.position_kp = v;
+    } else if (n == "wearable_position_kd") {
+        c.wearable.position_kd = v;
+    } else if (n == "wearable_fit") {
+        if (v != 0.0 && v != 1.0) return "wearable_fit: 1 (the seed's measured 45 ms response) or 0 (Table 1's motor alone), got " + fmt(v);
+        c.wearable.seed_fit = v == 1.0;
+    } else if (n == "fsr_noise") {
+        c.wearable.fsr_noise = v;
     } else if (n == "travel_mm") {
         if (!(v >= 0.0 && v <= kMaxTravelMm))
             return "travel_mm: must lie in [0, " + fmt(kMaxTravelMm) + "] mm (0: the device's whole travel), got " + fmt(v);
@@ -109,6 +127,7 @@ std::string check(const EditorState& s, const Candidate& c) {
         return e.what();
     }
     if (std::string p = roller_gains_problem(c.roller); !p.empty()) return p;
+    if (std::string p = wearable::rig_tuning_problem(c.wearable); !p.empty()) return "wearable." + p;
     if (s.servo && s.haptics) {
         const ServoParams p = servo_params_for(c.scene, c.roller, s.haptics->watchdog_timeout(), c.travel);
         if (std::string problem = s.servo->params_problem(p); !problem.empty()) return problem;
@@ -142,7 +161,15 @@ const std::vector<ParameterInfo>& tunable_parameters() {
         {"ki", "V/(m s)", "roller PID integral gain", false},
         {"kd", "V s/m", "roller PID derivative gain", false},
         {"max_drive", "V", "roller drive limit", false},
+        {"roller_kff", "V s/m", "roller velocity feed-forward (0: seed 000's eq. 2 alone)", false},
+        {"ff_cutoff_hz", "Hz", "cut-off of the feed-forward's target-rate filter", false},
         {"travel_mm", "mm", "usable roller travel (0: the device's whole)", false},
+        {"wearable_force_kp", "N m/N", "wearable force loop K_p (seed 003 Fig. 5)", false},
+        {"wearable_force_kd", "N m s/N", "wearable force loop K_d", false},
+        {"wearable_position_kp", "N m/m", "wearable position loop K_p (seed 003 Fig. 6)", false},
+        {"wearable_position_kd", "N m s/m", "wearable position loop K_d", false},
+        {"wearable_fit", "", "1: the seed's measured 45 ms response, 0: Table 1's motor alone", false},
+        {"fsr_noise", "N", "wearable FSR noise (standard deviation)", false},
     };
     return all;
 }
@@ -169,6 +196,14 @@ std::optional<double> parameter_value(const EditorState& s, std::string_view n) 
     if (n == "kd") return s.roller.kd;
     if (n == "max_drive") return s.roller.max_drive;
     if (n == "travel_mm") return s.roller_travel * 1e3;
+    if (n == "roller_kff") return s.roller.kff;
+    if (n == "ff_cutoff_hz") return s.roller.ff_cutoff_hz;
+    if (n == "wearable_force_kp") return s.wearable.force_kp;
+    if (n == "wearable_force_kd") return s.wearable.force_kd;
+    if (n == "wearable_position_kp") return s.wearable.position_kp;
+    if (n == "wearable_position_kd") return s.wearable.position_kd;
+    if (n == "wearable_fit") return s.wearable.seed_fit ? 1.0 : 0.0;
+    if (n == "fsr_noise") return s.wearable.fsr_noise;
     return std::nullopt;
 }
 
@@ -177,7 +212,7 @@ std::string parameter_problem(const EditorState& s, std::string_view name, doubl
     if (!std::isfinite(value)) return std::string(name) + ": must be a finite number";
     if (experiment_running(s))
         return std::string(name) + ": the trial's values are the protocol's while an experiment runs (Tuning shows them)";
-    Candidate c{s.doc.scene(), s.roller, s.roller_travel};
+    Candidate c{s.doc.scene(), s.roller, s.roller_travel, s.wearable};
     if (std::string p = apply(c, name, value); !p.empty()) return p;
     if (std::string p = check(s, c); !p.empty()) return std::string(name) + ": " + p;
     return {};
@@ -190,10 +225,11 @@ bool set_parameter(EditorState& s, std::string_view name, double value, EditKind
         s.field_error = std::move(problem);
         return false;
     }
-    Candidate c{s.doc.scene(), s.roller, s.roller_travel};
+    Candidate c{s.doc.scene(), s.roller, s.roller_travel, s.wearable};
     apply(c, name, value);
     s.roller = c.roller;
     s.roller_travel = c.travel;
+    s.wearable = c.wearable;
     const ParameterInfo& info = *find(name);
     if (info.in_scene) {
         if (kind == EditKind::drag_step) s.doc.update_continuous(std::move(c.scene));

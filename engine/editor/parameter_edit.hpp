@@ -38,7 +38,9 @@ enum class EditKind { single, drag_step };
 
 // The value the user sees for `name` (what is in effect for the scene once valid): ke N/m,
 // max_force N, damping N s/m, mu_s, mu_d, k_t N/m, k_n N/m, eccentricity, total_k N/m,
-// tolerance m, finger_r m, pad_l m, kp V/m, ki V/(m s), kd V s/m, max_drive V, travel_mm mm.
+// tolerance m, finger_r m, pad_l m, kp V/m, ki V/(m s), kd V s/m, max_drive V, roller_kff V s/m, ff_cutoff_hz Hz, travel_mm mm,
+// wearable_force_kp N m/N, wearable_force_kd N m s/N, wearable_position_kp N m/m,
+// wearable_position_kd N m s/m, wearable_fit 1|0, fsr_noise N.
 // Empty for an unknown name.
 std::optional<double> parameter_value(const EditorState& s, std::string_view name);
 

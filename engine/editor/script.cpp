@@ -359,6 +359,12 @@ bool Script::run(EditorState& s, const Line& line, double now) {
             const drivers::sim::WearablePlatformView v = wd->platform_view();
             std::fprintf(stderr, " platform_roll_rad=%.17g platform_press_mm=%.17g platform_tension_n=%.17g",
                          v.roll, v.press * 1e3, v.tension[0] + v.tension[1] + v.tension[2]);
+            // The tuning the device holds (the Wearable section sends it when it differs).
+            const wearable::RigTuning t = wd->tuning();
+            std::fprintf(stderr,
+                         " platform_force_kp=%.17g platform_force_kd=%.17g platform_position_kp=%.17g "
+                         "platform_position_kd=%.17g platform_seed_fit=%d platform_fsr_noise_n=%.17g",
+                         t.force_kp, t.force_kd, t.position_kp, t.position_kd, t.seed_fit ? 1 : 0, t.fsr_noise);
         }
         std::fprintf(stderr, "\n");
     } else if (c == "layout") {

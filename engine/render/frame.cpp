@@ -2,6 +2,7 @@
 #include "engine/render/frame.hpp"
 
 #include "engine/render/frame_parts.hpp"
+#include "haptics/finger.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -18,6 +19,19 @@ View default_view(const FrameContent& content, int width, int height) {
         box.grow(content.finger->finger + Vec2(reach));
     }
     return fit_view(box, width, height);
+}
+
+Aabb fingertip_box(Vec2 finger, double phi, double radius) {
+    const Vec2 pad_mid = finger + radius * unit_at(pad_mid_angle(phi));
+    const double reach = 0.5 * radius;  // m
+    Aabb box;
+    box.grow(pad_mid - Vec2(reach));
+    box.grow(pad_mid + Vec2(reach));
+    return box;
+}
+
+View fingertip_view(const FrameContent& content, int width, int height) {
+    return fit_view(fingertip_box(content.finger->finger, content.finger->phi, content.shape.radius), width, height);
 }
 
 namespace parts {

@@ -50,10 +50,27 @@ struct FrameContent {
     float top_inset_px = 0.0f;
     float left_inset_px = 0.0f;
     float bottom_inset_px = 0.0f;
+    // px of the right edge covered (the editor's right column of panels): the force-scale bar is
+    // drawn left of it, never under the Plots panel.
+    float right_inset_px = 0.0f;
     // The proxy's state as a line of text at the top left (with `text`). The editor shows it in
     // a row of its own instead (proxy_status_text).
     bool status_line = true;
 };
+
+// Where the legend's bars go (px, top-left origin, their labels included): the length scale bar at
+// the bottom left and the force-scale bar (the arrow length of max_force) at the bottom right,
+// inside the insets. draw_legend draws exactly these; the editor's layout check reads them.
+struct PxBox {
+    float x = 0.0f, y = 0.0f, w = 0.0f, h = 0.0f;
+};
+struct LegendLayout {
+    PxBox scale_bar;
+    std::optional<PxBox> force_bar;  // with a finger only
+    std::optional<PxBox> platform_key;  // with the wearable platform and text: its colours, top right
+    double scale_bar_m = 0.01;       // m the scale bar stands for
+};
+LegendLayout legend_layout(const FrameContent& content, const View& view);
 
 // "x_f (1.0, 2.0) mm  phi 0.0 deg  contacts 1  |F| 0.500 N  l_d +0.00 mm": the status line.
 std::string proxy_status_text(const ProxyOutput& o);
@@ -63,6 +80,13 @@ inline constexpr double kFlattenTolerancePx = 0.2;
 
 // The view that shows the whole scene and the finger (with its body), with a margin.
 View default_view(const FrameContent& content, int width, int height);
+// The view zoomed on the fingertip: the pad's middle and half the pad radius R around it, where
+// seed 003's platform (14 mm), its tension arrows and the contact frame lie (the cables run on,
+// out of the picture, to the nail side). The default view of a scene 30 cm wide drew the platform
+// a few pixels long. fingertip_box is the part of the world it frames (m); the view needs
+// content.finger.
+Aabb fingertip_box(Vec2 finger, double phi, double radius);
+View fingertip_view(const FrameContent& content, int width, int height);
 
 // Fills `out` (its size is the view's) with the frame: build_scene_layer, then build_overlay_layer.
 void build_frame(const FrameContent& content, const View& view, const Theme& theme, DrawList& out);

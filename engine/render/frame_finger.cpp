@@ -6,9 +6,11 @@
 // straight body 2.5 R long back toward the hand.
 #include "engine/render/frame_parts.hpp"
 
+#include "engine/render/text.hpp"
 #include "haptics/finger.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <tuple>
 
 namespace contactlab::render::parts {
@@ -84,7 +86,7 @@ void draw_proxy_state(const FrameContent& c, const View& view, const Theme& them
         const Vec2 b_prox = centre - 0.004 * dir, b_dist = centre + 0.008 * dir;
         const Vec2 top = o.finger + c.shape.radius * n_in;
         const Vec2 a_prox = top - 0.011 * t, a_dist = top + 0.015 * t;
-        const Color cable = theme.finger_outline.with_alpha(150);
+        const Color cable = theme.cable.with_alpha(170);
         out.line(view.to_px(b_prox), view.to_px(a_prox), m.outline_width * 0.75f, cable);
         out.line(view.to_px(b_dist), view.to_px(a_dist), m.outline_width * 0.75f, cable);
         out.line(view.to_px(centre - 0.006 * dir), view.to_px(centre + 0.008 * dir), m.pad_width * 1.5f, theme.target);
@@ -96,7 +98,29 @@ void draw_proxy_state(const FrameContent& c, const View& view, const Theme& them
             const float dl = glm::length(d);
             if (dl < 0.5f) continue;
             const float len = static_cast<float>(std::min(q / pd.full_tension, 1.0)) * m.arrow_full;
-            arrow(from, from + d / dl * len, m.arrow_width * 0.75f, theme.force, out);
+            arrow(from, from + d / dl * len, m.arrow_width * 0.75f, theme.cable, out);
+            if (c.text) {
+                char label[32];
+                std::snprintf(label, sizeof label, "%.2f N", q);
+                draw_text(out, from + d / dl * len + P2(4.0f, 0.0f), label, theme.cable, m.text_scale);
+            }
+        }
+        // The contact frame at the platform's centre: t along the platform (toward the
+        // fingertip), n into the finger; labelled with the text.
+        const float axis = 0.35f * m.arrow_full;
+        const P2 o_px = view.to_px(centre);
+        const P2 t_px = view.to_px(centre + dir) - o_px, n_px = view.to_px(centre + (-std::sin(pd.roll) * t + std::cos(pd.roll) * n_in)) - o_px;
+        const P2 t_end = o_px + t_px / glm::length(t_px) * axis, n_end = o_px + n_px / glm::length(n_px) * axis;
+        arrow(o_px, t_end, m.outline_width, theme.legend, out);
+        arrow(o_px, n_end, m.outline_width, theme.legend, out);
+        if (c.text) {
+            draw_text(out, t_end + P2(3.0f, 3.0f), "t", theme.legend, m.text_scale);
+            draw_text(out, n_end + P2(3.0f, -3.0f), "n", theme.legend, m.text_scale);
+            // Under the origin, on the side away from the finger (n points into it).
+            const P2 size = text_size("contact frame", m.text_scale);
+            const P2 away = -n_px / glm::length(n_px);
+            const P2 at = o_px + away * (2.5f * m.dot_radius + 0.5f * size.y) - 0.5f * size;
+            draw_text(out, at, "contact frame", theme.legend, m.text_scale);
         }
     }
 

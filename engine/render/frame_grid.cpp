@@ -3,9 +3,11 @@
 
 #include "engine/render/text.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 namespace contactlab::render::parts {
 namespace {
@@ -44,37 +46,36 @@ void draw_grid(const View& view, const Theme& theme, DrawList& out) {
 }
 
 void draw_legend(const FrameContent& c, const View& view, const Theme& theme, const Metrics& m, DrawList& out) {
-    // Scale bar, bottom left: 10 mm (or 1 mm / 100 mm if that fits better), with end ticks.
-    double bar_m = 0.01;
-    if (bar_m * view.px_per_m > 0.3 * view.width) bar_m = 0.001;
-    if (bar_m * view.px_per_m < 12.0) bar_m = 0.1;
-    const float pad = std::round(m.dot_radius * 2.0f);
-    const float y = static_cast<float>(view.height) - c.bottom_inset_px - pad;
-    const float x0 = c.left_inset_px + pad, x1 = x0 + static_cast<float>(bar_m * view.px_per_m);
-    out.line({x0, y}, {x1, y}, m.outline_width, theme.legend);
-    out.line({x0, y - 2.0f * m.dot_radius}, {x0, y}, m.outline_width, theme.legend);
-    out.line({x1, y - 2.0f * m.dot_radius}, {x1, y}, m.outline_width, theme.legend);
-    const float label_gap = 2.0f * m.dot_radius + 3.0f * static_cast<float>(m.text_scale);
-    if (c.text) {
-        char label[32];
-        std::snprintf(label, sizeof label, "%g mm", bar_m * 1e3);
-        const P2 size = text_size(label, m.text_scale);
-        draw_text(out, {x0, y - label_gap - size.y}, label, theme.legend, m.text_scale);
+    const LegendLayout l = legend_layout(c, view);
+    const float tick = 2.0f * m.dot_radius;
+    {  // Scale bar: its line along the box's bottom, the label above its left end.
+        const PxBox& b = l.scale_bar;
+        const float y = b.y + b.h, x0 = b.x, x1 = x0 + static_cast<float>(l.scale_bar_m * view.px_per_m);
+        out.line({x0, y}, {x1, y}, m.outline_width, theme.legend);
+        out.line({x0, y - tick}, {x0, y}, m.outline_width, theme.legend);
+        out.line({x1, y - tick}, {x1, y}, m.outline_width, theme.legend);
+        if (c.text) {
+            char label[32];
+            std::snprintf(label, sizeof label, "%g mm", l.scale_bar_m * 1e3);
+            draw_text(out, {x0, b.y}, label, theme.legend, m.text_scale);
+        }
     }
-    // Force bar, bottom right: the arrow length of the maximum force (c.max_force N).
-    if (c.finger) {
-        const float xr = static_cast<float>(view.width) - pad;
+    if (l.force_bar) {  // the arrow length of the maximum force (c.max_force N), right-aligned
+        const PxBox& b = *l.force_bar;
+        const float y = b.y + b.h, xr = b.x + b.w;
         out.line({xr - m.arrow_full, y}, {xr, y}, m.arrow_width, theme.force);
-        out.line({xr - m.arrow_full, y - 2.0f * m.dot_radius}, {xr - m.arrow_full, y}, m.outline_width, theme.force);
-        out.line({xr, y - 2.0f * m.dot_radius}, {xr, y}, m.outline_width, theme.force);
+        out.line({xr - m.arrow_full, y - tick}, {xr - m.arrow_full, y}, m.outline_width, theme.force);
+        out.line({xr, y - tick}, {xr, y}, m.outline_width, theme.force);
         if (c.text) {
             char label[32];
             std::snprintf(label, sizeof label, "%.2f N", c.max_force);
             const P2 size = text_size(label, m.text_scale);
-            draw_text(out, {xr - size.x, y - label_gap - size.y}, label, theme.force, m.text_scale);
+            draw_text(out, {xr - size.x, b.y}, label, theme.force, m.text_scale);
         }
     }
+    draw_platform_key(c, view, theme, out);  // the wearable's colours, with the text
     // Status line, top left: the proxy's state in the UI's units (mm, N, degrees).
+    const float pad = std::round(m.dot_radius * 2.0f);
     if (c.text && c.finger && c.status_line)
         draw_text(out, {c.left_inset_px + pad, pad + c.top_inset_px}, proxy_status_text(*c.finger).c_str(), theme.legend,
                   m.text_scale);
@@ -83,6 +84,76 @@ void draw_legend(const FrameContent& c, const View& view, const Theme& theme, co
 }  // namespace contactlab::render::parts
 
 namespace contactlab::render {
+namespace {
+
+constexpr float kKeySwatch = 12.0f;  // px (times the text scale) of each key entry's colour line
+
+// The wearable's key: what each colour means and the arrows' full lengths.
+std::vector<std::string> platform_key_lines(const FrameContent& c) {
+    char cable[96], force[96];
+    std::snprintf(cable, sizeof cable, "cable tension (full arrow %.2f N)", c.platform->full_tension);
+    std::snprintf(force, sizeof force, "force on the finger (full arrow %.2f N)", c.max_force);
+    return {cable, force};
+}
+
+}  // namespace
+
+void parts::draw_platform_key(const FrameContent& c, const View& view, const Theme& theme, DrawList& out) {
+    const LegendLayout l = legend_layout(c, view);
+    if (!l.platform_key) return;
+    const parts::Metrics m = parts::metrics_for(view);
+    const float pad = std::round(m.dot_radius * 2.0f), s = static_cast<float>(m.text_scale);
+    const PxBox& b = *l.platform_key;
+    out.fill_rect({b.x, b.y}, {b.x + b.w, b.y + b.h}, theme.background.with_alpha(200));
+    float y = b.y + 0.5f * pad;
+    const Color colours[2] = {theme.cable, theme.force};
+    int i = 0;
+    for (const std::string& line : platform_key_lines(c)) {
+        const P2 sz = text_size(line, m.text_scale);
+        out.line({b.x + pad, y + 0.5f * sz.y}, {b.x + pad + kKeySwatch * s - 3.0f * s, y + 0.5f * sz.y}, m.arrow_width,
+                 colours[i++]);
+        draw_text(out, {b.x + pad + kKeySwatch * s, y}, line, theme.legend, m.text_scale);
+        y += sz.y + 4.0f * s;
+    }
+}
+
+LegendLayout legend_layout(const FrameContent& c, const View& view) {
+    const parts::Metrics m = parts::metrics_for(view);
+    LegendLayout l;
+    // 10 mm (or 1 mm / 100 mm if that fits better), with end ticks.
+    l.scale_bar_m = 0.01;
+    if (l.scale_bar_m * view.px_per_m > 0.3 * view.width) l.scale_bar_m = 0.001;
+    if (l.scale_bar_m * view.px_per_m < 12.0) l.scale_bar_m = 0.1;
+    const float pad = std::round(m.dot_radius * 2.0f);
+    const float y = static_cast<float>(view.height) - c.bottom_inset_px - pad;  // the bars' line
+    const float label_gap = 2.0f * m.dot_radius + 3.0f * static_cast<float>(m.text_scale);
+    char label[32];
+    std::snprintf(label, sizeof label, "%g mm", l.scale_bar_m * 1e3);
+    P2 size = c.text ? text_size(label, m.text_scale) : P2{0.0f, 0.0f};
+    float top = y - (c.text ? label_gap + size.y : 2.0f * m.dot_radius);
+    const float bar_w = static_cast<float>(l.scale_bar_m * view.px_per_m);
+    l.scale_bar = {c.left_inset_px + pad, top, std::max(bar_w, size.x), y - top};
+    if (c.finger) {
+        std::snprintf(label, sizeof label, "%.2f N", c.max_force);
+        size = c.text ? text_size(label, m.text_scale) : P2{0.0f, 0.0f};
+        top = y - (c.text ? label_gap + size.y : 2.0f * m.dot_radius);
+        const float w = std::max(m.arrow_full, size.x);
+        const float xr = static_cast<float>(view.width) - c.right_inset_px - pad;
+        l.force_bar = PxBox{xr - w, top, w, y - top};
+    }
+    if (c.platform && c.text) {
+        float w = 0.0f, h = 0.0f;
+        for (const std::string& line : platform_key_lines(c)) {
+            const P2 sz = text_size(line, m.text_scale);
+            w = std::max(w, sz.x);
+            h += sz.y + 4.0f * static_cast<float>(m.text_scale);
+        }
+        w += kKeySwatch * static_cast<float>(m.text_scale) + 2.0f * pad;
+        const float xr = static_cast<float>(view.width) - c.right_inset_px - pad;
+        l.platform_key = PxBox{xr - w, c.top_inset_px + pad, w, h + pad};
+    }
+    return l;
+}
 
 std::string proxy_status_text(const ProxyOutput& o) {
     char status[160];

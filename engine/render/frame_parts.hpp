@@ -32,5 +32,7 @@ void draw_cspace(const FrameContent& c, const View& view, const Theme& theme, co
 void draw_zones(const FrameContent& c, const View& view, const Theme& theme, DrawList& out); // frame_overlays.cpp
 void draw_legend(const FrameContent& c, const View& view, const Theme& theme, const Metrics& m,
                  DrawList& out);                                                             // frame_grid.cpp
+// The wearable platform's key (cable tension and force colours), top right, with the text.
+void draw_platform_key(const FrameContent& c, const View& view, const Theme& theme, DrawList& out);  // frame_grid.cpp
 
 }  // namespace contactlab::render::parts

@@ -30,7 +30,9 @@ RenderResult render_scene(const VulkanContext& ctx, const Scene& scene, const Re
     }
 
     RenderResult result;
-    result.view = default_view(content, request.width, request.height);
+    result.view = request.view_box    ? fit_view(*request.view_box, request.width, request.height, 0.0)
+                  : request.wearable ? fingertip_view(content, request.width, request.height)
+                                     : default_view(content, request.width, request.height);
     result.proxy = *content.finger;
     DrawList list(request.width, request.height);
     build_frame(content, result.view, request.theme, list);

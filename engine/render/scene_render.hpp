@@ -19,7 +19,11 @@ struct RenderRequest {
     bool text = false;  // labels (FrameContent::text); the CLI turns them on, goldens leave them off
     // Draw seed 003's wearable platform under the pad as the servo would command it for this
     // contact (haptics/wearable/contact_display.hpp), with the cable tensions that hold it.
+    // With it, the view is zoomed on the fingertip (fingertip_view), where the platform shows.
     bool wearable = false;
+    // The part of the world to show (m, x right, y up), fitted to the image; else the default
+    // view (or the fingertip's with `wearable`). `contactlab render --view X Y W H` (mm).
+    std::optional<Aabb> view_box;
 };
 
 // What the frame showed besides the pixels (for messages and tests).

@@ -24,6 +24,7 @@ const Theme& dark_theme() {
         .zone_proximal = {255, 120, 60, 40},
         .zone_distal = {120, 255, 120, 40},
         .legend = {220, 220, 220, 255},
+        .cable = {80, 200, 255, 255},
     };
     return t;
 }
@@ -49,6 +50,7 @@ const Theme& light_theme() {
         .zone_proximal = {230, 100, 30, 36},
         .zone_distal = {40, 190, 60, 36},
         .legend = {30, 30, 30, 255},
+        .cable = {0, 110, 190, 255},
     };
     return t;
 }

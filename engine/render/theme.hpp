@@ -18,6 +18,9 @@ struct Theme {
     Color cspace, anticipation;
     Color zone_pad, zone_proximal, zone_distal;  // anticipation zones: pad interior, pad ends
     Color legend;
+    // Seed 003's cables and their tension arrows: their own colour, never the force arrow's red
+    // (issue 29: the two were told apart by nothing).
+    Color cable;
 };
 
 const Theme& dark_theme();

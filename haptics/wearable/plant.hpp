@@ -39,6 +39,7 @@ public:
     Eigen::Vector3d read_fsr();
 
     const PlantDef& def() const noexcept { return def_; }
+    void set_fsr_noise(double n) noexcept { def_.fsr_noise = n; }  // N, from the next reading
     const Pose& pose() const noexcept { return eq_.pose; }
     const Eigen::Vector3d& tension() const noexcept { return eq_.tension; }
     const Equilibrium& equilibrium() const noexcept { return eq_; }

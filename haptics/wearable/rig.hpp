@@ -30,6 +30,7 @@ struct RigDef {
 RigDef seed_fit_rig();
 
 enum class RigMode { force, position };
+struct RigTuning;  // rig_tuning.hpp
 
 class WearableRig {
 public:
@@ -39,6 +40,10 @@ public:
     // The host's next reference, sent over the link: tensions Q_r (N) or a pose xi_r (m, rad).
     void command_force(const Eigen::Vector3d& reference) noexcept;
     void command_pose(const Pose& reference) noexcept;
+
+    // New gains, fit mode and FSR noise (rig_tuning.hpp; checked by the caller with
+    // rig_tuning_problem), effective from the next PD tick.
+    void retune(const RigTuning& t);
 
     // Runs the device for dt (s): PD ticks at its rate, the plant in between.
     void advance(double dt);

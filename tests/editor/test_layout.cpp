@@ -58,12 +58,55 @@ std::vector<std::vector<Part>> layout_blocks(const std::string& err) {
     return blocks;
 }
 
-void check_block(const std::vector<Part>& parts, double width, double height) {
+const Part* named(const std::vector<Part>& parts, const std::string& name) {
+    for (const Part& p : parts)
+        if (p.name == name) return &p;
+    return nullptr;
+}
+
+// `roller`: the device has a roller (its "roller err" plot is shown, else it must not be).
+void check_block(const std::vector<Part>& parts, double width, double height, bool roller = true) {
     std::vector<std::string> names;
     for (const Part& p : parts) names.push_back(p.name);
     for (const char* want : {"##MainMenuBar", "##proxy status", "top ruler", "left ruler", "##status", "Tuning", "Haptics",
-                             "Plots (last 5 s)"})
+                             "Plots (last 5 s)", "scale bar", "force-scale bar", "Haptics > emergency stop"})
         CHECK_MESSAGE(std::find(names.begin(), names.end(), want) != names.end(), want);
+    // Issue 29: every plot whole inside the Plots panel (none scrolled out of sight), the
+    // emergency stop inside the Haptics panel; the scale bars are tiled parts below, so the
+    // overlap check keeps every panel off them.
+    const Part* plots = named(parts, "Plots (last 5 s)");
+    REQUIRE(plots != nullptr);
+    const double in_eps = 0.5;  // px
+    std::vector<std::string> want_plots = {"|F|", "depth", "l_d", "period", "budget used", "time axis"};
+    if (roller) want_plots.push_back("roller err");
+    for (const std::string& w : want_plots) {
+        const Part* q = named(parts, "Plots (last 5 s) > " + w);
+        CHECK_MESSAGE(q != nullptr, w);
+        if (!q) continue;
+        CAPTURE(w);
+        CHECK(q->h > 10.0);
+        CHECK(q->x >= plots->x - in_eps);
+        CHECK(q->y >= plots->y - in_eps);
+        CHECK(q->x + q->w <= plots->x + plots->w + in_eps);
+        CHECK(q->y + q->h <= plots->y + plots->h + in_eps);
+    }
+    CHECK((named(parts, "Plots (last 5 s) > roller err") != nullptr) == roller);
+    // A slider's value has its own box beside the slider: the handle never covers the digits.
+    int sliders = 0;
+    for (const Part& sl : parts) {
+        const std::string tag = "Tuning > slider ";
+        if (sl.name.rfind(tag, 0) != 0) continue;
+        ++sliders;
+        const Part* v = named(parts, "Tuning > value " + sl.name.substr(tag.size()));
+        CAPTURE(sl.name);
+        REQUIRE(v != nullptr);
+        CHECK(v->w > 0.0);
+        CHECK(v->x >= sl.x + sl.w);  // right of the slider, not on it
+    }
+    CHECK(sliders >= 3);  // Ke, max force, finger R at least are on screen
+    const Part* haptics = named(parts, "Haptics");
+    const Part* stop = named(parts, "Haptics > emergency stop");
+    if (haptics && stop) CHECK(stop->y + stop->h <= haptics->y + haptics->h + in_eps);
     const double eps = 0.5;  // px: shared edges are fine
     for (std::size_t i = 0; i < parts.size(); ++i) {
         const Part& a = parts[i];
@@ -84,6 +127,32 @@ void check_block(const std::vector<Part>& parts, double width, double height) {
 }
 
 }  // namespace
+
+TEST_CASE("layout: with sim-wearable and sim-cld at 1280x720 every plot and scale bar is in sight and uncovered") {
+    TempDir dir;
+    const std::string script = dir.file("devices.txt");
+    write_text(script,
+               "generate bumps\nfinger 0 5\n"
+               "device sim-wearable\nkey z\nframes 5\nlayout\n"
+               "device sim-cld\nframes 5\nlayout\n"
+               "device mouse\nframes 5\nlayout\nquit\n");
+    const auto p = run_under_xvfb({"edit", "--software", "--validation", "--width", "1280", "--height", "720",
+                                   "--timeout", "60", "--script", script});
+    INFO("stderr: " << p.err);
+    REQUIRE(p.exit_code == 0);
+    CHECK_FALSE(contains(p.err, "FAILED"));
+    const auto blocks = layout_blocks(p.err);
+    REQUIRE(blocks.size() == 3);
+    check_block(blocks[0], 1280, 720, false);  // the wearable: no roller, no "roller err"
+    CHECK(named(blocks[0], "platform key") != nullptr);  // the cables' colour explained, uncovered
+    const Part* section = named(blocks[0], "Tuning > Wearable platform (seed 003, live)");
+    const Part* tuning = named(blocks[0], "Tuning");
+    REQUIRE(section != nullptr);
+    REQUIRE(tuning != nullptr);
+    CHECK(section->y + section->h <= tuning->y + tuning->h + 0.5);
+    check_block(blocks[1], 1280, 720, true);
+    check_block(blocks[2], 1280, 720, true);
+}
 
 TEST_CASE("layout: at 1280x720 and 1600x1000 no part covers another or cuts a label, every section open") {
     TempDir dir;

@@ -79,6 +79,16 @@ TEST_CASE("parameter edit: every tunable parameter is accepted at its limits and
         {"max_drive", 1e-3, 0.0},
         {"travel_mm", 1000.0, 1000.1},
         {"travel_mm", 0.0, -0.1},
+        {"roller_kff", 0.0, -1.0},
+        {"ff_cutoff_hz", 1e6, 1e6 * 1.001},
+        {"ff_cutoff_hz", 1e-3, 0.0},
+        {"wearable_force_kp", 0.0, -1e-9},
+        {"wearable_force_kd", 0.0, -1e-9},
+        {"wearable_position_kp", 0.0, -1.0},
+        {"wearable_position_kd", 0.0, -1e-6},
+        {"wearable_fit", 0.0, 0.5},
+        {"fsr_noise", 0.1, 0.1001},
+        {"fsr_noise", 0.0, -1e-6},
     };
     for (const Edge& e : edges) {
         const std::string name = e.name;

@@ -30,6 +30,32 @@ TEST_CASE("render cli: writes a PNG of the requested size, identical inputs give
     CHECK(read_text(a) == read_text(b));
 }
 
+TEST_CASE("render cli: --view X Y W H (mm) frames that part of the world, --wearable alone zooms on the fingertip") {
+    TempDir dir;
+    const std::string whole = dir.file("whole.png"), view = dir.file("view.png"), tip = dir.file("tip.png");
+    const std::vector<std::string> common = {"render", scene("flat.json"), "--width", "320", "--height", "180",
+                                             "--finger", "0,0.0245,0.2", "--software", "--validation", "--no-text"};
+    auto run = [&](std::vector<std::string> extra, const std::string& out) {
+        auto args = common;
+        args.insert(args.end(), extra.begin(), extra.end());
+        args.insert(args.end(), {"--output", out});
+        const ProcessResult r = run_contactlab(args);
+        INFO(r.err);
+        REQUIRE(r.exit_code == 0);
+    };
+    run({}, whole);
+    // Negative numbers after --view are values, not options.
+    run({"--wearable", "--view", "-20", "-5", "40", "22.5"}, view);
+    run({"--wearable"}, tip);
+    const auto a = contactlab::render::read_png(whole), b = contactlab::render::read_png(view),
+               c = contactlab::render::read_png(tip);
+    CHECK(b.width == 320);
+    CHECK(b.height == 180);
+    // The zoomed pictures differ from the whole scene's and from each other (different frames).
+    CHECK(read_text(whole) != read_text(view));
+    CHECK(read_text(view) != read_text(tip));
+}
+
 TEST_CASE("render cli: bad options exit 2 naming the option") {
     TempDir dir;
     const std::string out = dir.file("x.png");
@@ -43,6 +69,8 @@ TEST_CASE("render cli: bad options exit 2 naming the option") {
         {{"--finger", "0.1,abc,0"}, "--finger"},
         {{"--finger", "0.1,0.2"}, "--finger"},
         {{"--width", "0"}, "--width"},
+        {{"--view", "0", "0", "0", "10"}, "--view"},
+        {{"--view", "0,0,10"}, "--view"},
     };
     for (const Case& c : cases) {
         std::vector<std::string> args = {"render", scene("flat.json"), "--output", out, "--software"};

@@ -70,3 +70,33 @@ TEST_CASE("snapshot: seed 003's wearable platform under a finger tilted on the f
     CHECK(s.ok);
     CHECK(lavapipe().validation_messages() == 0);
 }
+
+TEST_CASE("snapshot: the wearable picture at 1280x720: zoomed on the fingertip, cables in their colour, key and contact frame") {
+    // Issue 29: the platform used to be a bar a few pixels tall in the force arrow's red. Here the
+    // view frames the fingertip, so the 14 mm platform spans well over 100 px; the cables and
+    // their tension arrows are drawn in theme.cable, the key names both colours, the contact frame
+    // is labelled (text on: stb_easy_font is deterministic).
+    RenderRequest req;
+    req.width = 1280;
+    req.height = 720;
+    req.finger = FingerPose{{0.0, 0.0245}, 0.2};  // 1.5 mm into the floor, tilted 0.2 rad
+    req.wearable = true;
+    req.text = true;
+    const RenderResult r = render_scene(lavapipe(), load_scene("flat.json"), req);
+    CHECK(r.proxy.contact);
+    CHECK(0.014 * r.view.px_per_m > 250.0);  // px: the platform's 14 mm (a third of the width at least)
+    const Theme& t = dark_theme();
+    long cable = 0, force = 0;
+    for (int y = 0; y < r.image.height; ++y)
+        for (int x = 0; x < r.image.width; ++x) {
+            const uint8_t* p = r.image.pixel(x, y);
+            cable += p[0] == t.cable.r && p[1] == t.cable.g && p[2] == t.cable.b;
+            force += p[0] == t.force.r && p[1] == t.force.g && p[2] == t.force.b;
+        }
+    CHECK(cable > 300);  // px: the tension arrows, the key's swatch and labels
+    CHECK(force > 100);  // px: the force arrow and the key's swatch, apart from the cables
+    const SnapshotResult s = check_snapshot("flat_wearable_1280", r.image);
+    INFO(s.message);
+    CHECK(s.ok);
+    CHECK(lavapipe().validation_messages() == 0);
+}
