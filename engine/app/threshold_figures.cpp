@@ -39,7 +39,7 @@ void threshold_section(std::ostringstream& md, const json& a) {
     if (!any) return;
     md << "\n## Thresholds\n\n"
        << "Adaptive: the procedure's estimate after each participant's last trial (a staircase: the mean stimulus at its last "
-          "reversals; QUEST+: the threshold's posterior mean), and their median over participants. Fit: maximum likelihood, "
+          "reversals; QUEST+: the threshold at the posterior's mode), and their median over participants. Fit: maximum likelihood, "
           "the threshold is where F = 0.5.\n\n"
        << "| condition | procedure | target p | median estimate | participants | fit | fitted threshold | 95 % interval | scale | lapse | deviance |\n"
        << "| --- | --- | ---: | ---: | ---: | --- | ---: | --- | ---: | ---: | ---: |\n";

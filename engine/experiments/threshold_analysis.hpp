@@ -3,7 +3,7 @@
 //   "adaptive": {"procedure", "target_p", "estimate", "reversals", "trials", "track"} from an
 //               adaptive run's own columns (procedure, target_p, reversal, estimate): the
 //               estimate is the one after the participant's last trial in the condition (the
-//               mean of the last reversals for a staircase, the posterior mean for QUEST+);
+//               mean of the last reversals for a staircase, the threshold at the posterior's mode for QUEST+);
 //               per condition the participants' median and each estimate;
 //   "psychometric": {"function", "threshold", "threshold_ci", "scale", "scale_ci", "lapse",
 //               "guess", "deviance", "method", "bins"} when a function is asked for: the
