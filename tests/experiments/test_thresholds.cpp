@@ -4,6 +4,8 @@
 #include "engine/experiments/adaptive_plan.hpp"
 #include "engine/experiments/analysis.hpp"
 #include "engine/experiments/experiment_run.hpp"
+#include "engine/experiments/live_session.hpp"
+#include "engine/experiments/quest_plus.hpp"
 #include "engine/experiments/model_observer.hpp"
 #include "engine/experiments/protocol.hpp"
 #include "engine/experiments/results_table.hpp"
@@ -211,4 +213,35 @@ TEST_CASE("edge protocol, 10 model observers: the 1-up-2-down median is within 1
         CHECK(s["conditions"][c]["participants"]["obs1"]["adaptive"]["reversals"].get<int>() >= 1);
     }
     MESSAGE("runtime ", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), " s");
+}
+
+TEST_CASE("QUEST+: a posterior-width stopping rule ends the run before its trial limit, and the estimate lies in the interval") {
+    Procedure p;
+    p.type = ProcedureType::quest_plus;
+    p.lo = 0.25, p.hi = 8.0;
+    p.scale_min = (p.hi - p.lo) / 40.0, p.scale_max = (p.hi - p.lo) / 2.0;
+    p.trials = 400;
+    p.stop_width = 1.0;  // mm: the 95 % credible interval of the threshold
+    const Protocol edge = load_protocol(edge_path());
+    const ObserverSpec obs = parse_observer("logistic:threshold=2,scale=0.4,guess=0.5,lapse=0.02");
+    QuestPlus q(p);
+    for (std::uint64_t i = 1; !q.finished(); ++i) {
+        PlannedTrial t;
+        t.stimulus = q.next();
+        t.seed = mix64(i);
+        q.update(t.stimulus, observe_trial(edge, obs, t).correct);
+    }
+    double lo = 0.0, hi = 0.0;
+    q.interval(lo, hi);
+    MESSAGE("QUEST+ stopped after ", q.trials(), " trials, interval ", lo, " .. ", hi, ", estimate ", q.estimate());
+    CHECK(q.trials() < 400);
+    CHECK(hi - lo < 1.0);
+    CHECK(lo <= q.estimate());
+    CHECK(q.estimate() <= hi);
+}
+
+TEST_CASE("live sessions refuse two-interval and adaptive protocols, saying why") {
+    TempDir dir;
+    CHECK_THROWS_WITH_AS(LiveSession(load_protocol(edge_path()), "P01", 1, dir.file("r.csv")),
+                         doctest::Contains("live sessions run constant-stimuli protocols with one stimulus per trial"), ExperimentError);
 }
