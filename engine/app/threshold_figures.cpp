@@ -87,6 +87,7 @@ void threshold_section(std::ostringstream& md, const json& a) {
 
 std::vector<ReportFigure> threshold_figures(const json& a) {
     std::vector<ReportFigure> out;
+    const std::string stimulus = a.contains("stimulus_unit") ? "stimulus (" + a["stimulus_unit"].get<std::string>() + ")" : "stimulus";
     int ci = 0;
     for (const auto& [name, c] : a["conditions"].items()) {
         ++ci;
@@ -94,7 +95,7 @@ std::vector<ReportFigure> threshold_figures(const json& a) {
             const json& f = c["psychometric"];
             experiments::PsyFunction fn = experiments::PsyFunction::logistic;
             experiments::parse_psy_function(f["function"].get<std::string>(), fn);
-            Chart ch = report_chart("Psychometric fit: " + name + " (" + f["function"].get<std::string>() + ")", "stimulus",
+            Chart ch = report_chart("Psychometric fit: " + name + " (" + f["function"].get<std::string>() + ")", stimulus,
                                     "proportion correct");
             ch.y.min = 0.0, ch.y.max = 1.0;
             ChartSeries data = marker_series("data (bins)", 0);
@@ -137,7 +138,7 @@ std::vector<ReportFigure> threshold_figures(const json& a) {
                                " (parametric bootstrap, percentile)."});
         }
         if (c.contains("participants")) {
-            Chart ch = report_chart("Adaptive tracks: " + name, "trial (analysed, in order)", "stimulus");
+            Chart ch = report_chart("Adaptive tracks: " + name, "trial (analysed, in order)", stimulus);
             int pi = 0;
             for (const auto& [p, f] : c["participants"].items()) {
                 if (!f.contains("adaptive")) continue;

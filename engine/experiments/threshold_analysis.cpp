@@ -60,6 +60,12 @@ void add_threshold_analysis(json& result, const ResultsTable& t, const Threshold
         return !(valid && t.number(i, *valid) == 0.0) && !(warmup && t.number(i, *warmup) != 0.0);
     };
     json& conditions = result["conditions"];
+    // The stimulus's unit, for the figures' axes, when every row gives the same one.
+    if (const auto unit = t.column("stimulus_unit"); unit && !t.rows.empty()) {
+        const std::string& u = t.rows.front()[*unit];
+        if (std::all_of(t.rows.begin(), t.rows.end(), [&](const auto& r) { return r[*unit] == u; }) && !u.empty())
+            result["stimulus_unit"] = u;
+    }
 
     if (proc && estimate && reversal) {
         // condition -> participant -> rows in file order
