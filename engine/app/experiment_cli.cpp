@@ -14,11 +14,13 @@
 #include "engine/experiments/experiment_run.hpp"
 #include "engine/experiments/pooling.hpp"
 #include "engine/experiments/protocol.hpp"
+#include "engine/experiments/threshold_analysis.hpp"
 #include "haptics/atomic_file.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <optional>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -36,13 +38,32 @@ struct RunArgs {
     bool no_traces = false, overwrite = false;
 };
 
-// "sim" -> {1}; "sim:3" -> {3}; "sim:1-20" -> {1..20}.
-std::vector<std::uint64_t> sim_participants(const std::string& spec, const char* option) {
+// "sim" -> {1}; "sim:3" -> {3}; "sim:1-20" -> {1..20}; "observer:FN:KEY=V,...[:N|:A-B]" ->
+// model observers (the observer's spec into `observer`), numbered the same way.
+std::vector<std::uint64_t> sim_participants(const std::string& given, const char* option,
+                                            std::optional<experiments::ObserverSpec>* observer = nullptr) {
+    std::string spec = given;
+    if (spec.rfind("observer:", 0) == 0 && observer) {
+        std::string rest = spec.substr(9), numbers;
+        // A trailing ":N" or ":A-B" numbers the observers; the observer's own spec has no ':' after its function.
+        if (const std::size_t last = rest.rfind(':'); last != std::string::npos && last != rest.find(':') &&
+                                                      rest.find_first_not_of("0123456789-", last + 1) == std::string::npos) {
+            numbers = rest.substr(last + 1);
+            rest = rest.substr(0, last);
+        }
+        try {
+            *observer = experiments::parse_observer(rest);
+        } catch (const experiments::ExperimentError& e) {
+            throw BadInput(std::string(option) + ": " + e.what());
+        }
+        spec = numbers.empty() ? "sim" : "sim:" + numbers;
+    }
     if (spec == "sim") return {1};
     if (spec.rfind("sim:", 0) != 0)
         throw BadInput(std::string(option) + ": \"" + spec +
                        "\": a person takes part in the editor's experiment mode (contactlab edit --experiment PROTOCOL "
-                       "--participant " + spec + "); headless runs take simulated participants: sim, sim:N or sim:A-B");
+                       "--participant " + spec + "); headless runs take simulated participants (sim, sim:N or sim:A-B) or model "
+                       "observers (observer:logistic:threshold=T,scale=S[,guess=G,lapse=L][:A-B])");
     const std::string range = spec.substr(4);
     unsigned long long a = 0, b = 0;
     char dash = 0, extra = 0;
@@ -63,7 +84,7 @@ int run_protocol(const RunArgs& a) {
     if (a.participant.empty() == a.participants.empty()) throw BadInput("experiment run: give --participant or --participants");
     experiments::RunOptions o;
     o.participants = sim_participants(a.participant.empty() ? a.participants : a.participant,
-                                      a.participant.empty() ? "--participants" : "--participant");
+                                      a.participant.empty() ? "--participants" : "--participant", &o.observer);
     o.seed = a.seed;
     o.output = a.output;
     o.traces = !a.no_traces;
@@ -99,12 +120,22 @@ struct AnalyzeArgs {
     std::string json, report;
     double confidence = 0.95;
     bool pool_protocols = false;
+    std::string psychometric;  // "" (no fit), logistic, weibull, cumulative-normal
+    double guess = 0.5, max_lapse = 0.06;
+    int bootstrap = 1000;
 };
 
 std::string figure(const nlohmann::json& c, const char* key, const char* f) {
     if (!c.contains(key) || !c[key].is_number()) return "-";
     char buf[48];
     std::snprintf(buf, sizeof buf, f, c[key].get<double>());
+    return buf;
+}
+
+std::string figure_at(const nlohmann::json& c, std::size_t index, const char* f) {
+    if (!c.is_array() || index >= c.size() || !c[index].is_number()) return "-";
+    char buf[48];
+    std::snprintf(buf, sizeof buf, f, c[index].get<double>());
     return buf;
 }
 
@@ -115,6 +146,22 @@ int run_analyze(const AnalyzeArgs& a) {
     try {
         pooled = experiments::pool_results(a.results, a.pool_protocols);
         result = experiments::analyze_results(pooled.table, experiments::AnalyzeOptions{a.confidence});
+        experiments::ThresholdOptions to;
+        if (!a.psychometric.empty()) {
+            experiments::PsyFitOptions fo;
+            if (!experiments::parse_psy_function(a.psychometric, fo.function))
+                throw BadInput("--psychometric: expected logistic, weibull or cumulative-normal, got \"" + a.psychometric + "\"");
+            if (!(a.guess >= 0.0 && a.guess < 1.0)) throw BadInput("--guess: must lie in [0, 1), e.g. 0.5 for two-alternative forced choice");
+            if (!(a.max_lapse >= 0.0 && a.guess + a.max_lapse < 1.0)) throw BadInput("--max-lapse: must be at least 0 with --guess + --max-lapse below 1");
+            if (a.bootstrap < 0 || a.bootstrap > 100000) throw BadInput("--bootstrap: must lie in [0, 100000]");
+            fo.guess = a.guess;
+            fo.max_lapse = a.max_lapse;
+            fo.bootstrap = a.bootstrap;
+            fo.confidence = 0.95;
+            fo.seed = 1;
+            to.psychometric = fo;
+        }
+        experiments::add_threshold_analysis(result, pooled.table, to);
     } catch (const experiments::ExperimentError& e) {
         throw BadInput(e.what());
     }
@@ -135,6 +182,20 @@ int run_analyze(const AnalyzeArgs& a) {
             std::printf("  time %s s  failures %s", figure(c["time_s"], "mean", "%.3f").c_str(),
                         figure(c, "failure_proportion", "%.3f").c_str());
         std::printf("\n");
+        if (c.contains("adaptive") && c["adaptive"].contains("estimate"))
+            std::printf("  %-24s %s: estimate %s (target p %s)\n", "", c["adaptive"]["procedure"].get<std::string>().c_str(),
+                        figure(c["adaptive"], "estimate", "%.4g").c_str(), figure(c["adaptive"], "target_p", "%.3f").c_str());
+        if (c.contains("psychometric")) {
+            const auto& f = c["psychometric"];
+            if (f.contains("threshold"))
+                std::printf("  %-24s %s fit: threshold %s, 95 %% interval %s .. %s, scale %s, lapse %s, deviance %s\n", "",
+                            f["function"].get<std::string>().c_str(), figure(f, "threshold", "%.4g").c_str(),
+                            f.contains("threshold_ci") ? figure_at(f["threshold_ci"], 0, "%.4g").c_str() : "-",
+                            f.contains("threshold_ci") ? figure_at(f["threshold_ci"], 1, "%.4g").c_str() : "-",
+                            figure(f, "scale", "%.4g").c_str(), figure(f, "lapse", "%.3f").c_str(), figure(f, "deviance", "%.3g").c_str());
+            else
+                std::printf("  %-24s %s fit: %s\n", "", f["function"].get<std::string>().c_str(), f["undefined"].get<std::string>().c_str());
+        }
     }
     if (!result["comparisons"].empty()) std::printf("  tests: %s\n", experiments::kPairingRule);
     for (const auto& t : result["comparisons"]) {
@@ -171,8 +232,11 @@ void register_experiment_command(CLI::App& app, int& rc) {
     auto run = std::make_shared<RunArgs>();
     CLI::App* r = exp->add_subcommand("run", "Run a protocol (scenes/experiments/) with simulated participants into a results CSV");
     r->add_option("protocol", run->protocol, "Protocol file (JSON, scenes/README.md)")->required();
-    r->add_option("--participant", run->participant, "sim (a simulated participant), or sim:N for participant N");
-    r->add_option("--participants", run->participants, "sim:A-B: simulated participants A..B, each its own seed");
+    r->add_option("--participant", run->participant,
+                  "sim (a simulated participant), sim:N for participant N, or a model observer "
+                  "observer:logistic|weibull|cumulative-normal:threshold=T,scale=S[,guess=G,lapse=L]");
+    r->add_option("--participants", run->participants,
+                  "sim:A-B: simulated participants A..B, each its own seed; observer:FN:threshold=T,...:A-B: model observers A..B");
     r->add_option("--seed", run->seed, "Seed of the trial orders and the perceptual noise")->default_val(1);
     r->add_option("-o,--output", run->output, "Results CSV (one row per trial)")->required();
     r->add_option("--jobs", run->jobs, "Participants run in parallel (0: every core); the results do not depend on it")
@@ -195,6 +259,13 @@ void register_experiment_command(CLI::App& app, int& rc) {
     an->add_option("--report", analyze->report, "Write report.md and PNG plots into this folder");
     an->add_option("--confidence", analyze->confidence, "Confidence of the t tests' intervals (seed 000: 0.99)")
         ->default_val(0.95);
+    an->add_option("--psychometric", analyze->psychometric,
+                   "Fit logistic, weibull or cumulative-normal per condition and participant (maximum likelihood, lapse free, "
+                   "parametric-bootstrap 95 % intervals)");
+    an->add_option("--guess", analyze->guess, "The fit's chance rate (0.5 for two-alternative forced choice)")->default_val(0.5);
+    an->add_option("--max-lapse", analyze->max_lapse, "The fit's lapse rate is free in [0, this]")->default_val(0.06);
+    an->add_option("--bootstrap", analyze->bootstrap, "Parametric bootstrap resamples for the fit's intervals (seed 1)")
+        ->default_val(1000);
     an->callback([analyze, &rc] { rc = run_analyze(*analyze); });
 }
 

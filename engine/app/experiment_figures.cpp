@@ -373,6 +373,8 @@ double dodge(int index, int count) { return count <= 1 ? 0.0 : (index - (count -
 // ---- entry points -------------------------------------------------------------------------------
 
 std::string seed_of(const ResultsTable& t) {
+    // The edge-sharpness task shares seed 000's condition names; its own columns tell it apart.
+    if (t.column("reference_mm")) return "";
     if (t.column("e") && t.column("k")) return "004";
     if (t.column("motion")) return "003";
     const auto cc = t.column("condition");

@@ -41,7 +41,8 @@ render::ChartSeries marker_series(const std::string& name, int index);
 // Where series `index` of `count` stands within its category's slot (width 1): they share half.
 double dodge(int index, int count);
 
-// Which seed's experiment a results table holds: "000" (conditions force / force+cld), "002"
+// Which seed's experiment a results table holds: "000" (conditions force / force+cld, and no
+// edge-sharpness `reference_mm` column), "002"
 // (conditions F / F+CLD), "003" (a `motion` column), "004" (`e` and `k` columns), or "" for
 // none of them.
 std::string seed_of(const experiments::ResultsTable& t);

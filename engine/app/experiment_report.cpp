@@ -2,6 +2,7 @@
 #include "engine/app/experiment_report.hpp"
 
 #include "engine/app/experiment_figures.hpp"
+#include "engine/app/threshold_figures.hpp"
 #include "engine/experiments/analysis.hpp"
 #include "engine/experiments/intervals.hpp"
 #include "engine/experiments/statistics.hpp"
@@ -145,6 +146,7 @@ std::string write_experiment_report(const experiments::ResultsTable& table, cons
         }
     }
     bump_section(md, a);
+    threshold_section(md, a);
     if (!a["comparisons"].empty()) {
         md << "\n## Comparisons (t tests)\n\nRule: " << experiments::kPairingRule << ".\n\n"
            << "| measure | a - b | test | t | df | p | interval |\n| --- | --- | --- | ---: | ---: | ---: | --- |\n";
@@ -168,6 +170,9 @@ std::string write_experiment_report(const experiments::ResultsTable& table, cons
     // Plots: the seed's own figures when the results are one of the seeds' experiments
     // (experiment_figures.hpp), else proportion correct per stimulus; only those with data.
     std::vector<ReportFigure> charts = seed_figures(table);
+    // Thresholds (adaptive tracks, fitted curves) replace the per-stimulus chart: an adaptive
+    // run's stimuli are wherever the procedure went, not a designed set of levels.
+    for (ReportFigure& f : threshold_figures(a)) charts.push_back(std::move(f));
     if (charts.empty()) {
         Chart pc = per_stimulus_chart(a);
         if (!pc.series.empty())

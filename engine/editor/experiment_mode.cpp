@@ -34,6 +34,7 @@ std::string prompt(const experiments::LiveSession& s) {
         case experiments::Task::bump_counting: return "Trace the contour and count the bumps.";
         case experiments::Task::curvature: return "Which height was the arc (mm)?";
         case experiments::Task::surface_orientation: return "Press the surface: which shape, A or B?";
+        case experiments::Task::edge_sharpness: return "Which edge felt sharper, the first or the second?";
     }
     return {};
 }

@@ -2,6 +2,7 @@
 // resumable (experiment_run.hpp).
 #include "engine/experiments/experiment_run.hpp"
 
+#include "engine/experiments/adaptive_plan.hpp"
 #include "engine/experiments/results_table.hpp"
 #include "engine/experiments/run_files.hpp"
 #include "engine/experiments/run_meta.hpp"
@@ -73,13 +74,97 @@ struct Shared {
     }
 };
 
-std::string participant_id(std::uint64_t n) { return "sim" + std::to_string(n); }
+std::string participant_id(const RunOptions& o, std::uint64_t n) { return (o.observer ? "obs" : "sim") + std::to_string(n); }
+
+constexpr const char* kObserverDevice = "model-observer";
+
+// One trial performed: by the model observer, or by the simulated participant through the servo.
+TrialOutcome perform(const Protocol& p, const RunOptions& o, const PlannedTrial& t) {
+    return o.observer ? observe_trial(p, *o.observer, t) : perform_sim_trial(p, t);
+}
+
+TrialRecord record_of(const Protocol& p, const RunOptions& o, const std::string& id, const PlannedTrial& t, const TrialOutcome& r) {
+    TrialRecord rec;
+    rec.participant = id;
+    rec.trial = t;
+    rec.response = r.response;
+    rec.valid = r.valid;
+    rec.failed = r.failed;
+    rec.time_s = r.time_s;
+    rec.contact_breaks = r.contact_breaks;
+    rec.peak_force = r.peak_force;
+    rec.touched = r.touched;
+    rec.device = o.observer ? kObserverDevice : p.device.c_str();
+    rec.small_bumps = r.small_bumps;
+    rec.large_bumps = r.large_bumps;
+    return rec;
+}
+
+// An adaptive procedure's participant: trials from an AdaptivePlan, replaying stored rows.
+void run_adaptive_participant(Shared& sh, std::size_t index, const std::vector<std::vector<std::string>>& done_rows) {
+    const Protocol& p = sh.p;
+    const RunOptions& o = sh.o;
+    ParticipantRun& out = sh.runs[index];
+    const std::string id = participant_id(o, o.participants[index]);
+    const std::string part = sh.files.part(id);
+    const std::vector<std::string>& columns = results_columns(p);
+    auto column = [&](const char* name) {
+        return static_cast<std::size_t>(std::find(columns.begin(), columns.end(), name) - columns.begin());
+    };
+    const std::size_t condition_col = column("condition"), trial_col = column("trial"), valid_col = column("valid"),
+                      correct_col = column("correct"), stimulus_col = column("stimulus");
+    std::string part_text = csv_line(columns) + "\n";
+    AdaptivePlan plan(p, o.seed, o.participants[index]);
+    std::size_t k = 0;
+    for (; !plan.done(); ++k) {
+        const PlannedTrial t = plan.next();
+        const Condition& c = p.conditions[static_cast<std::size_t>(t.condition)];
+        std::vector<std::string> row;
+        if (k < done_rows.size()) {
+            // Done before the run was interrupted: replay its answer (the next stimulus depends on it).
+            row = done_rows[k];
+            if (row[condition_col] != c.name || row[trial_col] != std::to_string(t.trial) || row[stimulus_col] != stimulus_label(p, t.stimulus))
+                throw ExperimentError(part + ": row " + std::to_string(k + 1) + " is " + row[condition_col] + " trial " + row[trial_col] +
+                                      " at " + row[stimulus_col] + ", the procedure has " + c.name + " trial " + std::to_string(t.trial) +
+                                      " at " + stimulus_label(p, t.stimulus) + " there (the file is not this run's); give --overwrite to start again");
+            const bool valid = row[valid_col] == "1";
+            plan.record(valid, row[correct_col] == "1");
+            out.invalid += !valid;
+            ++out.resumed;
+        } else {
+            const TrialOutcome r = perform(p, o, t);
+            TrialRecord rec = record_of(p, o, id, t, r);
+            const AdaptivePlan::Recorded a = plan.record(r.valid, r.correct);
+            rec.reversal = a.reversal;
+            rec.estimate = a.estimate;
+            row = results_row(p, rec);
+            if (o.traces && !o.observer) write_file_atomically(sh.files.trace(id, c.name, t.trial), trace_csv(r));
+            out.invalid += !r.valid;
+        }
+        out.warmup += t.warmup;
+        const std::string line = csv_line(row);
+        part_text += line + "\n";
+        {
+            std::lock_guard<std::mutex> g(sh.lock);
+            out.lines.push_back(line);
+        }
+        if (k >= done_rows.size()) write_file_atomically(part, part_text);  // on disk before the next trial
+        if (o.progress) o.progress(++sh.done, std::max(sh.total, sh.done.load()));
+    }
+    if (k < done_rows.size())
+        throw ExperimentError(part + ": " + std::to_string(done_rows.size()) + " rows, the procedure ended after " + std::to_string(k) +
+                              " (the file is not this run's); give --overwrite to start again");
+    std::lock_guard<std::mutex> g(sh.lock);
+    out.finished = true;
+    sh.write_results(false);
+}
 
 void run_participant(Shared& sh, std::size_t index, const std::vector<std::vector<std::string>>& done_rows) {
     const Protocol& p = sh.p;
     const RunOptions& o = sh.o;
+    if (p.procedure.type != ProcedureType::constant) return run_adaptive_participant(sh, index, done_rows);
     ParticipantRun& out = sh.runs[index];
-    const std::string id = participant_id(o.participants[index]);
+    const std::string id = participant_id(o, o.participants[index]);
     const std::string part = sh.files.part(id);
     const std::vector<std::string>& columns = results_columns(p);
     auto column = [&](const char* name) {
@@ -105,24 +190,11 @@ void run_participant(Shared& sh, std::size_t index, const std::vector<std::vecto
                 valid = row[valid_col] == "1";
                 ++out.resumed;
             } else {
-                const TrialOutcome r = perform_sim_trial(p, t);
+                const TrialOutcome r = perform(p, o, t);
                 valid = r.valid;
-                TrialRecord rec;
-                rec.participant = id;
-                rec.trial = t;
-                rec.response = r.response;
-                rec.valid = r.valid;
-                rec.failed = r.failed;
-                rec.time_s = r.time_s;
-                rec.contact_breaks = r.contact_breaks;
-                rec.peak_force = r.peak_force;
-                rec.touched = r.touched;
-                rec.device = p.device;
-                rec.small_bumps = r.small_bumps;
-                rec.large_bumps = r.large_bumps;
-                row = results_row(p, rec);
+                row = results_row(p, record_of(p, o, id, t, r));
                 // The trace first, then the row: a row on disk always has its trace.
-                if (o.traces) write_file_atomically(sh.files.trace(id, c.name, t.trial), trace_csv(r));
+                if (o.traces && !o.observer) write_file_atomically(sh.files.trace(id, c.name, t.trial), trace_csv(r));
             }
             // At most as many repeats as planned trials: a stimulus that always faults the servo
             // cannot keep the block going for ever.
@@ -163,10 +235,10 @@ RunSummary run_experiment(const Protocol& p, const RunOptions& o) {
     id.protocol_path = o.protocol_path.empty() ? p.origin : o.protocol_path;
     id.protocol = &p;
     id.seed = o.seed;
-    for (std::uint64_t n : o.participants) id.participants.push_back(participant_id(n));
-    id.device = p.device;
+    for (std::uint64_t n : o.participants) id.participants.push_back(participant_id(o, n));
     // The wearable platform's host loop is its 100 Hz serial link (haptics/wearable/rig.hpp).
-    id.servo_rate_hz = p.device == "sim-wearable" ? kWearableLinkRate : kTrialRate;
+    id.device = o.observer ? std::string(kObserverDevice) + " observer:" + o.observer->text : p.device;
+    id.servo_rate_hz = !o.observer && p.device == "sim-wearable" ? kWearableLinkRate : kTrialRate;
     id.traces = o.traces;
     nlohmann::json meta = make_meta(id, o.command);
 
@@ -188,7 +260,14 @@ RunSummary run_experiment(const Protocol& p, const RunOptions& o) {
     write_meta(o.output, meta);  // before any row: until finished_utc is set, the run is unfinished
 
     std::size_t per_participant = 0;
-    for (const auto& block : plan_trials(p, o.seed, 1)) per_participant += block.size();
+    if (p.procedure.type == ProcedureType::constant) {
+        for (const auto& block : plan_trials(p, o.seed, 1)) per_participant += block.size();
+    } else {
+        // Adaptive: at most the procedure's trials and the practice per condition (a staircase
+        // usually stops sooner, on its reversals).
+        const int most = p.procedure.type == ProcedureType::staircase ? p.procedure.max_trials : p.procedure.trials;
+        per_participant = static_cast<std::size_t>(most + p.warmup) * p.conditions.size();
+    }
     Shared sh{p, o, files, std::vector<ParticipantRun>(o.participants.size()), {}, {}, 0};
     sh.total = per_participant * o.participants.size();
     std::vector<std::vector<std::vector<std::string>>> done_rows(o.participants.size());

@@ -14,15 +14,21 @@
 // participant set, device, rate, traces setting or build), or by something without a meta file,
 // is refused unless `overwrite`, which clears them and their traces first.
 //
+// Adaptive procedures (staircase, QUEST+; adaptive_plan.hpp) choose each stimulus from the
+// answers so far: the participant's trials come from an AdaptivePlan, and a resumed run replays
+// the stored answers through it, checking each stored row is the trial the plan puts there.
+//
 // Participants run in parallel on `jobs` threads; the file does not depend on `jobs` (rows are
 // written in participant order).
 #pragma once
 
+#include "engine/experiments/model_observer.hpp"
 #include "engine/experiments/protocol.hpp"
 #include "engine/experiments/results_row.hpp"
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,6 +36,9 @@ namespace contactlab::experiments {
 
 struct RunOptions {
     std::vector<std::uint64_t> participants;  // simulated participants' numbers (1, 2, ...)
+    // Model observers (model_observer.hpp) instead of the simulated participant: no servo, no
+    // traces; the participants are "obs1", "obs2", ... and the meta's device names the observer.
+    std::optional<ObserverSpec> observer;
     std::uint64_t seed = 1;
     std::string output;                       // RESULTS.csv
     std::string protocol_path;                // for the meta (the Protocol's origin when empty)

@@ -18,6 +18,12 @@ LiveSession::LiveSession(Protocol protocol, std::string participant, std::uint64
     : protocol_(std::move(protocol)), participant_(std::move(participant)), results_path_(std::move(results_path)) {
     if (participant_.empty() || participant_.find_first_of(",\"\n\r") != std::string::npos)
         throw ExperimentError("--participant: an id without commas, quotes or line breaks, e.g. P07");
+    // A live session presents one stimulus per trial from a fixed plan: two intervals per trial
+    // (edge sharpness) and stimuli chosen from the answers (staircase, QUEST+) are batch-only
+    // for now. Refused here, clearly, rather than run wrongly.
+    if (protocol_.task == Task::edge_sharpness || protocol_.procedure.type != ProcedureType::constant)
+        throw ExperimentError(protocol_.origin + ": live sessions run constant-stimuli protocols with one stimulus per trial; "
+                              "two-interval tasks (edge-sharpness) and adaptive procedures run with `contactlab experiment run`");
     // A person's id numbers the trial order as a simulated participant's number does.
     // FNV-1a: the same number for the same id on any machine (std::hash promises no such thing).
     std::uint64_t number = 0xcbf29ce484222325ull;

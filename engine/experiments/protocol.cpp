@@ -3,12 +3,14 @@
 
 #include "engine/experiments/results_table.hpp"
 #include "engine/experiments/sha256.hpp"
+#include "engine/experiments/trial_plan.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <set>
@@ -74,7 +76,8 @@ Task task_of(const Reader& r, const std::string& name) {
     if (name == "bump-counting") return Task::bump_counting;
     if (name == "curvature") return Task::curvature;
     if (name == "surface-orientation") return Task::surface_orientation;
-    r.fail("task", "unknown task \"" + name + "\" (contour-following, bump-counting, curvature, surface-orientation)");
+    if (name == "edge-sharpness") return Task::edge_sharpness;
+    r.fail("task", "unknown task \"" + name + "\" (contour-following, bump-counting, curvature, surface-orientation, edge-sharpness)");
 }
 
 // What each task can answer (the simulated participant's answers and the grading rule) fixes
@@ -119,7 +122,83 @@ void check_answers(const Reader& r, const Protocol& p) {
         case Task::surface_orientation:
             if (p.answers.size() != 2) r.fail("answers", "two answers: template A (0 < alpha < 90 deg), then B (90 < alpha < 180 deg)");
             break;
+        case Task::edge_sharpness:
+            if (p.answers.size() != 2) r.fail("answers", "two answers: the first edge felt sharper, then the second");
+            break;
     }
+}
+
+// "procedure": {"type": ...} (protocol.hpp, Procedure). Every key but `type` has a default; a
+// key that does not belong to the type is refused, like any unknown key.
+Procedure read_procedure(const Reader& r, const json& j, const std::vector<double>& stimuli) {
+    const std::string path = "procedure";
+    if (!j.is_object()) r.fail(path, "expected an object such as {\"type\": \"staircase\"}");
+    Procedure pr;
+    pr.lo = *std::min_element(stimuli.begin(), stimuli.end());
+    pr.hi = *std::max_element(stimuli.begin(), stimuli.end());
+    const std::string type = r.text(r.need(j, path, "type"), path + ".type");
+    const double span = pr.hi - pr.lo;
+    if (type == "constant") {
+        r.only(j, path, {"type"});
+        return pr;
+    }
+    if (span <= 0.0) r.fail("stimuli", "an adaptive procedure needs a range: give at least two different stimuli (the smallest and largest bound it)");
+    if (type == "staircase") {
+        pr.type = ProcedureType::staircase;
+        r.only(j, path, {"type", "rule", "start", "step", "halve_at", "reversals", "estimate_reversals", "max_trials"});
+        if (j.contains("rule")) {
+            const std::string rule = r.text(j["rule"], path + ".rule");
+            int up = 0, down = 0;
+            char tail = 0;
+            if (std::sscanf(rule.c_str(), "%d-up-%d-down%c", &up, &down, &tail) != 2 || up != 1 || down < 1 || down > 5)
+                r.fail(path + ".rule", "expected \"1-up-N-down\" with N from 1 to 5 (e.g. \"1-up-2-down\", 70.7 % correct), got \"" + rule + "\"");
+            pr.down = down;
+        }
+        pr.start = r.number(j, path, "start", pr.lo, pr.hi, "(within the stimuli's range)", pr.hi);
+        pr.step = r.number(j, path, "step", span * 1e-3, span, "(stimulus units, at most the stimuli's range)", span / 8.0);
+        if (j.contains("halve_at")) {
+            const json& h = j["halve_at"];
+            if (!h.is_array()) r.fail(path + ".halve_at", "expected an array of reversal numbers, e.g. [2, 4]");
+            pr.halve_at.clear();
+            for (std::size_t i = 0; i < h.size(); ++i) {
+                const std::string hp = path + ".halve_at[" + std::to_string(i) + "]";
+                if (!h[i].is_number_integer() || h[i].get<long long>() < 1 || h[i].get<long long>() > 100)
+                    r.fail(hp, "expected a reversal number from 1 to 100");
+                const int v = h[i].get<int>();
+                if (!pr.halve_at.empty() && v <= pr.halve_at.back()) r.fail(hp, "reversal numbers must increase");
+                pr.halve_at.push_back(v);
+            }
+        }
+        pr.reversals = r.integer(j, path, "reversals", 2, 200, pr.reversals);
+        pr.estimate_reversals = r.integer(j, path, "estimate_reversals", 1, 200, std::min(pr.estimate_reversals, pr.reversals));
+        if (pr.estimate_reversals > pr.reversals)
+            r.fail(path + ".estimate_reversals", "more than the " + std::to_string(pr.reversals) + " reversals the staircase runs for");
+        pr.max_trials = r.integer(j, path, "max_trials", 2, 10000, pr.max_trials);
+        return pr;
+    }
+    if (type == "quest+") {
+        pr.type = ProcedureType::quest_plus;
+        r.only(j, path, {"type", "function", "guess", "thresholds", "scales", "scale_min", "scale_max", "lapses", "lapse_max",
+                         "levels", "trials", "stop_width"});
+        if (j.contains("function") && !parse_psy_function(r.text(j["function"], path + ".function"), pr.function))
+            r.fail(path + ".function", "expected \"logistic\", \"weibull\" or \"cumulative-normal\"");
+        if (pr.function == PsyFunction::weibull && pr.lo <= 0.0) r.fail("stimuli", "the Weibull function needs positive stimuli");
+        pr.guess = r.number(j, path, "guess", 0.0, 0.9, "", pr.guess);
+        pr.thresholds = r.integer(j, path, "thresholds", 2, 400, pr.thresholds);
+        pr.scales = r.integer(j, path, "scales", 1, 100, pr.scales);
+        pr.lapses = r.integer(j, path, "lapses", 1, 20, pr.lapses);
+        pr.levels = r.integer(j, path, "levels", 2, 400, pr.levels);
+        const bool weib = pr.function == PsyFunction::weibull;
+        pr.scale_min = r.number(j, path, "scale_min", 1e-9, 1e9, "", weib ? 1.0 : span / 40.0);
+        pr.scale_max = r.number(j, path, "scale_max", 1e-9, 1e9, "", weib ? 8.0 : span / 2.0);
+        if (pr.scale_max < pr.scale_min) r.fail(path + ".scale_max", "below scale_min");
+        pr.lapse_max = r.number(j, path, "lapse_max", 0.0, 0.5, "", pr.lapse_max);
+        if (pr.guess + pr.lapse_max >= 1.0) r.fail(path + ".lapse_max", "guess + lapse_max must stay below 1");
+        pr.trials = r.integer(j, path, "trials", 1, 10000, pr.trials);
+        pr.stop_width = r.number(j, path, "stop_width", 0.0, 1e9, "(stimulus units)", pr.stop_width);
+        return pr;
+    }
+    r.fail(path + ".type", "unknown procedure \"" + type + "\" (constant, staircase, quest+)");
 }
 
 }  // namespace
@@ -130,8 +209,34 @@ const char* stimulus_unit(Task t) {
         case Task::bump_counting: return "bumps";
         case Task::curvature: return "mm";
         case Task::surface_orientation: return "deg";
+        case Task::edge_sharpness: return "mm";
     }
     return "";
+}
+
+int comparison_interval(std::uint64_t trial_seed) { return static_cast<int>(mix64(trial_seed ^ 0x2AFC2AFCull) & 1u) + 1; }
+
+const char* to_string(ProcedureType t) {
+    switch (t) {
+        case ProcedureType::constant: return "constant";
+        case ProcedureType::staircase: return "staircase";
+        case ProcedureType::quest_plus: return "quest+";
+    }
+    return "?";
+}
+
+double Procedure::target_p() const {
+    switch (type) {
+        case ProcedureType::staircase: return std::pow(0.5, 1.0 / down);
+        case ProcedureType::quest_plus: return guess + (1.0 - guess) * 0.5;
+        case ProcedureType::constant: break;
+    }
+    return NAN;
+}
+
+std::string Procedure::label() const {
+    if (type == ProcedureType::staircase) return "staircase 1-up-" + std::to_string(down) + "-down";
+    return to_string(type);
 }
 
 int orientation_template(double alpha_deg) { return alpha_deg < 90.0 ? 0 : 1; }
@@ -149,6 +254,7 @@ const char* to_string(Task t) {
         case Task::bump_counting: return "bump-counting";
         case Task::curvature: return "curvature";
         case Task::surface_orientation: return "surface-orientation";
+        case Task::edge_sharpness: return "edge-sharpness";
     }
     return "?";
 }
@@ -162,7 +268,8 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
         r.fail("", std::string("invalid JSON: ") + e.what());
     }
     r.only(root, "", {"format", "version", "name", "seed", "task", "conditions", "stimuli", "repetitions", "trials", "warmup",
-                      "repeat_invalid", "answers", "hand", "finger", "force", "bumps", "arc", "block", "participant", "device"});
+                      "repeat_invalid", "answers", "hand", "finger", "force", "bumps", "arc", "block", "edge", "procedure", "participant",
+                      "device"});
     if (r.text(r.need(root, "", "format"), "format") != "contactlab experiment protocol")
         r.fail("format", "expected \"contactlab experiment protocol\"");
     if (r.integer(root, "", "version", 1, 1, 0) != 1) r.fail("version", "missing (this ContactLab reads version 1)");
@@ -219,19 +326,27 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
             case Task::bump_counting: lo = 0.0, hi = 4.0, unit = "bumps"; break;
             case Task::curvature: lo = 0.001, hi = 0.1, unit = "m (the arc's height)"; break;
             case Task::surface_orientation: lo = 0.0, hi = 180.0, unit = "deg (the compliant axis from the surface)"; break;
+            case Task::edge_sharpness: lo = 0.0, hi = 20.0, unit = "mm (the comparison's radius less the reference's)"; break;
         }
         const double v = r.number(stim[i], path, lo, hi, unit);
         if (p.task == Task::bump_counting && v != std::floor(v)) r.fail(path, "a bump count is a whole number");
         if (p.task == Task::surface_orientation && (v == 0.0 || v == 90.0 || v == 180.0))
             r.fail(path, "the compliant axis at 0, 90 or 180 deg is tilted neither way: neither template A (0 < alpha < 90) "
                          "nor B (90 < alpha < 180) is right");
+        if (p.task == Task::edge_sharpness && v <= 0.0)
+            r.fail(path, "the comparison must be blunter than the reference (a difference above 0 mm), or no answer is right");
         p.stimuli.push_back(v);
     }
+    if (root.contains("procedure")) p.procedure = read_procedure(r, root["procedure"], p.stimuli);
     p.repetitions = r.integer(root, "", "repetitions", 1, 1000, 1);
     p.trials = r.integer(root, "", "trials", 0, 100000, 0);
     p.warmup = r.integer(root, "", "warmup", 0, 1000, 0);
     p.repeat_invalid = r.flag(root, "", "repeat_invalid", true);
-    const int per_condition = p.trials > 0 ? p.trials : p.repetitions * static_cast<int>(p.stimuli.size());
+    // Adaptive procedures: `warmup` practice trials per condition, at the procedure's easy end,
+    // before its own trials.
+    const int per_condition = p.procedure.type != ProcedureType::constant ? p.warmup + 1
+                              : p.trials > 0                               ? p.trials
+                                                                            : p.repetitions * static_cast<int>(p.stimuli.size());
     if (p.warmup >= per_condition) r.fail("warmup", "leaves no trial to analyse (" + std::to_string(per_condition) + " per condition)");
 
     if (root.contains("answers")) {
@@ -265,6 +380,12 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
     only_for("bumps", Task::bump_counting);
     only_for("arc", Task::curvature);
     only_for("block", Task::contour_following);
+    only_for("edge", Task::edge_sharpness);
+    if (root.contains("edge")) {
+        r.only(root["edge"], "edge", {"reference_radius", "slope_deg"});
+        p.reference_radius = r.number(root["edge"], "edge", "reference_radius", 0.0001, 0.05, "m", p.reference_radius);
+        p.edge_slope_deg = r.number(root["edge"], "edge", "slope_deg", 5.0, 60.0, "deg", p.edge_slope_deg);
+    }
     if (root.contains("bumps")) {
         r.only(root["bumps"], "bumps", {"small", "large", "length"});
         p.small_bump = r.number(root["bumps"], "bumps", "small", 0.0005, 0.05, "m", p.small_bump);
@@ -282,7 +403,7 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
     if (root.contains("participant")) {
         const json& m = root["participant"];
         r.only(m, "participant", {"force_angle_threshold_deg", "force_angle_noise_deg", "location_threshold_mm",
-                                  "location_noise_mm", "stiffness_noise", "reaction_time_s", "tilt_range_noise"});
+                                  "location_noise_mm", "stiffness_noise", "reaction_time_s", "tilt_range_noise", "edge_rate_noise"});
         ParticipantModel& pm = p.participant;
         pm.force_angle_threshold_deg = r.number(m, "participant", "force_angle_threshold_deg", 0.0, 90.0, "deg", pm.force_angle_threshold_deg);
         pm.force_angle_noise_deg = r.number(m, "participant", "force_angle_noise_deg", 0.0, 90.0, "deg", pm.force_angle_noise_deg);
@@ -291,6 +412,7 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
         pm.stiffness_noise = r.number(m, "participant", "stiffness_noise", 0.0, 10.0, "", pm.stiffness_noise);
         pm.reaction_time_s = r.number(m, "participant", "reaction_time_s", 0.0, 5.0, "s", pm.reaction_time_s);
         pm.tilt_range_noise = r.number(m, "participant", "tilt_range_noise", 0.0, 1.0, "", pm.tilt_range_noise);
+        pm.edge_rate_noise = r.number(m, "participant", "edge_rate_noise", 0.0, 10.0, "", pm.edge_rate_noise);
     }
     return p;
 }

@@ -5,6 +5,9 @@
 // out of range is an error naming the file, the JSON path and why.
 #pragma once
 
+#include "engine/experiments/psychometric.hpp"
+
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -17,6 +20,9 @@ enum class Task {
     bump_counting,        // seed 002: count the bumps (0..4) traced along a curved contour
     curvature,            // seed 003: which of three arc heights was felt
     surface_orientation,  // seed 004: the field's compliant axis at 45 or 135 deg: shape A or B
+    // Park, Doxon, Provancher, Johnson & Tan 2011: which of two rounded edges (a reference and a
+    // blunter comparison, in random order) felt sharper; two-alternative forced choice
+    edge_sharpness,
 };
 const char* to_string(Task t);
 
@@ -46,6 +52,50 @@ struct ParticipantModel {
     // judge a curvature by the difference of slope across the contact, and a range twice as large
     // is as discriminable from its neighbours as the smaller one is from its own.
     double tilt_range_noise = 0.15;
+    // Edge sharpness: relative (Weber) noise on each felt peak rate of change, of the force's
+    // direction and of the contact location, per edge felt.
+    double edge_rate_noise = 0.1;
+};
+
+// How the next trial's stimulus is chosen (procedure.hpp runs the adaptive ones).
+enum class ProcedureType {
+    constant,    // the method of constant stimuli: every stimulus `repetitions` times, shuffled
+    staircase,   // transformed up-down (Levitt 1971), one staircase per condition, interleaved
+    quest_plus,  // QUEST+ (Watson 2017): Bayesian, the stimulus minimising expected entropy
+};
+const char* to_string(ProcedureType t);
+
+// Every field has a default, so {"type": "quest+"} alone is a procedure. Stimuli are in the
+// protocol's stimulus units; `lo` and `hi` (the smallest and largest of the protocol's
+// `stimuli`) bound every adaptive stimulus.
+struct Procedure {
+    ProcedureType type = ProcedureType::constant;
+    double lo = 0.0, hi = 0.0;
+    // Staircase: 1-up-N-down, N = `down` (1-up-2-down converges on p = 0.707, 1-up-3-down on
+    // 0.794: p^N = 1/2). Starts at `start` (default hi, the easiest), moves by `step` (default
+    // (hi - lo) / 8), the step halved at each reversal listed in `halve_at` (default 2 and 4:
+    // large steps find the region, small ones measure it); stops after `reversals` reversals
+    // or `max_trials` trials; the estimate is the mean stimulus at the last
+    // `estimate_reversals` reversals (all of them when fewer).
+    int down = 2;
+    double start = NAN, step = NAN;
+    std::vector<int> halve_at = {2, 4};
+    int reversals = 16, estimate_reversals = 12, max_trials = 100;
+    // QUEST+: the psychometric function and its grids (threshold over [lo, hi], `thresholds`
+    // points; scale log-spaced over [scale_min, scale_max], `scales` points, default (hi - lo)
+    // / 40 .. (hi - lo) / 2, or shape 1 .. 8 for the Weibull; lapse over [0, lapse_max],
+    // `lapses` points); `levels` candidate stimuli over [lo, hi]; stops after `trials` trials or
+    // when the threshold's 95 % credible interval is narrower than `stop_width` (0: never).
+    PsyFunction function = PsyFunction::logistic;
+    double guess = 0.5;
+    int thresholds = 41, scales = 10, lapses = 4, levels = 41;
+    double scale_min = NAN, scale_max = NAN, lapse_max = 0.06;
+    int trials = 80;
+    double stop_width = 0.0;
+    // The probability correct the estimate aims at (staircase: 0.5^(1/down); QUEST+: the
+    // threshold's, guess + (1 - guess) / 2 with no lapse).
+    double target_p() const;
+    std::string label() const;  // "staircase 1-up-2-down", "quest+", "constant"
 };
 
 struct Protocol {
@@ -79,11 +129,17 @@ struct Protocol {
     double finger_radius = 0.026, pad_length = 0.020;  // m
     double stiffness = 1000.0;     // N/m (seeds 000, 002, 003)
     double max_force = 1.5;        // N
+    // Edge sharpness: the reference edge's radius (m) and the slope of the faces either side of
+    // the edge (deg from horizontal); the stimulus is the comparison's radius less the
+    // reference's, in mm.
+    double reference_radius = 0.0025, edge_slope_deg = 30.0;
+    Procedure procedure;
     ParticipantModel participant;
 };
 
 // The unit of the `stimulus` column for a task (the results' `stimulus_unit` column): "m"
-// (000's d), "bumps" (002's count), "mm" (003's h) and "deg" (004's alpha).
+// (000's d), "bumps" (002's count), "mm" (003's h and the edge's radius difference) and "deg"
+// (004's alpha).
 const char* stimulus_unit(Task t);
 
 // Seed 004's template for a field angle alpha (deg): 0 (the protocol's first answer, template
@@ -91,6 +147,10 @@ const char* stimulus_unit(Task t);
 // 0, 90 and 180 deg it is horizontal or vertical, tilted neither way, so neither template is
 // right; protocols may not use those angles (parse_protocol refuses them).
 int orientation_template(double alpha_deg);
+
+// Two-alternative forced choice (edge sharpness): the interval, 1 or 2, that holds the
+// comparison, drawn from the trial's seed alone (so a constant plan's order is untouched).
+int comparison_interval(std::uint64_t trial_seed);
 
 // The CSV text of a stimulus value: seed 003 in mm ("10"), others as written ("0.06", "2", "45").
 std::string stimulus_label(const Protocol& p, double stimulus);

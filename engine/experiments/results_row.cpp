@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <mutex>
 
 namespace contactlab::experiments {
 namespace {
@@ -29,19 +30,37 @@ const std::vector<std::string>& results_columns(const Protocol& p) {
     static const std::vector<std::string> orientation = with(base, {"e", "k"});
     static const std::vector<std::string> curvature = with(base, {"motion"});
     static const std::vector<std::string> bumps = with(base, {"small_bumps", "large_bumps"});
+    static const std::vector<std::string> edge = with(base, {"reference_mm", "comparison_interval"});
+    static const std::vector<std::string> adaptive_columns = {"procedure", "target_p", "reversal", "estimate"};
+    const std::vector<std::string>* task = &base;
     switch (p.task) {
-        case Task::surface_orientation: return orientation;
-        case Task::curvature: return curvature;
-        case Task::bump_counting: return bumps;
+        case Task::surface_orientation: task = &orientation; break;
+        case Task::curvature: task = &curvature; break;
+        case Task::bump_counting: task = &bumps; break;
+        case Task::edge_sharpness: task = &edge; break;
         case Task::contour_following: break;
     }
-    return base;
+    if (p.procedure.type == ProcedureType::constant) return *task;
+    // The adaptive tables: the task's columns and the procedure's, built once per task.
+    static std::vector<std::string> built[5];
+    static std::once_flag once[5];
+    const auto i = static_cast<std::size_t>(p.task);
+    std::call_once(once[i], [&] {
+        built[i] = *task;
+        built[i].insert(built[i].end(), adaptive_columns.begin(), adaptive_columns.end());
+    });
+    return built[i];
 }
 
-bool graded_correct(const Protocol& p, double stimulus, const std::string& response) {
+const std::string& sharper_answer(const Protocol& p, const PlannedTrial& t) {
+    return p.answers.at(static_cast<std::size_t>(2 - comparison_interval(t.seed)));  // the reference's interval
+}
+
+bool graded_correct(const Protocol& p, const PlannedTrial& t, const std::string& response) {
     if (p.answers.empty() || response.empty()) return false;
-    if (p.task == Task::surface_orientation) return response == p.answers[static_cast<std::size_t>(orientation_template(stimulus))];
-    return response == stimulus_label(p, stimulus);
+    if (p.task == Task::surface_orientation) return response == p.answers[static_cast<std::size_t>(orientation_template(t.stimulus))];
+    if (p.task == Task::edge_sharpness) return response == sharper_answer(p, t);
+    return response == stimulus_label(p, t.stimulus);
 }
 
 std::vector<std::string> results_row(const Protocol& p, const TrialRecord& r) {
@@ -52,7 +71,7 @@ std::vector<std::string> results_row(const Protocol& p, const TrialRecord& r) {
                                     stimulus_label(p, r.trial.stimulus),
                                     stimulus_unit(p.task),
                                     r.response,
-                                    r.response.empty() ? "" : (graded_correct(p, r.trial.stimulus, r.response) ? "1" : "0"),
+                                    r.response.empty() ? "" : (graded_correct(p, r.trial, r.response) ? "1" : "0"),
                                     r.valid ? "1" : "0",
                                     r.trial.warmup ? "1" : "0",
                                     fmt(r.time_s, "%.4f"),
@@ -72,7 +91,17 @@ std::vector<std::string> results_row(const Protocol& p, const TrialRecord& r) {
             row.push_back(std::to_string(r.small_bumps));
             row.push_back(std::to_string(r.large_bumps));
             break;
+        case Task::edge_sharpness:
+            row.push_back(fmt(p.reference_radius * 1e3));
+            row.push_back(std::to_string(comparison_interval(r.trial.seed)));
+            break;
         case Task::contour_following: break;
+    }
+    if (p.procedure.type != ProcedureType::constant) {
+        row.push_back(p.procedure.label());
+        row.push_back(fmt(p.procedure.target_p(), "%.4f"));
+        row.push_back(r.reversal ? "1" : "0");
+        row.push_back(fmt(r.estimate));
     }
     return row;
 }

@@ -6,6 +6,7 @@
 #include "engine/experiments/protocol.hpp"
 #include "engine/experiments/trial_plan.hpp"
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -23,14 +24,23 @@ struct TrialRecord {
     bool touched = false;        // the finger contacted the stimulus during the trial
     std::string device;          // the device's name ("sim-cld"); "" when not known
     int small_bumps = 0, large_bumps = 0;  // seed 002: the stimulus's bumps by size
+    // Adaptive procedures: whether this trial's answer made the staircase reverse, and the
+    // procedure's estimate after it (NaN: none yet).
+    bool reversal = false;
+    double estimate = NAN;
 };
 
-// The results file's columns, in order.
+// The results file's columns, in order: the common ones, the task's (seed 002 small_bumps and
+// large_bumps, 003 motion, 004 e and k, edge sharpness reference_mm and comparison_interval),
+// then, for an adaptive procedure, procedure, target_p, reversal and estimate.
 const std::vector<std::string>& results_columns(const Protocol& p);
 
-// Whether `response` is the right answer to `stimulus`: the stimulus's label (002, 003), or
-// the template of its field angle (004, orientation_template). False for the timed task.
-bool graded_correct(const Protocol& p, double stimulus, const std::string& response);
+// Whether `response` is the right answer to the trial: the stimulus's label (002, 003), the
+// template of its field angle (004, orientation_template), or (edge sharpness) the interval
+// that held the reference, the sharper edge. False for the timed task.
+bool graded_correct(const Protocol& p, const PlannedTrial& t, const std::string& response);
+// Edge sharpness: the answer that names the interval holding the reference (the right one).
+const std::string& sharper_answer(const Protocol& p, const PlannedTrial& t);
 
 // The row's cells, as results_columns(p) names them.
 std::vector<std::string> results_row(const Protocol& p, const TrialRecord& r);

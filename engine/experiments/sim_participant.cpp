@@ -196,6 +196,68 @@ TrialOutcome surface_orientation(const Protocol& p, const Condition& c, const Pl
     return o;
 }
 
+// Peak rate of change per mm of travel of a cue sampled every tick at constant hand speed,
+// after a running mean over +-2 mm (the skin and the hand do not resolve finer).
+double peak_rate_per_mm(const std::vector<double>& s, double samples_per_mm) {
+    if (s.size() < 3) return 0.0;
+    const std::size_t half = static_cast<std::size_t>(2.0 * samples_per_mm);
+    // band(s, half, 0) is the running mean over +-half less the sample itself: add it back.
+    std::vector<double> m = band(s, half, 0);
+    for (std::size_t i = 0; i < s.size(); ++i) m[i] += s[i];
+    double peak = 0.0;
+    const std::size_t lag = std::max<std::size_t>(1, static_cast<std::size_t>(samples_per_mm));
+    for (std::size_t i = lag; i < m.size(); ++i) peak = std::max(peak, std::abs(m[i] - m[i - lag]));
+    return peak;  // per lag samples = per mm
+}
+
+struct EdgeFelt {
+    double angle_rate = 0.0, location_rate = 0.0;  // deg/mm, mm/mm
+    TrialTrace trace;
+    Stimulus st;
+};
+
+EdgeFelt feel_edge(const Protocol& p, const Condition& c, double radius) {
+    EdgeFelt f;
+    f.st = make_edge_stimulus(p, radius);
+    f.trace = run_servo_trial(f.st.scene, f.st.path, c.contact_location);
+    std::vector<double> angle, location;
+    double last_angle = 0.0, last_loc = 0.0;
+    for (const TickRecord& r : f.trace.ticks) {
+        if (r.t < f.st.slide_start || r.t > f.st.slide_end) continue;
+        if (r.contact) last_angle = force_angle_deg(r), last_loc = r.roller_l * 1e3;
+        angle.push_back(last_angle);
+        location.push_back(last_loc);
+    }
+    const double per_mm = kTrialRate / (p.hand_speed * 1e3);
+    f.angle_rate = peak_rate_per_mm(angle, per_mm);
+    f.location_rate = peak_rate_per_mm(location, per_mm);
+    return f;
+}
+
+TrialOutcome edge_sharpness(const Protocol& p, const Condition& c, const PlannedTrial& t, std::uint64_t& rng) {
+    const double noise = p.participant.edge_rate_noise;
+    const EdgeFelt first = feel_edge(p, c, edge_radius(p, t, 1)), second = feel_edge(p, c, edge_radius(p, t, 2));
+    // A felt rate: the displayed one with relative noise, kept positive.
+    auto felt = [&](double rate) { return std::max(1e-9, rate * std::max(0.05, 1.0 + noise * normal01(rng))); };
+    double d = std::log(felt(first.angle_rate) / felt(second.angle_rate));
+    if (c.contact_location) d = 0.5 * (d + std::log(felt(first.location_rate) / felt(second.location_rate)));
+    TrialOutcome o;
+    // Both intervals count: a fault or no contact in either spoils the comparison.
+    TrialTrace both = first.trace;
+    const double offset = first.st.path.end();
+    for (drivers::TickRecord r : second.trace.ticks) {
+        r.t += offset;
+        both.ticks.push_back(r);
+    }
+    both.faulted = first.trace.faulted || second.trace.faulted;
+    common_measures(both, o);
+    o.touched = std::any_of(first.trace.ticks.begin(), first.trace.ticks.end(), [](const TickRecord& r) { return r.contact; }) &&
+                std::any_of(second.trace.ticks.begin(), second.trace.ticks.end(), [](const TickRecord& r) { return r.contact; });
+    o.response = d > 0.0 ? p.answers[0] : p.answers[1];
+    o.time_s = (first.st.slide_end - first.st.slide_start) + (second.st.slide_end - second.st.slide_start);
+    return o;
+}
+
 }  // namespace
 
 TrialOutcome perform_sim_trial(const Protocol& p, const PlannedTrial& t) {
@@ -209,8 +271,9 @@ TrialOutcome perform_sim_trial(const Protocol& p, const PlannedTrial& t) {
             o = p.device == "sim-wearable" ? wearable_curvature_trial(p, c, t, rng) : curvature(p, c, t, rng);
             break;
         case Task::surface_orientation: o = surface_orientation(p, c, t, rng); break;
+        case Task::edge_sharpness: o = edge_sharpness(p, c, t, rng); break;
     }
-    o.correct = graded_correct(p, t.stimulus, o.response);
+    o.correct = graded_correct(p, t, o.response);
     return o;
 }
 

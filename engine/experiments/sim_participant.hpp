@@ -20,6 +20,16 @@
 //   surface-orientation the force's growth per mm along each downward diagonal, each with
 //                      `stiffness_noise` relative noise: the softer diagonal is the compliant
 //                      axis a1, 45 deg (template A) or 135 deg (B) (seed 004)
+//   edge-sharpness     slides over both intervals' edges and reads, from each, the peak rate of
+//                      change (per mm of travel, over a 4 mm running mean) of the force's
+//                      direction and, with contact location shown, of the contact element's
+//                      position: over an edge of radius r the contact normal turns at 1 / (r + R)
+//                      per mm of the finger's centre (R the finger's radius), so a sharper edge
+//                      turns both faster. Each felt rate carries `edge_rate_noise` relative
+//                      (Weber) noise; the edge whose rates felt larger, by the mean of the log
+//                      ratios over the cues it has, is answered sharper. Two cues with
+//                      independent noise average to a smaller noise: that is what contact
+//                      location adds here.
 #pragma once
 
 #include "engine/experiments/protocol.hpp"

@@ -81,6 +81,34 @@ void set_finger_and_force(Scene& s, const Protocol& p) {
 
 }  // namespace
 
+Scene generate_edge(double radius, double slope, double half_width) {
+    // The faces meet at the apex (0, 0); the arc's centre lies below it at radius / cos(slope),
+    // where it is `radius` from both faces, and the arc runs clockwise over the top (convex).
+    const Vec2 center{0.0, -radius / std::cos(slope)};
+    const double a0 = 0.5 * kPi + slope, a1 = 0.5 * kPi - slope;
+    const Vec2 left = center + radius * Vec2{std::cos(a0), std::sin(a0)}, right = center + radius * Vec2{std::cos(a1), std::sin(a1)};
+    Scene s;
+    Contour c;
+    c.segments.push_back(LineSegment{{-half_width, -half_width * std::tan(slope)}, left});
+    c.segments.push_back(ArcSegment{center, radius, a0, a1});
+    c.segments.push_back(LineSegment{right, {half_width, -half_width * std::tan(slope)}});
+    s.contours.push_back(c);
+    return s;
+}
+
+Stimulus make_edge_stimulus(const Protocol& p, double radius) {
+    Stimulus st;
+    st.scene = generate_edge(radius, p.edge_slope_deg * kPi / 180.0, 0.05);
+    set_finger_and_force(st.scene, p);
+    const SurfaceProfile pts = profile_of(surface_points(st.scene));
+    st.path = slide_path(pts, -0.03, 0.03, p.finger_radius, p.hand_speed, p.hand_press, st.slide_start, st.slide_end);
+    return st;
+}
+
+double edge_radius(const Protocol& p, const PlannedTrial& t, int interval) {
+    return p.reference_radius + (interval == comparison_interval(t.seed) ? t.stimulus * 1e-3 : 0.0);
+}
+
 double arc_slope_range_deg(double chord, double height) {
     const double ra = (chord * chord / 4.0 + height * height) / (2.0 * height);
     return 2.0 * std::asin(std::min(1.0, chord / (2.0 * ra))) * 180.0 / kPi;
@@ -174,6 +202,7 @@ Stimulus make_stimulus(const Protocol& p, const Condition& c, const PlannedTrial
             st.path = drivers::HandPath(std::move(out));
             break;
         }
+        case Task::edge_sharpness: st = make_edge_stimulus(p, edge_radius(p, t, 1)); break;
     }
     return st;
 }

@@ -11,6 +11,12 @@
 //                      right, motion B right to left (the seed's S1E1 and S2E2 in a plane)
 //   surface-orientation seed 004's field over a flat floor (friction holds the stiction point);
 //                      the hand presses 1 mm in, then probes 1 mm along each downward diagonal
+//   edge-sharpness     a ridge: two faces at +-`edge.slope_deg` joined by a tangent arc of the
+//                      edge's radius (line-arc-line); the hand slides across it left to right
+//                      like the curvature task. A trial has two intervals, the reference edge
+//                      and the comparison (reference + stimulus mm), in the order
+//                      comparison_interval() draws; make_stimulus gives the first interval's,
+//                      make_edge_stimulus either.
 #pragma once
 
 #include "drivers/hand_path.hpp"
@@ -31,6 +37,14 @@ struct Stimulus {
 };
 
 Stimulus make_stimulus(const Protocol& p, const Condition& c, const PlannedTrial& t, double overshoot = 0.0);
+
+// Edge sharpness: the edge of radius `radius` (m) and the slide across it.
+Stimulus make_edge_stimulus(const Protocol& p, double radius);
+// The radius (m) of a trial's edge in `interval` (1 or 2).
+double edge_radius(const Protocol& p, const PlannedTrial& t, int interval);
+// The ridge alone: faces at +-slope (rad) out to +-half_width (m) from the apex, joined by a
+// tangent arc of `radius` (m); solid below.
+Scene generate_edge(double radius, double slope, double half_width);
 
 // Seed 003: the force direction's range (deg) sliding over a whole arc of chord d and height h,
 // twice the slope at its ends: 2 asin(d / (2 r_a)), r_a = (d^2 / 4 + h^2) / (2 h) (seed 003 §4).

@@ -213,3 +213,51 @@ TEST_CASE("experiment run: the meta names version, protocol (its sha256 as sha25
     }
     CHECK(rows == 2 * 2 * 3);
 }
+
+TEST_CASE("experiment run: an adaptive run killed with SIGKILL resumes by replaying the stored answers, the same bytes as an uninterrupted run") {
+    // The edge protocol's staircases, short (at most 20 trials per condition): the next
+    // stimulus depends on the answers, so a resume that did not replay them would present
+    // other stimuli and write other bytes (or be refused for a mismatched row).
+    TempDir dir;
+    nlohmann::json proto = nlohmann::json::parse(read_text((source_dir() / "scenes/experiments/edge-sharpness.json").string()));
+    proto["procedure"]["max_trials"] = 20;
+    proto["procedure"]["reversals"] = 6;
+    proto["procedure"]["estimate_reversals"] = 4;
+    const std::string path = dir.file("short-edge.json");
+    write_text(path, proto.dump(2));
+    auto args = [&](const std::string& out) {
+        return std::vector<std::string>{"experiment", "run", path, "--participants", "sim:1-2", "--seed", "9", "--jobs", "1", "-o", out};
+    };
+    const auto whole = run_contactlab(args(dir.file("whole.csv")));
+    INFO("stderr: " << whole.err);
+    REQUIRE(whole.exit_code == 0);
+    const std::string out = dir.file("r.csv");
+    REQUIRE(kill_when(args(out), [&] { return rows_in(out + ".parts/sim1.csv") >= 9; }));
+    CHECK(rows_in(out + ".parts/sim1.csv") < rows_in(dir.file("whole.csv")) / 2);
+    const auto again = run_contactlab(args(out));
+    INFO("stderr: " << again.err);
+    REQUIRE(again.exit_code == 0);
+    CHECK(contains(again.err, "resumed"));
+    CHECK(read_text(out) == read_text(dir.file("whole.csv")));
+    check_same_traces(out + ".traces", dir.file("whole.csv.traces"));
+    // A stored answer changed: the replayed staircase goes elsewhere, and the run is refused
+    // rather than continued from a state the file does not describe.
+    const std::string out2 = dir.file("tampered.csv");
+    REQUIRE(kill_when(args(out2), [&] { return rows_in(out2 + ".parts/sim1.csv") >= 9; }));
+    std::string part = read_text(out2 + ".parts/sim1.csv");
+    // Flip every stored answer's `correct` cell after the practice: ",first,1," <-> ",first,0,".
+    std::string flipped;
+    for (std::size_t i = 0; i < part.size(); ++i) {
+        flipped += part[i];
+        if ((part.compare(i, 7, ",first,") == 0 || part.compare(i, 8, ",second,") == 0)) {
+            const std::size_t cell = part.find(',', i + 1) + 1;
+            flipped += part.substr(i + 1, cell - i - 1);
+            flipped += part[cell] == '1' ? '0' : '1';
+            i = cell;
+        }
+    }
+    write_text(out2 + ".parts/sim1.csv", flipped);
+    const auto refused = run_contactlab(args(out2));
+    CHECK(refused.exit_code == 2);
+    CHECK(contains(refused.err, "the procedure has"));
+}

@@ -154,3 +154,65 @@ TEST_CASE("experiment analyze: seed 002's report has the tables by number of sma
     CHECK(contains(md, "undefined: "));  // identical accuracy in both conditions: no test
     CHECK(contains(md, "b.csv | (no meta file) |"));
 }
+
+TEST_CASE("experiment run: the simulated participant feels the edge protocol through the servo and the report shows both thresholds") {
+    TempDir dir;
+    const std::string out = dir.file("edges.csv");
+    const auto p = run_contactlab({"experiment", "run", (source_dir() / "scenes/experiments/edge-sharpness.json").string(),
+                                   "--participants", "sim:1-2", "--seed", "1", "--jobs", "2", "--no-traces", "-o", out});
+    INFO("stderr: " << p.err);
+    REQUIRE(p.exit_code == 0);
+    CHECK(contains(p.err, "2 participant(s)"));
+    CHECK(contains(p.err, " 0 invalid"));
+    const std::string csv = read_text(out);
+    CHECK(csv.rfind("participant,condition,trial,stimulus,stimulus_unit,response,correct,valid,warmup,time_s,failed,"
+                    "contact_breaks,peak_force_n,touched,contact_location,device,reference_mm,comparison_interval,procedure,"
+                    "target_p,reversal,estimate\n", 0) == 0);
+    CHECK(contains(csv, ",mm,"));
+    CHECK(contains(csv, ",sim-cld,2.5,"));
+    const auto a = run_contactlab({"experiment", "analyze", out, "--psychometric", "logistic", "--bootstrap", "100", "--json",
+                                   dir.file("a.json"), "--report", dir.file("report")});
+    INFO("analyze stdout: " << a.out);
+    REQUIRE(a.exit_code == 0);
+    const auto j = nlohmann::json::parse(read_text(dir.file("a.json")));
+    for (const char* c : {"force", "force+cld"}) {
+        const auto& ad = j["conditions"][c]["adaptive"];
+        CHECK(ad["procedure"] == "staircase 1-up-2-down");
+        CHECK(ad["participants"] == 2);
+        // A staircase estimate is a mean of stimuli the staircase visited: inside the protocol's range.
+        CHECK(ad["estimate"].get<double>() >= 0.25);
+        CHECK(ad["estimate"].get<double>() <= 8.0);
+        CHECK(j["conditions"][c]["participants"]["sim1"]["adaptive"]["reversals"].get<int>() >= 1);
+        CHECK(j["conditions"][c]["psychometric"]["function"] == "logistic");
+        MESSAGE(std::string(c), ": median staircase estimate ", ad["estimate"].get<double>(), " mm, fitted threshold ",
+                j["conditions"][c]["psychometric"].value("threshold", nlohmann::json()).dump());
+    }
+    const std::string md = read_text(dir.file("report/report.md"));
+    CHECK(contains(md, "## Thresholds"));
+    CHECK(contains(md, "| force | staircase 1-up-2-down | 0.707 | "));
+    CHECK(contains(md, "| force+cld | staircase 1-up-2-down | 0.707 | "));
+    // Not seed 000's figures, though the conditions share its names.
+    CHECK_FALSE(contains(md, "seed000"));
+    CHECK(contains(md, "](track_force.png)"));
+    CHECK(std::filesystem::file_size(dir.file("report/track_force.png")) > 1000);
+    CHECK(contains(md, "](psychometric_force_cld.png)"));
+}
+
+TEST_CASE("experiment run: model observers from the command line, and a bad observer exits 2 saying why") {
+    TempDir dir;
+    const std::string out = dir.file("obs.csv");
+    const auto p = run_contactlab({"experiment", "run", (source_dir() / "scenes/experiments/edge-sharpness.json").string(),
+                                   "--participants", "observer:logistic:threshold=2,scale=0.4,guess=0.5,lapse=0.02:1-3", "-o", out});
+    INFO("stderr: " << p.err);
+    REQUIRE(p.exit_code == 0);
+    CHECK(contains(read_text(out), "\nobs3,"));
+    CHECK(contains(read_text(out), ",model-observer,"));
+    CHECK(contains(read_text(out + ".meta.json"), "observer:logistic:threshold=2,scale=0.4,guess=0.5,lapse=0.02"));
+    const auto bad = run_contactlab({"experiment", "run", (source_dir() / "scenes/experiments/edge-sharpness.json").string(),
+                                     "--participant", "observer:logistic:threshold=2", "-o", dir.file("bad.csv")});
+    CHECK(bad.exit_code == 2);
+    CHECK(contains(bad.err, "--participant: observer \"logistic:threshold=2\": threshold and scale are required"));
+    const auto fn = run_contactlab({"experiment", "analyze", out, "--psychometric", "probit"});
+    CHECK(fn.exit_code == 2);
+    CHECK(contains(fn.err, "--psychometric: expected logistic, weibull or cumulative-normal, got \"probit\""));
+}

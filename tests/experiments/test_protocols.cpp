@@ -65,7 +65,7 @@ TEST_CASE("protocols: a bad protocol names the file, the JSON path and why") {
     CHECK_THROWS_WITH_AS(parse_protocol(with("\"motion\": \"A\"", "\"motion\": \"C\""), "p.json"),
                          "p.json: conditions[0].motion: expected \"A\" or \"B\" (seed 003's tasks)", ExperimentError);
     CHECK_THROWS_WITH_AS(parse_protocol(with("\"task\": \"curvature\"", "\"task\": \"juggling\""), "p.json"),
-                         "p.json: task: unknown task \"juggling\" (contour-following, bump-counting, curvature, surface-orientation)",
+                         "p.json: task: unknown task \"juggling\" (contour-following, bump-counting, curvature, surface-orientation, edge-sharpness)",
                          ExperimentError);
     CHECK_THROWS_WITH_AS(parse_protocol(with("\"stimuli\"", "\"warmup\": 2, \"stimuli\""), "p.json"),
                          "p.json: warmup: leaves no trial to analyse (2 per condition)", ExperimentError);
