@@ -137,8 +137,9 @@ CurvatureArcResult curvature_arc(const RigDef& def, const CurvatureArcDef& cd) {
     WearableRig rig(def);
     const Pose rest = def.plant.platform.rest;
     const double kn = def.plant.stiffness(2, 2);  // N/m, the fingertip's normal stiffness
-    const double start = cd.from_top ? 0.0 : -0.5 * cd.chord - cd.margin;  // m, the contact's first x
-    const double travel = 0.5 * cd.chord + cd.margin - start;
+    const double travel = cd.chord + 2.0 * cd.margin;
+    const double start = cd.reverse ? 0.5 * cd.chord + cd.margin : -0.5 * cd.chord - cd.margin;  // m, the contact's first x
+    const double direction = cd.reverse ? -1.0 : 1.0;
     const auto n = static_cast<long>(std::ceil(travel / cd.speed / cd.sample_period));
     double sum2 = 0.0;
     int count = 0;
@@ -147,7 +148,7 @@ CurvatureArcResult curvature_arc(const RigDef& def, const CurvatureArcDef& cd) {
         const double t = rig.time();
         CurvatureSample s;
         s.t = t;
-        s.contact_x = start + cd.speed * t;
+        s.contact_x = start + direction * cd.speed * t;
         s.contact = std::abs(s.contact_x) <= 0.5 * cd.chord;
         // The arc's slope under the contact: y = sqrt(r^2 - x^2) - (r - h), dy/dx = -x / sqrt(r^2 - x^2).
         s.surface_angle = s.contact ? -std::asin(std::clamp(s.contact_x / out.radius, -1.0, 1.0)) : 0.0;

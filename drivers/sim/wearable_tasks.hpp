@@ -76,9 +76,9 @@ struct CurvatureArcDef {
     double contact_force = 0.5;  // N, the normal force pressed while on the arc (not in the seed)
     double sample_period = 0.01; // s: one row per link tick
     double settle = 0.2;         // s after contact starts that the rms leaves out (the press-in)
-    // Seed 003's task B: the contact starts at the arc's top (mid-chord) and runs to its end, then
-    // `margin` beyond. false: task A, the whole chord from `margin` before it to `margin` after.
-    bool from_top = false;
+    // Seed 003's task B: the arc moves the other way under the finger (the contact runs from +x to
+    // -x). false: task A, from `margin` before the chord's -x end to `margin` past its +x end.
+    bool reverse = false;
 };
 struct CurvatureSample {
     double t = 0.0;              // s

@@ -31,8 +31,8 @@ struct Condition {
     // The contact element displays the contact location; false holds it at the pad's centre
     // (seed 000's and 002's force-only condition).
     bool contact_location = true;
-    // Seed 003: the arc's motion under the finger, "A" (the whole chord) or "B" (from its top
-    // to its end). Empty for the other tasks.
+    // Seed 003: the arc's motion under the finger, "A" (the whole chord, -x to +x) or "B" (the
+    // other way, +x to -x). Empty for the other tasks.
     std::string motion;
     // Seed 004: the field's eccentricity e and total stiffness k (N/m) in this condition.
     double eccentricity = 1.0, total_stiffness = 1000.0;

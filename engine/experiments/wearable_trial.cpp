@@ -11,11 +11,6 @@
 
 namespace contactlab::experiments {
 
-double wearable_tilt_range_deg(double chord, double height, const std::string& motion) {
-    const double whole = arc_slope_range_deg(chord, height);  // deg
-    return motion == "B" ? 0.5 * whole : whole;
-}
-
 TrialOutcome wearable_curvature_trial(const Protocol& p, const Condition& c, const PlannedTrial& t, std::uint64_t& rng) {
     constexpr double kDeg = 180.0 / 3.14159265358979323846;
     drivers::sim::CurvatureArcDef def;
@@ -23,7 +18,7 @@ TrialOutcome wearable_curvature_trial(const Protocol& p, const Condition& c, con
     def.height = t.stimulus;
     def.speed = p.hand_speed;  // m/s: here the arc's speed under the still finger
     def.contact_force = kWearableContactForce;
-    def.from_top = c.motion == "B";
+    def.reverse = c.motion == "B";
     const drivers::sim::CurvatureArcResult run = drivers::sim::curvature_arc(wearable::seed_fit_rig(), def);
     TrialOutcome o;
     o.valid = !run.fault;
@@ -44,7 +39,7 @@ TrialOutcome wearable_curvature_trial(const Protocol& p, const Condition& c, con
     const double felt = std::max(1e-6, swept * (1.0 + p.participant.tilt_range_noise * normal01(rng)));  // deg
     double best = 1e300, answer = p.stimuli.front();
     for (double h : p.stimuli)
-        if (const double d = std::abs(std::log(felt / wearable_tilt_range_deg(p.chord, h, c.motion))); d < best) {
+        if (const double d = std::abs(std::log(felt / arc_slope_range_deg(p.chord, h))); d < best) {
             best = d;
             answer = h;
         }

@@ -4,11 +4,10 @@
 // controller to the arc's slope under the contact and pressed with the contact force
 // (drivers/sim/wearable_tasks.hpp, curvature_arc, with the seed-fitted rig).
 //
-// Task A moves the whole chord under the finger, task B from the arc's top to its end (the
-// condition's `motion`). The simulated participant reads the platform's tilt: the range it swept
+// Task A moves the arc under the finger one way, task B the other way (the condition's `motion`;
+// seed 003's S_1 E_1 and S_2 E_2). The simulated participant reads the platform's tilt: the range it swept
 // while in contact, felt with relative noise (ParticipantModel::tilt_range_noise), and answers
-// the height whose range is nearest as a ratio: 2 asin(d / 2 r_a) over the whole chord (A), half
-// that from the top (B). The range of slope is the cue because people judge a curvature by the
+// the height whose range is nearest as a ratio: 2 asin(d / 2 r_a) (arc_slope_range_deg). The range of slope is the cue because people judge a curvature by the
 // difference in slope across what they touch (Pont, Kappers and Koenderink 1999, Perception &
 // Psychophysics 61(5)); the noise's size is this model's choice, not a fitted value.
 #pragma once
@@ -31,9 +30,5 @@ inline constexpr double kWearableLinkRate = 100.0;
 // Fills response, time_s (the contact's duration), touched, peak_force (the fingertip wrench's
 // force on the platform), valid (no control or estimate fault) and `platform` (the trace).
 TrialOutcome wearable_curvature_trial(const Protocol& p, const Condition& c, const PlannedTrial& t, std::uint64_t& rng);
-
-// The tilt range (deg) the platform would sweep on an arc of chord d and height h (m), for motion
-// "A" (the whole chord) or "B" (top to end).
-double wearable_tilt_range_deg(double chord, double height, const std::string& motion);
 
 }  // namespace contactlab::experiments

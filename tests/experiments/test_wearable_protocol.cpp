@@ -77,7 +77,7 @@ TEST_CASE("wearable protocol: seed 003's arcs on the simulated platform, rows an
             min_tension = std::min({min_tension, r[5], r[6], r[7]});
         }
         const double h = std::stod(t.rows[i][stim]) * 1e-3;  // m
-        const double want = wearable_tilt_range_deg(p.chord, h, t.rows[i][cond]);
+        const double want = arc_slope_range_deg(p.chord, h);
         CAPTURE(want);
         CHECK((hi - lo) * 180.0 / 3.14159265358979 == doctest::Approx(want).epsilon(0.10));
         // Pressed with the contact force (0.5 N) through cables that stay taut.
@@ -91,10 +91,9 @@ TEST_CASE("wearable protocol: seed 003's arcs on the simulated platform, rows an
     CHECK((*meta)["servo_rate_hz"].get<double>() == 100.0);
 }
 
-TEST_CASE("wearable protocol: task B sweeps half of task A's tilt, and sim-wearable is for the curvature task only") {
-    CHECK(wearable_tilt_range_deg(0.30, 0.02, "B") == doctest::Approx(0.5 * wearable_tilt_range_deg(0.30, 0.02, "A")));
+TEST_CASE("wearable protocol: the arc's slope range, and sim-wearable is for the curvature task only") {
     // Seed 003 section 4: r_a = (d^2 / 4 + h^2) / (2 h); at h = 30 mm, d = 30 cm: 0.39 m, slopes +-22.6 deg.
-    CHECK(wearable_tilt_range_deg(0.30, 0.03, "A") == doctest::Approx(2.0 * std::asin(0.15 / 0.39) * 180.0 / 3.14159265358979));
+    CHECK(arc_slope_range_deg(0.30, 0.03) == doctest::Approx(2.0 * std::asin(0.15 / 0.39) * 180.0 / 3.14159265358979));
     const std::string bumps = R"({"format": "contactlab experiment protocol", "version": 1, "name": "x", "seed": "002",
       "task": "bump-counting", "device": "sim-wearable", "conditions": [{"name": "F"}], "stimuli": [0, 1], "answers": ["0", "1"]})";
     CHECK_THROWS_WITH_AS(parse_protocol(bumps, "p.json"), doctest::Contains("p.json: device: sim-wearable runs the curvature task only"),
