@@ -83,7 +83,7 @@ void ServoRunner::run() noexcept {
     } else {
         memory_lock_ = "memory not locked";
     }
-    const long spin_ns = opt_.core >= 0 ? std::clamp(opt_.spin_ns, 0L, std::lround(loop_.period() * 1e9) / 5) : 0;  // ns
+    const long spin_ns = opt_.core >= 0 ? std::clamp(opt_.spin_ns, 0L, std::lround(loop_.period() * 1e9) / 2) : 0;  // ns
     if (spin_ns > 0) scheduling_ += ", the last " + std::to_string(spin_ns / 1000) + " us of each wait polled";
     sched_ready_.store(true, std::memory_order_release);
 

@@ -35,12 +35,15 @@ struct RunnerOptions {
     // a force held on the device).
     bool zero_on_exit = false;
     TickBoundaryHook* hook = nullptr;
-    // The last part of each wait (ns) is spent polling the clock instead of asleep: a timer
-    // wake-up comes tens of us late now and then (a VM's timer, the kernel finishing other work
-    // on the CPU), which at 10 kHz is most of a 100 us period and the cause of the overruns seen
-    // beside the editor. Used only on a pinned thread (`core` >= 0: the CPU is the servo's own,
-    // so the polling takes nothing from anyone), and at most a fifth of the period.
-    long spin_ns = 20000;
+    // The last part of each wait (ns) is spent polling the clock instead of asleep. A timer
+    // wake-up on the development VM comes 24 us late at the median even for a SCHED_FIFO thread
+    // pinned to its own CPU (a bare loop, `contactlab bench`'s "timer floor"), and tens of us
+    // more now and then: at 10 kHz that is a quarter of the period gone before the tick starts.
+    // Waking 40 us early and polling puts the median start on the deadline (measured: 0.01 us
+    // late, p99 8-14 us, against 24 and 50-80 us asleep). Used only on a pinned thread (`core` >=
+    // 0: the CPU is the servo's own, so the polling takes nothing from anyone; 4 % of it at
+    // 1 kHz), and at most half the period.
+    long spin_ns = 40000;
 };
 
 // Splits the process's CPUs: removes the last one from the calling thread's affinity (so every

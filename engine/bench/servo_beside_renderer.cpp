@@ -77,6 +77,7 @@ ServoBesideRenderer servo_beside_renderer(bool quick) {
     try {
         r.alone = run_servo(core, 1000.0, r.seconds, r.scheduling, [](drivers::ServoRunner&) {});
         r.alone_10k = run_servo(core, 10000.0, r.seconds, r.scheduling, [](drivers::ServoRunner&) {});
+        r.floor_10k = timer_floor(core, 10000.0, static_cast<std::uint64_t>(r.seconds * 10000.0), drivers::RunnerOptions{}.spin_ns);
 
         const render::VulkanContext ctx(render::ContextOptions{});
         r.device = ctx.device_name();

@@ -11,6 +11,8 @@
 // itself (engine/editor/x_server_affinity.hpp); its figure is the editor's exit line.
 #pragma once
 
+#include "engine/bench/timer_floor.hpp"
+
 #include <cstdint>
 #include <string>
 
@@ -29,6 +31,9 @@ struct ServoBesideRenderer {
     double seconds = 0.0;    // s of each phase
     ServoPeriodFigures alone, beside;          // at 1 kHz (seed 000's rate)
     ServoPeriodFigures alone_10k, beside_10k;  // at 10 kHz: a 100 us period, where wake-up latency shows
+    // A bare loop at 10 kHz on the servo's CPU, waiting as the servo waits, with nothing drawing:
+    // how punctually this machine starts a period at all (timer_floor.hpp).
+    TimerFloor floor_10k;
     std::uint64_t frames = 0;  // rendered during the "beside" phase
     double fps = 0.0;
 };

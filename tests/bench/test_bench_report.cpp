@@ -394,6 +394,14 @@ TEST_CASE("bench --quick --report: every PNG decodes at the plot size, render_ms
         CHECK(md.find("| 1 kHz, beside the renderer | ") != std::string::npos);
         CHECK(md.find("| 10 kHz, beside the renderer | ") != std::string::npos);
         CHECK(sb["scheduling"].get<std::string>().find("of each wait polled") != std::string::npos);
+        // The bare loop's floor: as many periods as the servo's 10 kHz phases, lateness ordered.
+        const nlohmann::json& fl = sb["rate_10k"]["timer_floor"];
+        CHECK(fl["ticks"].get<int>() == 20000);
+        CHECK(fl["late_p50_us"].get<double>() >= 0.0);
+        CHECK(fl["late_p99_us"].get<double>() >= fl["late_p50_us"].get<double>());
+        CHECK(fl["late_max_us"].get<double>() >= fl["late_p99_us"].get<double>());
+        CHECK(fl["missed"].get<int>() <= 20000);
+        CHECK(md.find("The machine's own floor at 10 kHz") != std::string::npos);
     }
     // Every cost-growth case has its contact and free-space (hover) tick times.
     for (const char* key : {"lines", "arcs", "curves", "lines_dense", "arcs_dense", "curves_dense"}) {
