@@ -34,7 +34,9 @@ std::string prompt(const experiments::LiveSession& s) {
         case experiments::Task::bump_counting: return "Trace the contour and count the bumps.";
         case experiments::Task::curvature: return "Which height was the arc (mm)?";
         case experiments::Task::surface_orientation: return "Press the surface: which shape, A or B?";
-        case experiments::Task::edge_sharpness: return "Which edge felt sharper, the first or the second?";
+        case experiments::Task::edge_sharpness:
+            return s.interval() < s.intervals() ? "Edge 1 of 2: slide across it, then Next (N) for edge 2."
+                                                : "Edge 2 of 2: slide across it. Which edge felt sharper, the first or the second?";
     }
     return {};
 }
@@ -185,6 +187,23 @@ void cmd_experiment_pause(EditorState& s, bool paused) {
     s.say(paused ? "experiment paused: nothing to feel until Resume" : "experiment resumed");
 }
 
+bool cmd_experiment_next_interval(EditorState& s) {
+    ExperimentState* e = s.experiment;
+    if (!e || !e->session || e->session->finished() || e->paused || e->trial_start < 0.0) {
+        s.say("no trial is running", true);
+        return false;
+    }
+    if (!e->session->next_interval()) {
+        s.say(e->session->intervals() > 1 ? "this is the trial's last edge: answer which felt sharper" : "this task has one stimulus per trial",
+              true);
+        return false;
+    }
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "edge %d of %d", e->session->interval(), e->session->intervals());
+    s.say(buf);
+    return true;
+}
+
 bool experiment_key(EditorState& s, const std::string& key, double now) {
     ExperimentState* e = s.experiment;
     if (!e || !e->session) return false;
@@ -192,6 +211,7 @@ bool experiment_key(EditorState& s, const std::string& key, double now) {
         cmd_experiment_pause(s, !e->paused);
         return true;
     }
+    if (key == "n" && e->session->intervals() > 1) return cmd_experiment_next_interval(s), true;
     const auto& answers = e->session->protocol().answers;
     if (key == "enter" && answers.empty()) return cmd_experiment_answer(s, "", now), true;
     if (key.size() == 1 && key[0] >= '1' && key[0] <= '9') {
@@ -215,7 +235,10 @@ void experiment_window(EditorState& s, double now) {
     ImGui::PushTextWrapPos(0.0f);
     ImGui::TextDisabled("%s, participant %s", x.protocol().name.c_str(), x.participant().c_str());
     char progress[64];
-    std::snprintf(progress, sizeof progress, "%zu / %zu trials", x.done(), x.total());
+    if (x.adaptive() && !x.finished())
+        std::snprintf(progress, sizeof progress, "%zu trials (%s: at most %zu)", x.done(), x.protocol().procedure.label().c_str(), x.total());
+    else
+        std::snprintf(progress, sizeof progress, "%zu / %zu trials", x.done(), x.total());
     ImGui::ProgressBar(x.total() ? static_cast<float>(x.done()) / static_cast<float>(x.total()) : 1.0f, ImVec2(-1.0f, 0.0f), progress);
     if (x.finished()) {
         ImGui::Text("Finished. Results: %s", x.results_path().c_str());
@@ -225,8 +248,10 @@ void experiment_window(EditorState& s, double now) {
     } else {
         ImGui::Text("Trial %d (%s)%s", x.trial().trial, x.condition().name.c_str(), x.trial().warmup ? ", warm-up" : "");
         ImGui::TextUnformatted(prompt(x).c_str());
-        const auto& answers = x.protocol().answers;
-        if (answers.empty()) {
+        const auto& answers = x.interval() < x.intervals() ? std::vector<std::string>{} : x.protocol().answers;
+        if (x.interval() < x.intervals()) {
+            if (ImGui::Button("Next edge (N)")) cmd_experiment_next_interval(s);
+        } else if (answers.empty()) {
             if (ImGui::Button("Done (Enter)")) cmd_experiment_answer(s, "", now);
         }
         const bool templates = x.protocol().task == experiments::Task::surface_orientation && answers.size() == 2;

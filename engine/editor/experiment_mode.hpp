@@ -5,7 +5,9 @@
 // the contact element at the pad's centre in force-only conditions, counts contact breaks, peak
 // force and servo faults during the trial, and takes the answer from the Experiment panel's
 // buttons, the keys 1..9 (the protocol's answers in order; Enter ends a timed trial), or a
-// script's `answer X`. Pause (P, or `pause`) takes the stimulus away until Resume.
+// script's `answer X`. A two-interval trial (edge sharpness) shows its first edge, then its second
+// after Next (N, or `key n`); the answer comes after the second. Pause (P, or `pause`) takes the
+// stimulus away until Resume. An adaptive procedure's progress reads "n trials (at most N)".
 #pragma once
 
 #include "drivers/tick_record.hpp"
@@ -48,6 +50,9 @@ void experiment_on_record(EditorState& s, const drivers::TickRecord& r);
 // ready. Says the outcome; false (with an error message) when refused.
 bool cmd_experiment_answer(EditorState& s, const std::string& response, double now);
 void cmd_experiment_pause(EditorState& s, bool paused);
+// A two-interval trial: its next interval's stimulus on the servo. False (with a message) on the
+// last interval or with no trial running.
+bool cmd_experiment_next_interval(EditorState& s);
 // Keys 1..9 answer, p pauses or resumes, enter ends a timed trial; true if it was one of them.
 bool experiment_key(EditorState& s, const std::string& key, double now);
 

@@ -59,6 +59,12 @@ AdaptivePlan::Recorded AdaptivePlan::record(bool valid, bool correct) {
     return r;
 }
 
+std::size_t AdaptivePlan::max_trials() const {
+    std::size_t n = 0;
+    for (const Track& t : tracks_) n += static_cast<std::size_t>(p_.warmup + 2 * t.max_trials + 1);
+    return n;
+}
+
 double AdaptivePlan::estimate(int condition) const {
     const Track& t = tracks_.at(static_cast<std::size_t>(condition));
     if (t.stair) return t.stair->estimate();

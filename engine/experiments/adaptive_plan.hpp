@@ -33,6 +33,9 @@ public:
 
     // Per condition: the procedure's estimate, reversals and trials fed to it.
     double estimate(int condition) const;
+    // The most trials the plan can present (practice, the procedures' limits and as many repeats
+    // of invalid trials): a live session's "of N" until the procedures stop, usually earlier.
+    std::size_t max_trials() const;
 
 private:
     struct Track {

@@ -18,19 +18,17 @@ LiveSession::LiveSession(Protocol protocol, std::string participant, std::uint64
     : protocol_(std::move(protocol)), participant_(std::move(participant)), results_path_(std::move(results_path)) {
     if (participant_.empty() || participant_.find_first_of(",\"\n\r") != std::string::npos)
         throw ExperimentError("--participant: an id without commas, quotes or line breaks, e.g. P07");
-    // A live session presents one stimulus per trial from a fixed plan: two intervals per trial
-    // (edge sharpness) and stimuli chosen from the answers (staircase, QUEST+) are batch-only
-    // for now. Refused here, clearly, rather than run wrongly.
-    if (protocol_.task == Task::edge_sharpness || protocol_.procedure.type != ProcedureType::constant)
-        throw ExperimentError(protocol_.origin + ": live sessions run constant-stimuli protocols with one stimulus per trial; "
-                              "two-interval tasks (edge-sharpness) and adaptive procedures run with `contactlab experiment run`");
     // A person's id numbers the trial order as a simulated participant's number does.
     // FNV-1a: the same number for the same id on any machine (std::hash promises no such thing).
     std::uint64_t number = 0xcbf29ce484222325ull;
     for (const unsigned char ch : participant_) number = (number ^ ch) * 0x100000001b3ull;
-    for (const auto& block : plan_trials(protocol_, seed, number)) {
-        queue_.insert(queue_.end(), block.begin(), block.end());
-        block_end_.push_back(queue_.size());
+    if (protocol_.procedure.type != ProcedureType::constant) {
+        plan_ = std::make_unique<AdaptivePlan>(protocol_, seed, number);
+    } else {
+        for (const auto& block : plan_trials(protocol_, seed, number)) {
+            queue_.insert(queue_.end(), block.begin(), block.end());
+            block_end_.push_back(queue_.size());
+        }
     }
     const std::vector<std::string>& columns = results_columns(protocol_);
     lines_.push_back(csv_line(columns));
@@ -41,28 +39,58 @@ LiveSession::LiveSession(Protocol protocol, std::string participant, std::uint64
         const std::size_t who = *t.column("participant"), cond = *t.column("condition"), num = *t.column("trial"),
                           valid = *t.column("valid");
         std::map<std::pair<std::string, int>, bool> seen;  // (condition, trial) of this participant -> valid
+        const std::size_t correct = *t.column("correct");
         for (std::size_t i = 0; i < t.rows.size(); ++i) {
             lines_.push_back(csv_line(t.rows[i]));
             if (t.rows[i][who] != participant_) continue;
             seen[{t.rows[i][cond], static_cast<int>(t.number(i, num))}] = t.number(i, valid) != 0.0;
+            if (plan_) {
+                // Replayed in order through the procedure: the next stimulus depends on them.
+                if (plan_->done())
+                    throw ExperimentError(results_path_ + ": line " + std::to_string(i + 2) + ": " + participant_ +
+                                          " has more rows than the procedure presents (the file is not this session's)");
+                const PlannedTrial& want = plan_->next();
+                const std::string name = protocol_.conditions.at(static_cast<std::size_t>(want.condition)).name;
+                if (t.rows[i][cond] != name || static_cast<int>(t.number(i, num)) != want.trial)
+                    throw ExperimentError(results_path_ + ": line " + std::to_string(i + 2) + ": " + participant_ + "'s " +
+                                          t.rows[i][cond] + " trial " + t.rows[i][num] + " is not the procedure's next (" + name +
+                                          " trial " + std::to_string(want.trial) + "): the file is not this session's");
+                plan_->record(t.number(i, valid) != 0.0, t.number(i, correct) != 0.0);
+                ++adaptive_done_;
+            }
         }
         // Done trials are those already in the file (their repeats queued again): skip them.
-        for (auto it = seen.end(); next_ < queue_.size() && (it = seen.find({condition().name, queue_[next_].trial})) != seen.end();) {
+        for (auto it = seen.end(); !plan_ && next_ < queue_.size() && (it = seen.find({condition().name, queue_[next_].trial})) != seen.end();) {
             if (!it->second) queue_repeat();
             ++next_;
         }
-        resumed_ = next_;
+        resumed_ = done();
     }
+    if (plan_ && !plan_->done()) current_ = plan_->next();
     if (!finished()) build_scene();
 }
 
+std::size_t LiveSession::total() const {
+    if (!plan_) return queue_.size();
+    return plan_->done() ? adaptive_done_ : std::max(plan_->max_trials(), adaptive_done_ + 1);
+}
+
+bool LiveSession::next_interval() {
+    if (finished() || interval_ >= intervals()) return false;
+    ++interval_;
+    build_scene();
+    return true;
+}
+
 const Condition& LiveSession::condition() const {
-    return protocol_.conditions.at(static_cast<std::size_t>(queue_.at(next_).condition));
+    return protocol_.conditions.at(static_cast<std::size_t>(trial().condition));
 }
 
 void LiveSession::build_scene() {
-    // The live trial is felt as the simulated participant's first run is: the same scene.
-    Stimulus st = make_stimulus(protocol_, condition(), trial(), 0.0);
+    // The live trial is felt as the simulated participant's first run is: the same scene (a
+    // two-interval trial's edge in the interval shown).
+    Stimulus st = protocol_.task == Task::edge_sharpness ? make_edge_stimulus(protocol_, edge_radius(protocol_, trial(), interval_))
+                                                          : make_stimulus(protocol_, condition(), trial(), 0.0);
     scene_ = std::move(st.scene);
     small_bumps_ = st.small_bumps;
     large_bumps_ = st.large_bumps;
@@ -86,6 +114,9 @@ void LiveSession::answer(const LiveTrialResult& r) {
         }
         throw ExperimentError("answer \"" + r.response + "\" is not one of " + set);
     }
+    if (interval_ < intervals())
+        throw ExperimentError("feel edge " + std::to_string(interval_ + 1) + " of " + std::to_string(intervals()) +
+                              " first (Next), then answer which felt sharper");
     TrialRecord rec;
     rec.participant = participant_;
     rec.trial = trial();
@@ -102,11 +133,27 @@ void LiveSession::answer(const LiveTrialResult& r) {
     rec.device = r.device;
     rec.small_bumps = small_bumps_;
     rec.large_bumps = large_bumps_;
+    if (plan_) {
+        // The procedure's answer to this trial (its reversal and estimate go into the row); the
+        // row's own grading says whether it was right.
+        const std::vector<std::string> graded = results_row(protocol_, rec);
+        const auto& columns = results_columns(protocol_);
+        const std::size_t correct_col = static_cast<std::size_t>(std::find(columns.begin(), columns.end(), "correct") - columns.begin());
+        const AdaptivePlan::Recorded a = plan_->record(rec.valid, graded.at(correct_col) == "1");
+        rec.reversal = a.reversal;
+        rec.estimate = a.estimate;
+    }
     const std::vector<std::string> row = results_row(protocol_, rec);
     lines_.push_back(csv_line(row));
     write();  // the row is on disk before the next trial starts
-    if (!rec.valid) queue_repeat();
-    ++next_;
+    if (plan_) {
+        ++adaptive_done_;
+        if (!plan_->done()) current_ = plan_->next();
+    } else {
+        if (!rec.valid) queue_repeat();
+        ++next_;
+    }
+    interval_ = 1;
     if (!finished()) build_scene();
 }
 

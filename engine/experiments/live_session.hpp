@@ -7,15 +7,22 @@
 // faulted, or the finger never touched the stimulus: `touched` 0) is presented again at the end
 // of its block, as in `experiment run`, when the protocol's repeat_invalid says so.
 //
+// An adaptive procedure (staircase, QUEST+) chooses each trial's stimulus from the answers so far
+// (adaptive_plan.hpp), and a resumed session replays this participant's stored answers to rebuild
+// it. A two-interval task (edge sharpness) shows its trial's two edges one after the other
+// (next_interval()); the answer names the interval.
+//
 // The editor stays thin: it shows the prompt, publishes current_scene() to the servo with the
 // contact element held (roller_held()) in force-only conditions, and calls answer().
 #pragma once
 
+#include "engine/experiments/adaptive_plan.hpp"
 #include "engine/experiments/protocol.hpp"
 #include "engine/experiments/trial_plan.hpp"
 #include "haptics/scene.hpp"
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -42,13 +49,21 @@ public:
     const Protocol& protocol() const { return protocol_; }
     const std::string& participant() const { return participant_; }
     const std::string& results_path() const { return results_path_; }
-    bool finished() const { return next_ >= queue_.size(); }
-    std::size_t done() const { return next_; }
-    std::size_t total() const { return queue_.size(); }
+    bool finished() const { return plan_ ? plan_->done() : next_ >= queue_.size(); }
+    std::size_t done() const { return plan_ ? adaptive_done_ : next_; }
+    // The trials in all: with an adaptive procedure, the most it can take until it has finished
+    // (then the trials it took).
+    std::size_t total() const;
+    bool adaptive() const { return plan_ != nullptr; }
     std::size_t resumed() const { return resumed_; }  // rows found in the file at start
 
     // The trial in progress (finished() must be false).
-    const PlannedTrial& trial() const { return queue_[next_]; }
+    const PlannedTrial& trial() const { return plan_ ? current_ : queue_[next_]; }
+    // Two-interval tasks: which of the trial's intervals the scene is (1 or 2), of intervals().
+    int interval() const { return interval_; }
+    int intervals() const { return protocol_.task == Task::edge_sharpness ? 2 : 1; }
+    // To the trial's next interval (its scene replaces this one); false on the last.
+    bool next_interval();
     const Condition& condition() const;
     const Scene& scene() const { return scene_; }
     // Force-only condition: the contact element is held at the pad's centre.
@@ -57,7 +72,8 @@ public:
     std::uint64_t scene_version() const { return version_; }
 
     // Records the trial (one row, written at once) and moves to the next. An answer outside
-    // the protocol's set is refused (ExperimentError; nothing written).
+    // the protocol's set, or before the last interval was felt, is refused (ExperimentError;
+    // nothing written).
     void answer(const LiveTrialResult& r);
 
 private:
@@ -75,6 +91,11 @@ private:
     Scene scene_;
     int small_bumps_ = 0, large_bumps_ = 0;  // the current stimulus's (seed 002)
     std::uint64_t version_ = 0;
+    int interval_ = 1;
+    // Adaptive procedures: the plan, its trial in progress and the trials recorded.
+    std::unique_ptr<AdaptivePlan> plan_;
+    PlannedTrial current_;
+    std::size_t adaptive_done_ = 0;
 };
 
 }  // namespace contactlab::experiments

@@ -101,3 +101,30 @@ TEST_CASE("experiment mode: --experiment without --participant, or a bad protoco
     CHECK(q.exit_code == 2);
     CHECK(contains(q.err, "bad.json: format: missing"));
 }
+
+TEST_CASE("experiment mode: the edge protocol live, two edges a trial and the answer after the second, a staircase's rows") {
+    TempDir dir;
+    const std::string results = dir.file("edges.csv");
+    const std::string script = dir.file("s.txt");
+    write_text(script,
+               "expect experiment_done 0\nexpect experiment_interval 1\nframes 3\n"
+               // Before the second edge the answer is refused and nothing is written.
+               "answer first\nexpect error 1\nexpect experiment_done 0\n"
+               "key n\nexpect experiment_interval 2\nframes 2\n"
+               // Only two edges: a third Next is refused.
+               "key n\nexpect error 1\nexpect experiment_interval 2\n"
+               "answer second\nexpect error 0\nexpect experiment_done 1\nexpect experiment_interval 1\n"
+               "frames 2\nkey n\nframes 2\nkey 1\nexpect experiment_done 2\nquit\n");
+    const auto p = run_under_xvfb({"edit", "--experiment", (source_dir() / "scenes/experiments/edge-sharpness.json").string(),
+                                   "--participant", "P1", "--results", results, "--software", "--timeout", "90", "--script", script});
+    INFO(p.err);
+    CHECK(p.exit_code == 0);
+    CHECK_FALSE(contains(p.err, "FAILED"));
+    const auto t = contactlab::experiments::read_results_csv(results);
+    REQUIRE(t.rows.size() == 2);
+    CHECK(t.rows[0][*t.column("response")] == "second");
+    CHECK(t.rows[1][*t.column("response")] == "first");
+    // The staircase's columns are there, and the first trials are the protocol's practice.
+    CHECK(t.rows[0][*t.column("procedure")] == "staircase 1-up-2-down");
+    CHECK(t.rows[0][*t.column("warmup")] == "1");
+}

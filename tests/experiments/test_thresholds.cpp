@@ -10,6 +10,7 @@
 #include "engine/experiments/protocol.hpp"
 #include "engine/experiments/results_table.hpp"
 #include "engine/experiments/staircase.hpp"
+#include "engine/experiments/stimulus.hpp"
 #include "engine/experiments/threshold_analysis.hpp"
 #include "process.hpp"
 
@@ -240,8 +241,70 @@ TEST_CASE("QUEST+: a posterior-width stopping rule ends the run before its trial
     CHECK(q.estimate() <= hi);
 }
 
-TEST_CASE("live sessions refuse two-interval and adaptive protocols, saying why") {
+TEST_CASE("live session: a two-interval trial shows both edges before its answer, and a staircase moves with the answers") {
     TempDir dir;
-    CHECK_THROWS_WITH_AS(LiveSession(load_protocol(edge_path()), "P01", 1, dir.file("r.csv")),
-                         doctest::Contains("live sessions run constant-stimuli protocols with one stimulus per trial"), ExperimentError);
+    const std::string out = dir.file("p01.csv");
+    const Protocol p = load_protocol(edge_path());
+    const int practice = p.warmup;
+    std::vector<std::pair<std::string, double>> shown;  // (condition, stimulus) of every trial, in order
+    // A participant who is always right: each staircase comes down from its start (6 mm) by a step
+    // (1 mm) after every second right answer, never reversing.
+    auto run_trials = [&](LiveSession& s, int n) {
+        for (int i = 0; i < n && !s.finished(); ++i) {
+            shown.push_back({s.condition().name, s.trial().stimulus});
+            CHECK(s.interval() == 1);
+            CHECK(s.intervals() == 2);
+            // The first edge, then the second: the reference (2.5 mm) and the comparison, in the
+            // trial's order; an answer before the second is refused and writes nothing.
+            const double r1 = edge_radius(p, s.trial(), 1), r2 = edge_radius(p, s.trial(), 2);
+            CHECK(std::abs(r1 - r2) == doctest::Approx(s.trial().stimulus * 1e-3));
+            const std::uint64_t v1 = s.scene_version();
+            CHECK_THROWS_WITH_AS(s.answer({"first", 1.0, 0, 1.0, true, true, "mouse"}), doctest::Contains("first (Next)"), ExperimentError);
+            CHECK(s.next_interval());
+            CHECK(s.scene_version() != v1);
+            CHECK_FALSE(s.next_interval());
+            const std::string sharper = r1 < r2 ? "first" : "second";
+            s.answer({sharper, 2.0, 0, 1.0, true, true, "mouse"});
+        }
+    };
+    {
+        LiveSession s(p, "P01", 1, out);
+        CHECK(s.adaptive());
+        CHECK(s.total() > 10);
+        run_trials(s, 10);
+        // The process dies here.
+    }
+    // Resumed: the stored answers are replayed through the staircases, so the next trial is the
+    // one an uninterrupted session would show.
+    LiveSession again(p, "P01", 1, out);
+    CHECK(again.resumed() == 10);
+    run_trials(again, 14);
+    const ResultsTable t = read_results_csv(out);
+    REQUIRE(t.rows.size() == 24);
+    const std::size_t correct = *t.column("correct"), estimate = *t.column("estimate"), warm = *t.column("warmup");
+    for (std::size_t i = 0; i < t.rows.size(); ++i) CHECK(t.rows[i][correct] == "1");
+    // Each condition: practice at the largest stimulus, then 6, 6, 5, 5, 4, 4 ... mm.
+    for (const std::string& c : {std::string("force"), std::string("force+cld")}) {
+        std::vector<double> track;
+        int practised = 0;
+        for (std::size_t i = 0; i < t.rows.size(); ++i) {
+            if (t.rows[i][*t.column("condition")] != c) continue;
+            if (t.rows[i][warm] == "1") {
+                ++practised;
+                continue;
+            }
+            track.push_back(std::stod(t.rows[i][*t.column("stimulus")]));
+        }
+        CAPTURE(c);
+        CHECK(practised == practice);
+        REQUIRE(track.size() >= 3);
+        for (std::size_t k = 0; k < track.size(); ++k) CHECK(track[k] == doctest::Approx(6.0 - static_cast<double>(k / 2)));
+    }
+    // Always right: the tracks never turn, so no reversal and no estimate yet.
+    for (std::size_t i = 0; i < t.rows.size(); ++i) CHECK(t.rows[i][*t.column("reversal")] == "0");
+    CHECK(t.rows.back()[estimate].empty());
+    // A file whose rows are not this procedure's is refused, not replayed wrongly.
+    LiveSession other(p, "P02", 1, out);  // another participant: their own order from the start
+    CHECK(other.done() == 0);
+    CHECK_THROWS_WITH_AS(LiveSession(p, "P01", 2, out), doctest::Contains("is not the procedure's next"), ExperimentError);
 }
