@@ -1,6 +1,7 @@
 // psychometric_fit.cpp — ML fit and parametric bootstrap (psychometric_fit.hpp).
 #include "engine/experiments/psychometric_fit.hpp"
 
+#include "engine/experiments/nelder_mead.hpp"
 #include "engine/experiments/trial_plan.hpp"
 
 #include <algorithm>
@@ -14,60 +15,12 @@ namespace {
 
 using P3 = std::array<double, 3>;
 
-// Nelder-Mead (Nelder & Mead 1965, the standard coefficients 1, 2, 0.5, 0.5) minimising f.
+// Nelder-Mead (nelder_mead.hpp) over the three transformed parameters.
 template <class F>
 P3 nelder_mead(F f, P3 start, P3 step, int max_evals, double& best) {
-    std::array<P3, 4> s;
-    std::array<double, 4> v;
-    for (int i = 0; i < 4; ++i) {
-        s[i] = start;
-        if (i > 0) s[i][i - 1] += step[i - 1];
-        v[i] = f(s[i]);
-    }
-    int evals = 4;
-    while (evals < max_evals) {
-        std::array<int, 4> idx = {0, 1, 2, 3};
-        std::sort(idx.begin(), idx.end(), [&](int a, int b) { return v[a] < v[b]; });
-        const int lo = idx[0], hi = idx[3], second = idx[2];
-        if (std::abs(v[hi] - v[lo]) < 1e-9 * (1.0 + std::abs(v[lo]))) break;
-        P3 c{0, 0, 0};
-        for (int i : {idx[0], idx[1], idx[2]})
-            for (int j = 0; j < 3; ++j) c[j] += s[i][j] / 3.0;
-        auto along = [&](double t) {
-            P3 p;
-            for (int j = 0; j < 3; ++j) p[j] = c[j] + t * (s[hi][j] - c[j]);
-            return p;
-        };
-        const P3 r = along(-1.0);
-        const double fr = f(r);
-        ++evals;
-        if (fr < v[lo]) {
-            const P3 e = along(-2.0);
-            const double fe = f(e);
-            ++evals;
-            if (fe < fr) s[hi] = e, v[hi] = fe;
-            else s[hi] = r, v[hi] = fr;
-        } else if (fr < v[second]) {
-            s[hi] = r, v[hi] = fr;
-        } else {
-            const P3 k = fr < v[hi] ? along(-0.5) : along(0.5);
-            const double fk = f(k);
-            ++evals;
-            if (fk < std::min(fr, v[hi])) {
-                s[hi] = k, v[hi] = fk;
-            } else {  // shrink toward the best
-                for (int i = 0; i < 4; ++i)
-                    if (i != lo) {
-                        for (int j = 0; j < 3; ++j) s[i][j] = s[lo][j] + 0.5 * (s[i][j] - s[lo][j]);
-                        v[i] = f(s[i]);
-                        ++evals;
-                    }
-            }
-        }
-    }
-    const int b = static_cast<int>(std::min_element(v.begin(), v.end()) - v.begin());
-    best = v[b];
-    return s[b];
+    const std::vector<double> u = experiments::nelder_mead([&](const std::vector<double>& x) { return f(P3{x[0], x[1], x[2]}); },
+                                                           {start.begin(), start.end()}, {step.begin(), step.end()}, max_evals, best);
+    return {u[0], u[1], u[2]};
 }
 
 struct Model {
