@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
@@ -65,11 +66,18 @@ int run_calibrate(const CalibrateArgs& a) {
     try {
         const experiments::TargetsFile targets = experiments::load_targets(a.target);
         for (const std::string& p : a.protocols) o.protocols.push_back(experiments::load_protocol(installed_data_path(p)));
-        o.targets = targets.targets;
-        if (a.fit == "all")
-            for (const auto& t : targets.targets) o.fit_to.push_back(t.name);
-        else
-            o.fit_to = split_commas(a.fit);
+        // Targets of protocols not given are left out (the shipped file covers all four seeds);
+        // one named by --fit is an error in calibrate().
+        std::vector<std::string> given;
+        for (const auto& p : o.protocols) given.push_back(fs::path(p.origin).filename().string());
+        const std::vector<std::string> fit = a.fit == "all" ? std::vector<std::string>{} : split_commas(a.fit);
+        for (const auto& t : targets.targets) {
+            const bool have = std::find(given.begin(), given.end(), t.protocol) != given.end();
+            const bool named = std::find(fit.begin(), fit.end(), t.name) != fit.end();
+            if (have || named) o.targets.push_back(t);
+            if (have && a.fit == "all") o.fit_to.push_back(t.name);
+        }
+        if (a.fit != "all") o.fit_to = fit;
         for (const std::string& p : a.params) o.parameters.push_back(parameter_of(p));
         o.participants.clear();
         for (int i = 1; i <= a.participants; ++i) o.participants.push_back(static_cast<std::uint64_t>(i));

@@ -15,7 +15,8 @@ const char* kProtocol = R"({"format": "contactlab experiment protocol", "version
   "stimuli": [45, 135], "repetitions": 6, "answers": ["A", "B"], "participant": {"stiffness_noise": 0.1}})";
 const char* kTargets = R"({"format": "contactlab calibration targets", "version": 1, "targets": [
   {"name": "phi e0.40", "protocol": "small.json", "figure": "/conditions/e0.40/cramers_phi", "value": 0.5, "scale": 0.15, "source": "made up for the test"},
-  {"name": "phi e1.00", "protocol": "small.json", "figure": "/conditions/e1.00/cramers_phi", "value": 0.0, "scale": 0.25, "source": "made up for the test"}]})";
+  {"name": "phi e1.00", "protocol": "small.json", "figure": "/conditions/e1.00/cramers_phi", "value": 0.0, "scale": 0.25, "source": "made up for the test"},
+  {"name": "another study", "protocol": "other.json", "figure": "/conditions/x/n", "value": 1.0, "scale": 1.0, "source": "a protocol not given: left out"}]})";
 }  // namespace
 
 TEST_CASE("experiment calibrate: a parameter fitted to one target, the other held out, as JSON and a table") {
@@ -32,7 +33,7 @@ TEST_CASE("experiment calibrate: a parameter fitted to one target, the other hel
     const auto j = nlohmann::json::parse(read_text(dir.file("c.json")));
     CHECK(j["evaluations"].get<int>() <= 8);
     CHECK(j["objective"].get<double>() <= j["start_objective"].get<double>());
-    CHECK(j["targets"].size() == 2);
+    CHECK(j["targets"].size() == 2);  // the target of a protocol not given is left out
     CHECK(j["targets_file"]["sha256"].get<std::string>().size() == 64);
     const double v = j["parameters"]["stiffness_noise"].get<double>();
     CHECK(v > 0.02);
