@@ -97,6 +97,7 @@ TargetsFile parse_targets(const std::string& json_text, const std::string& origi
         t.over = text_of(origin, j, where, "over", false);
         t.source = text_of(origin, j, where, "source", true);
         if (!names.insert(t.name).second) fail(origin, where + ".name", "\"" + t.name + "\" appears twice");
+        if (t.name.find(',') != std::string::npos) fail(origin, where + ".name", "no commas: --fit lists names separated by commas");
         if (!valid_pointer(t.figure)) fail(origin, where + ".figure", "expected a JSON pointer such as \"/conditions/F/it_est_bits\"");
         if (!t.over.empty() && !valid_pointer(t.over)) fail(origin, where + ".over", "expected a JSON pointer");
         if (!j.contains("value") || !j["value"].is_number() || !std::isfinite(j["value"].get<double>()))

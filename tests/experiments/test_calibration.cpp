@@ -41,6 +41,8 @@ TEST_CASE("calibration targets: a bad file names the file, the target and why") 
                          doctest::Contains("t.json: targets[0].figure: expected a JSON pointer"), ExperimentError);
     CHECK_THROWS_WITH_AS(parse_targets(bad(good + ", " + good), "t.json"), doctest::Contains("targets[1].name: \"a\" appears twice"),
                          ExperimentError);
+    CHECK_THROWS_WITH_AS(parse_targets(bad(R"({"name": "a, b", "protocol": "p.json", "figure": "/x", "value": 1, "scale": 1, "source": "s"})"), "t.json"),
+                         doctest::Contains("t.json: targets[0].name: no commas"), ExperimentError);
     CHECK_THROWS_WITH_AS(parse_targets(bad(R"({"name": "a", "protocol": "p.json", "figure": "/x", "value": 1, "scale": 1, "source": "s", "weight": 2})"), "t.json"),
                          doctest::Contains("t.json: targets[0].weight: unknown key"), ExperimentError);
 }
