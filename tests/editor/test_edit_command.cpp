@@ -5,6 +5,7 @@
 #include "haptics/scene_io.hpp"
 #include "haptics/stimuli.hpp"
 #include "process.hpp"
+#include "xvfb_editor.hpp"
 
 #include <doctest/doctest.h>
 
@@ -27,12 +28,7 @@ std::size_t segment_count_of(const Scene& s) {
 namespace {
 
 // `xvfb-run -a contactlab ARGS...` (Debian package xvfb); lavapipe, so pictures are CPU-rendered.
-ProcessResult run_under_xvfb(std::vector<std::string> args, const std::string& cwd = {}) {
-    setenv("VK_DRIVER_FILES", "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json", 1);
-    std::vector<std::string> all = {"-a", "-s", "-screen 0 1600x1000x24", exe_path()};
-    all.insert(all.end(), args.begin(), args.end());
-    return run_process("/usr/bin/xvfb-run", all, cwd, std::chrono::seconds(120));
-}
+using editor_test::run_under_xvfb;
 
 // The figure "... first frame presented N ms after start" from stderr, or -1.
 double window_open_ms(const std::string& err) {

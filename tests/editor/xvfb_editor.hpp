@@ -15,18 +15,35 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 namespace editor_test {
+
+// xvfb-run's arguments for `contactlab ARGS`. The X authority file is ours (-f, a fresh name
+// under the temporary folder): without it xvfb-run makes a temporary folder of its own and, now
+// and then, fails to remove it after the command ended (twice in a row once), its exit status 5
+// then replacing the editor's. `auth` is set to the file's path (the caller removes it).
+inline std::vector<std::string> xvfb_args(const std::vector<std::string>& args, std::string& auth) {
+    static int calls = 0;
+    auth = (std::filesystem::temp_directory_path() / ("contactlab-xauth-" + std::to_string(::getpid()) + "-" + std::to_string(++calls)))
+               .string();
+    std::vector<std::string> all = {"-a", "-f", auth, "-s", "-screen 0 1600x1000x24", cli_test::exe_path()};
+    all.insert(all.end(), args.begin(), args.end());
+    return all;
+}
 
 inline cli_test::ProcessResult run_under_xvfb(std::vector<std::string> args, const std::string& cwd = {}) {
     setenv("VK_DRIVER_FILES", "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json", 1);
-    std::vector<std::string> all = {"-a", "-s", "-screen 0 1600x1000x24", cli_test::exe_path()};
-    all.insert(all.end(), args.begin(), args.end());
+    std::string auth;
+    const std::vector<std::string> all = xvfb_args(args, auth);
     // xvfb-run itself sometimes fails to remove its own temporary folder after the command ended
     // (its exit status 5 then replaces the editor's): that is the wrapper's failure, not the
     // editor's, so such a run is made once more. Any other status is the editor's.
     cli_test::ProcessResult r = cli_test::run_process("/usr/bin/xvfb-run", all, cwd, std::chrono::seconds(120));
     if (r.exit_code == 5 && r.err.find("xvfb-run: error: problem while cleaning up temporary directory") != std::string::npos)
         r = cli_test::run_process("/usr/bin/xvfb-run", all, cwd, std::chrono::seconds(120));
+    std::error_code ec;
+    std::filesystem::remove(auth, ec);
     return r;
 }
 
@@ -41,8 +58,8 @@ inline cli_test::ProcessResult run_validated_script(const std::string& script, c
 // xvfb-run process's id. With kill_editor() below a test can kill the editor as a crash would.
 inline pid_t start_under_xvfb(std::vector<std::string> args, const std::string& log) {
     setenv("VK_DRIVER_FILES", "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json", 1);
-    std::vector<std::string> all = {"-a", "-s", "-screen 0 1600x1000x24", cli_test::exe_path()};
-    all.insert(all.end(), args.begin(), args.end());
+    std::string auth;  // left for the OS's temporary folder: the editor may outlive this call
+    const std::vector<std::string> all = xvfb_args(args, auth);
     const pid_t pid = cli_test::start_process("/usr/bin/xvfb-run", all, log);
     REQUIRE(pid >= 0);
     return pid;
