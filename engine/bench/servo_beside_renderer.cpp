@@ -26,7 +26,6 @@ namespace {
 // `beside` runs on the calling thread (returns when the servo is done).
 template <class Beside>
 ServoPeriodFigures run_servo(int core, double rate, double seconds, std::string& scheduling, Beside&& beside) {
-    const double kRate = rate;
     using namespace drivers;
     const Scene scene = block_scene();
     BlockTaskParams bp;
@@ -37,14 +36,14 @@ ServoPeriodFigures run_servo(int core, double rate, double seconds, std::string&
     params.stiffness = scene.force.stiffness;
     params.max_force = scene.force.max_force;
     params.passivity = scene.force.passivity;
-    ServoTick tick(servo_config_for(dev, kRate), params);
+    ServoTick tick(servo_config_for(dev, rate), params);
     tick.scenes().publish(std::make_unique<ServoScene>(scene));
-    ServoLoop loop(dev, tick, 1.0 / kRate, nullptr);
+    ServoLoop loop(dev, tick, 1.0 / rate, nullptr);
     if (!loop.start()) throw std::runtime_error(std::string("sim-cld did not open: ") + dev.fault().detail);
     RunnerOptions opt;
     opt.core = core;
     opt.lock_memory = true;
-    opt.max_ticks = static_cast<std::uint64_t>(seconds * kRate);
+    opt.max_ticks = static_cast<std::uint64_t>(seconds * rate);
     opt.zero_on_exit = true;
     ServoRunner runner(loop, opt);
     runner.start();

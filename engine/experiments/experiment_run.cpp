@@ -83,6 +83,11 @@ TrialOutcome perform(const Protocol& p, const RunOptions& o, const PlannedTrial&
     return o.observer ? observe_trial(p, *o.observer, t) : perform_sim_trial(p, t);
 }
 
+// Where a results column is (results_columns always has the ones asked for here).
+std::size_t column_index(const std::vector<std::string>& columns, const char* name) {
+    return static_cast<std::size_t>(std::find(columns.begin(), columns.end(), name) - columns.begin());
+}
+
 TrialRecord record_of(const Protocol& p, const RunOptions& o, const std::string& id, const PlannedTrial& t, const TrialOutcome& r) {
     TrialRecord rec;
     rec.participant = id;
@@ -108,9 +113,7 @@ void run_adaptive_participant(Shared& sh, std::size_t index, const std::vector<s
     const std::string id = participant_id(o, o.participants[index]);
     const std::string part = sh.files.part(id);
     const std::vector<std::string>& columns = results_columns(p);
-    auto column = [&](const char* name) {
-        return static_cast<std::size_t>(std::find(columns.begin(), columns.end(), name) - columns.begin());
-    };
+    auto column = [&](const char* name) { return column_index(columns, name); };
     const std::size_t condition_col = column("condition"), trial_col = column("trial"), valid_col = column("valid"),
                       correct_col = column("correct"), stimulus_col = column("stimulus");
     std::string part_text = csv_line(columns) + "\n";
@@ -167,9 +170,7 @@ void run_participant(Shared& sh, std::size_t index, const std::vector<std::vecto
     const std::string id = participant_id(o, o.participants[index]);
     const std::string part = sh.files.part(id);
     const std::vector<std::string>& columns = results_columns(p);
-    auto column = [&](const char* name) {
-        return static_cast<std::size_t>(std::find(columns.begin(), columns.end(), name) - columns.begin());
-    };
+    auto column = [&](const char* name) { return column_index(columns, name); };
     const std::size_t condition_col = column("condition"), trial_col = column("trial"), valid_col = column("valid");
     std::string part_text = csv_line(columns) + "\n";
     std::size_t k = 0;  // this participant's trials so far, in order
