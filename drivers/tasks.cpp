@@ -25,13 +25,14 @@ HandPath contour_block_task(const BlockTaskParams& p) {
     const double a0 = std::atan2(past.y, past.x), rho0 = glm::length(past);
     const double a1 = 0.0, rho1 = r;
     const double arc = 0.5 * (rho0 + rho1) * (a0 - a1);
-    legs.push_back({arc / p.speed, [=](double u) {
+    const double descent_speed = p.descent_speed > 0.0 ? p.descent_speed : p.speed;
+    legs.push_back({arc / descent_speed, [=](double u) {
                         const double a = a0 + (a1 - a0) * u, rho = rho0 + (rho1 - rho0) * u;
                         return PathSample{0, rho * Vec2{std::cos(a), std::sin(a)}, -0.5 * kPi * u};
                     }});
     // Down the far face, then hold.
     const Vec2 side{r, 0.0}, bottom{r, -p.descent};
-    legs.push_back({p.descent / p.speed, [=](double u) { return PathSample{0, side + (bottom - side) * u, -0.5 * kPi}; }});
+    legs.push_back({p.descent / descent_speed, [=](double u) { return PathSample{0, side + (bottom - side) * u, -0.5 * kPi}; }});
     legs.push_back({0.3, [=](double) { return PathSample{0, bottom, -0.5 * kPi}; }});
 
     double total = 0.0;

@@ -19,6 +19,9 @@ struct BlockTaskParams {
     double press = 0.003;          // m, intended depth below the surface
     double overshoot = 0.006;      // m past the edge before tipping
     double descent = 0.06;         // m down the far face
+    // m/s round the corner and down the far face: once the edge is found nothing is left to
+    // look for, so a person goes at their free speed; 0: `speed`, as along the top.
+    double descent_speed = 0.0;
     double sample_period = 1e-3;   // s
 };
 

@@ -54,6 +54,10 @@ const std::vector<std::pair<const char*, double ParticipantModel::*>>& fields() 
         {"location_noise_mm", &ParticipantModel::location_noise_mm},
         {"stiffness_noise", &ParticipantModel::stiffness_noise},
         {"reaction_time_s", &ParticipantModel::reaction_time_s},
+        {"reaction_time_sd_s", &ParticipantModel::reaction_time_sd_s},
+        {"stop_time_s", &ParticipantModel::stop_time_s},
+        {"lapse_rate_hz", &ParticipantModel::lapse_rate_hz},
+        {"lapse_duration_s", &ParticipantModel::lapse_duration_s},
         {"tilt_range_noise", &ParticipantModel::tilt_range_noise},
         {"edge_rate_noise", &ParticipantModel::edge_rate_noise},
     };

@@ -403,7 +403,8 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
     if (root.contains("participant")) {
         const json& m = root["participant"];
         r.only(m, "participant", {"force_angle_threshold_deg", "force_angle_noise_deg", "location_threshold_mm",
-                                  "location_noise_mm", "stiffness_noise", "reaction_time_s", "tilt_range_noise", "edge_rate_noise"});
+                                  "location_noise_mm", "stiffness_noise", "reaction_time_s", "reaction_time_sd_s", "stop_time_s",
+                                  "lapse_rate_hz", "lapse_duration_s", "tilt_range_noise", "edge_rate_noise"});
         ParticipantModel& pm = p.participant;
         pm.force_angle_threshold_deg = r.number(m, "participant", "force_angle_threshold_deg", 0.0, 90.0, "deg", pm.force_angle_threshold_deg);
         pm.force_angle_noise_deg = r.number(m, "participant", "force_angle_noise_deg", 0.0, 90.0, "deg", pm.force_angle_noise_deg);
@@ -411,6 +412,10 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
         pm.location_noise_mm = r.number(m, "participant", "location_noise_mm", 0.0, 50.0, "mm", pm.location_noise_mm);
         pm.stiffness_noise = r.number(m, "participant", "stiffness_noise", 0.0, 10.0, "", pm.stiffness_noise);
         pm.reaction_time_s = r.number(m, "participant", "reaction_time_s", 0.0, 5.0, "s", pm.reaction_time_s);
+        pm.reaction_time_sd_s = r.number(m, "participant", "reaction_time_sd_s", 0.0, 1.0, "s", pm.reaction_time_sd_s);
+        pm.stop_time_s = r.number(m, "participant", "stop_time_s", 0.0, 10.0, "s", pm.stop_time_s);
+        pm.lapse_rate_hz = r.number(m, "participant", "lapse_rate_hz", 0.0, 10.0, "Hz", pm.lapse_rate_hz);
+        pm.lapse_duration_s = r.number(m, "participant", "lapse_duration_s", 0.0, 5.0, "s", pm.lapse_duration_s);
         pm.tilt_range_noise = r.number(m, "participant", "tilt_range_noise", 0.0, 1.0, "", pm.tilt_range_noise);
         pm.edge_rate_noise = r.number(m, "participant", "edge_rate_noise", 0.0, 10.0, "", pm.edge_rate_noise);
     }

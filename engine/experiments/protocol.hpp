@@ -47,6 +47,24 @@ struct ParticipantModel {
     double location_noise_mm = 1.0;
     double stiffness_noise = 0.15;           // seed 004: relative noise on felt stiffness
     double reaction_time_s = 0.25;           // from noticing a cue to acting on it
+    // Trial-to-trial spread (sd, s) of the reaction time; each trial draws its own, never below
+    // 30 ms. Corrective responses of the hand to touch take 60-100 ms (Cole & Abbs 1988) and
+    // vary from one to the next.
+    double reaction_time_sd_s = 0.03;
+    // Exploration speed where running past a feature fails the trial (seed 000's edge): the
+    // person moves no faster than lets them stop in time, covering the pad left beyond where
+    // their first cue reaches threshold (pad_length / 2 less the location threshold, or less
+    // R sin(force angle threshold) without contact location) in `stop_time_s`, and never faster
+    // than the protocol's hand speed. 0 keeps the protocol's hand speed. Fitted to seed 000's
+    // failures and times (docs/experiments.md).
+    double stop_time_s = 0.22;
+    // Attention lapses while exploring (seed 000 and seed 002, where the stimulus passes once at
+    // speed): lapses start at random (a Poisson process of `lapse_rate_hz` per second of the
+    // trial) and last `lapse_duration_s`; a cue during one is not perceived (the last one felt
+    // before it stays). Exploratory pauses of 67-330 ms are seen in haptic search (Grunwald et
+    // al. 2014); the rate is fitted.
+    double lapse_rate_hz = 0.5;
+    double lapse_duration_s = 0.3;
     // Seed 003 on the wearable platform: relative noise (sd, a Weber fraction) on the range of
     // tilt the platform swept under the finger (wearable_trial.hpp). Relative, because people
     // judge a curvature by the difference of slope across the contact, and a range twice as large

@@ -26,6 +26,42 @@ double noisy(double threshold, double noise, std::uint64_t& rng) {
     return std::max(0.1 * threshold, threshold + noise * normal01(rng));
 }
 
+// Attention lapses over [t0, t1] s (ParticipantModel::lapse_rate_hz): start times of a Poisson
+// process, each lapse `lapse_duration_s` long. Draws nothing when the rate is 0, so a model
+// without lapses keeps its random stream as before.
+struct Lapses {
+    std::vector<double> starts;  // s
+    double duration = 0.0;       // s
+    bool at(double t) const {
+        for (double s : starts)
+            if (t >= s && t < s + duration) return true;
+        return false;
+    }
+};
+
+Lapses draw_lapses(const ParticipantModel& m, double t0, double t1, std::uint64_t& rng) {
+    Lapses l;
+    l.duration = m.lapse_duration_s;
+    if (m.lapse_rate_hz <= 0.0 || m.lapse_duration_s <= 0.0) return l;
+    for (double t = t0 - m.lapse_duration_s;;) {
+        t += -std::log(1.0 - uniform01(rng)) / m.lapse_rate_hz;  // exponential gaps
+        if (t >= t1) break;
+        l.starts.push_back(t);
+    }
+    return l;
+}
+
+// The speed (m/s) along seed 000's top: what lets the person stop within the pad after their
+// first cue (ParticipantModel::stop_time_s), from their usual thresholds, not this trial's draw.
+double exploration_speed(const Protocol& p, const Condition& c) {
+    const ParticipantModel& m = p.participant;
+    if (m.stop_time_s <= 0.0) return p.hand_speed;
+    double cue = p.finger_radius * std::sin(std::min(90.0, m.force_angle_threshold_deg) / kDeg);  // m past the edge
+    if (c.contact_location) cue = std::min(cue, m.location_threshold_mm * 1e-3);
+    const double left = std::max(0.0, 0.5 * p.pad_length - cue);  // m of pad beyond the cue
+    return std::clamp(left / m.stop_time_s, 0.002, p.hand_speed);  // never slower than 2 mm/s
+}
+
 void common_measures(const TrialTrace& tr, TrialOutcome& o, double t_end = 1e300) {
     bool touched = false, prev = false;
     for (const TickRecord& r : tr.ticks) {
@@ -75,24 +111,30 @@ TrialOutcome contour_following(const Protocol& p, const Condition& c, const Plan
     const ParticipantModel& m = p.participant;
     const double loc_threshold = noisy(m.location_threshold_mm, m.location_noise_mm, rng) * 1e-3;  // m
     const double angle_threshold = noisy(m.force_angle_threshold_deg, m.force_angle_noise_deg, rng);  // deg
+    const double speed = exploration_speed(p, c);  // m/s along the top
+    // This trial's reaction time (s); drawn only when it varies, as the lapses below.
+    const double reaction = m.reaction_time_sd_s > 0.0 ? std::max(0.03, m.reaction_time_s + m.reaction_time_sd_s * normal01(rng))
+                                                       : m.reaction_time_s;
     // Run 1: slide on past the edge; when is the edge noticed?
     const double far = 0.03;  // m past the edge: the pad is off the top by then
-    const Stimulus first = make_stimulus(p, c, t, far);
+    const Stimulus first = make_stimulus(p, c, t, far, speed);
     const TrialTrace probe = run_servo_trial(first.scene, first.path, c.contact_location);
+    const Lapses lapses = draw_lapses(m, 0.0, first.path.end(), rng);
     double overshoot = far;
     bool touched = false;
     for (const TickRecord& r : probe.ticks) {
         touched |= r.contact;
         if (!touched || r.finger.x < -t.stimulus) continue;  // before the start line
+        if (lapses.at(r.t)) continue;                          // attending elsewhere
         const bool cue = (c.contact_location && std::abs(r.roller_l) >= loc_threshold) ||
                          (r.contact && std::abs(force_angle_deg(r)) >= angle_threshold) || !r.contact;
         if (cue) {
-            overshoot = std::clamp(r.finger.x + p.hand_speed * m.reaction_time_s, -0.005, far);
+            overshoot = std::clamp(r.finger.x + speed * reaction, -0.005, far);
             break;
         }
     }
     // Run 2: the trial as performed, tipping round the edge `overshoot` past it.
-    const Stimulus st = make_stimulus(p, c, t, overshoot);
+    const Stimulus st = make_stimulus(p, c, t, overshoot, speed);
     const TrialTrace tr = run_servo_trial(st.scene, st.path, c.contact_location);
     TrialOutcome o;
     double t_start = -1.0, t_finish = -1.0;
@@ -117,9 +159,11 @@ TrialOutcome bump_counting(const Protocol& p, const Condition& c, const PlannedT
     const TrialTrace tr = run_servo_trial(st.scene, st.path, c.contact_location);
     std::vector<double> angle, location;
     double last_angle = 0.0, last_loc = 0.0;
+    const Lapses lapses = draw_lapses(m, st.slide_start, st.slide_end, rng);
     for (const TickRecord& r : tr.ticks) {
         if (r.t < st.slide_start || r.t > st.slide_end) continue;
-        if (r.contact) {  // out of contact the finger feels nothing new: the last cue stays
+        // Out of contact, or in a lapse, the finger feels nothing new: the last cue stays.
+        if (r.contact && !lapses.at(r.t)) {
             last_angle = force_angle_deg(r);
             last_loc = r.roller_l * 1e3;
         }

@@ -114,7 +114,7 @@ double arc_slope_range_deg(double chord, double height) {
     return 2.0 * std::asin(std::min(1.0, chord / (2.0 * ra))) * 180.0 / kPi;
 }
 
-Stimulus make_stimulus(const Protocol& p, const Condition& c, const PlannedTrial& t, double overshoot) {
+Stimulus make_stimulus(const Protocol& p, const Condition& c, const PlannedTrial& t, double overshoot, double top_speed) {
     Stimulus st;
     std::uint64_t rng = t.seed;
     switch (p.task) {
@@ -124,7 +124,8 @@ Stimulus make_stimulus(const Protocol& p, const Condition& c, const PlannedTrial
             drivers::BlockTaskParams bp;
             bp.finger_radius = p.finger_radius;
             bp.d = t.stimulus;
-            bp.speed = p.hand_speed;
+            bp.speed = top_speed > 0.0 ? top_speed : p.hand_speed;
+            bp.descent_speed = p.hand_speed;
             bp.press = p.hand_press;
             bp.overshoot = overshoot;
             bp.descent = p.finish_depth + 0.01;  // a centimetre past the finish line

@@ -36,7 +36,10 @@ struct Stimulus {
     double probe[4] = {0, 0, 0, 0};
 };
 
-Stimulus make_stimulus(const Protocol& p, const Condition& c, const PlannedTrial& t, double overshoot = 0.0);
+// Contour following: `overshoot` (m) past the edge before tipping, `top_speed` (m/s) along the
+// top and round the corner (0: the protocol's hand speed, which the far face always takes).
+Stimulus make_stimulus(const Protocol& p, const Condition& c, const PlannedTrial& t, double overshoot = 0.0,
+                       double top_speed = 0.0);
 
 // Edge sharpness: the edge of radius `radius` (m) and the slide across it.
 Stimulus make_edge_stimulus(const Protocol& p, double radius);

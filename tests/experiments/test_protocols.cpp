@@ -126,14 +126,18 @@ TEST_CASE("protocols: the results file does not depend on the number of jobs") {
     CHECK(t.columns == results_columns(p));
 }
 
-TEST_CASE("simulated participant: contact location shows the block's edge in time, force alone does not (seed 000)") {
+TEST_CASE("simulated participant: at one hand speed, contact location shows the block's edge in time and force alone does not (seed 000)") {
     // Where the edge is noticed: the element moves 1:1 with the finger once the centre passes the
     // edge (1.5 mm threshold); the force turns by asin(x / R) (15 deg at x = R sin 15 deg = 6.7 mm).
     // Then 0.1 s at 5 cm/s (5 mm) before the finger tips; the pad leaves the top when its centre is
     // more than R sin(L / 2R) = 9.8 mm past the edge. So force alone fails nearly always, with
-    // contact location nearly never.
+    // contact location nearly never. The person here keeps the protocol's speed (stop_time_s 0)
+    // and neither lapses nor varies their reaction time.
     Protocol p = load_protocol(protocol_path("000-contour-following.json"));
     p.repetitions = 2;
+    p.participant.stop_time_s = 0.0;
+    p.participant.lapse_rate_hz = 0.0;
+    p.participant.reaction_time_sd_s = 0.0;
     TempDir dir;
     RunOptions o;
     o.participants = {1};
@@ -146,6 +150,83 @@ TEST_CASE("simulated participant: contact location shows the block's edge in tim
     // A successful trial takes the path's time from the start line to the finish: at least d plus
     // the 6 cm descent at 5 cm/s.
     CHECK(j["conditions"]["force+cld"]["time_s"]["mean"].get<double>() > (0.04 + 0.06) / 0.05);
+}
+
+namespace {
+
+// Seed 000 as run by a person without noise: thresholds exact, no lapses, one reaction time.
+Protocol noiseless_block_protocol() {
+    Protocol p = load_protocol(protocol_path("000-contour-following.json"));
+    p.repetitions = 1;
+    p.participant.force_angle_noise_deg = 0.0;
+    p.participant.location_noise_mm = 0.0;
+    p.participant.reaction_time_sd_s = 0.0;
+    p.participant.lapse_rate_hz = 0.0;
+    p.participant.stop_time_s = 0.22;
+    return p;
+}
+
+ResultsTable run_one(const Protocol& p, const TempDir& dir, const char* name) {
+    RunOptions o;
+    o.participants = {1};
+    o.traces = false;
+    o.output = dir.file(name);
+    run_experiment(p, o);
+    return read_results_csv(o.output);
+}
+
+}  // namespace
+
+TEST_CASE("simulated participant: without contact location the person slides slower, by the pad each cue leaves, and stops in time (seed 000)") {
+    // The person moves along the top no faster than lets them stop within the pad after their
+    // first cue: v = (L / 2 - cue) / stop_time, the cue R sin 15 deg = 6.73 mm past the edge with
+    // force alone, 1.5 mm with contact location: v = 14.9 and 38.6 mm/s. Noticing at the cue, they
+    // tip after 0.1 s, overshoot = cue + v 0.1 s = 8.2 and 5.4 mm, inside the 9.8 mm the pad
+    // reaches: no trial fails. Each trial's time from the start line: (d + overshoot) / v along the
+    // top, then round the corner (about 30 mm) and 6 cm down the far face at the free 5 cm/s.
+    const Protocol p = noiseless_block_protocol();
+    TempDir dir;
+    const ResultsTable t = run_one(p, dir, "r.csv");
+    const double half_pad = 0.5 * p.pad_length, reaction = p.participant.reaction_time_s;
+    const double r = p.finger_radius - p.hand_press;
+    for (std::size_t i = 0; i < t.rows.size(); ++i) {
+        const auto& row = t.rows[i];
+        const bool cld = row[*t.column("condition")] == "force+cld";
+        const double cue = cld ? 1.5e-3 : p.finger_radius * std::sin(15.0 * contactlab::kPi / 180.0);
+        const double v = (half_pad - cue) / p.participant.stop_time_s;
+        const double overshoot = cue + v * reaction;
+        const double d = std::stod(row[*t.column("stimulus")]);
+        // The corner: the centre swings about the edge from `overshoot` past it at height r to
+        // beside it, its radius going from hypot(overshoot, r) to r (drivers/tasks.cpp).
+        const double corner = 0.5 * (std::hypot(overshoot, r) + r) * std::atan2(r, overshoot);  // m
+        const double expected = (d + overshoot) / v + (corner + 0.06) / p.hand_speed;
+        CAPTURE(row[*t.column("condition")]);
+        CAPTURE(d);
+        CHECK(row[*t.column("failed")] == "0");
+        // The cue reaches its threshold up to 1 mm from the nominal x (the finger lags the hand
+        // through the grip and the spring), which moves the corner's start by as much.
+        CHECK(std::abs(std::stod(row[*t.column("time_s")]) - expected) < 1e-3 / v + 1e-3 / p.hand_speed + 0.01);
+    }
+}
+
+TEST_CASE("simulated participant: a lapse when the edge comes lets the pad run off the top (seed 000)") {
+    // With contact location the noiseless person stops in time (above). Lapsing nearly all the
+    // time (10 lapses a second of 0.3 s each: a moment is outside every lapse with probability
+    // exp(-3) = 5 %), the element's move goes unnoticed until a lapse ends, up to 0.3 s at
+    // 38.6 mm/s = 11.6 mm later, and most trials lose contact.
+    Protocol p = noiseless_block_protocol();
+    p.conditions.erase(p.conditions.begin());  // force+cld only
+    TempDir dir;
+    const auto failures = [&](const ResultsTable& t) {
+        int n = 0;
+        for (const auto& row : t.rows) n += row[*t.column("failed")] == "1";
+        return n;
+    };
+    CHECK(failures(run_one(p, dir, "attentive.csv")) == 0);
+    p.participant.lapse_rate_hz = 10.0;
+    p.participant.lapse_duration_s = 0.3;
+    const ResultsTable lapsing = run_one(p, dir, "lapsing.csv");
+    CHECK(failures(lapsing) * 2 >= static_cast<int>(lapsing.rows.size()));
 }
 
 TEST_CASE("simulated participant: seed 004's field is felt when eccentric and not when e = 1") {
