@@ -38,18 +38,32 @@ struct Condition {
     double eccentricity = 1.0, total_stiffness = 1000.0;
 };
 
-// Perception of the simulated participant (sim_participant.hpp): thresholds of the cues it reads
-// from what the device displayed, and the Gaussian noise on each, in the units given.
+// The simulated participant (sim_participant.hpp): one model of a person for every task. The
+// thresholds of the cues it reads from what the device displayed and the Gaussian noise on each,
+// in the units given, how it explores and how its attention lapses. The defaults are the person;
+// a protocol's `participant` object may change any of them (the shipped ones do not).
+// docs/experiments.md lists each parameter with its source or how it was fitted.
 struct ParticipantModel {
-    double force_angle_threshold_deg = 6.0;  // a change of the force's direction it notices
-    double force_angle_noise_deg = 3.0;
-    double location_threshold_mm = 2.0;      // a move of the contact element on the pad
-    double location_noise_mm = 1.0;
-    double stiffness_noise = 0.15;           // seed 004: relative noise on felt stiffness
-    double reaction_time_s = 0.25;           // from noticing a cue to acting on it
+    // A change of the force's direction it notices (deg): between the 14 deg at which a change of
+    // direction of a point moving across the fingerpad is felt (Keyson & Houtsma 1995) and the
+    // 25.6 deg between two force directions felt through a haptic device without vision
+    // (Barbagli et al. 2006).
+    double force_angle_threshold_deg = 15.0;
+    double force_angle_noise_deg = 5.0;
+    // A move of the contact element on the pad (mm): point localization on the fingertip is
+    // 1-2 mm, between its gap detection (0.87 mm, Johnson & Phillips 1981) and its two-point
+    // threshold (2-3 mm, Weinstein 1968).
+    double location_threshold_mm = 1.5;
+    double location_noise_mm = 0.5;
+    // Seed 004: relative noise on felt stiffness, chosen so that seed 004's e = 0.40 gives about
+    // its Table I (stiffness discrimination alone has a Weber fraction of about 0.2; the field's
+    // two diagonals are felt one after the other, each through the hand's own compliance).
+    double stiffness_noise = 0.5;
+    // From noticing a cue to acting on it (s): the hand's corrective responses to touch come
+    // about 100 ms after it (Jenmalm & Johansson 1997; 60-90 ms, Cole & Abbs 1988).
+    double reaction_time_s = 0.1;
     // Trial-to-trial spread (sd, s) of the reaction time; each trial draws its own, never below
-    // 30 ms. Corrective responses of the hand to touch take 60-100 ms (Cole & Abbs 1988) and
-    // vary from one to the next.
+    // 30 ms. A coefficient of variation of 0.3, this model's choice (not from a source).
     double reaction_time_sd_s = 0.03;
     // Exploration speed where running past a feature fails the trial (seed 000's edge): the
     // person moves no faster than lets them stop in time, covering the pad left beyond where
