@@ -71,7 +71,7 @@ struct ParticipantModel {
     // R sin(force angle threshold) without contact location) in `stop_time_s`, and never faster
     // than the protocol's hand speed. 0 keeps the protocol's hand speed. Fitted to seed 000's
     // failures and times (docs/experiments.md).
-    double stop_time_s = 0.22;
+    double stop_time_s = 0.173;
     // Attention lapses while exploring (seed 000 and seed 002, where the stimulus passes once at
     // speed): lapses start at random (a Poisson process of `lapse_rate_hz` per second of the
     // trial) and last `lapse_duration_s`; a cue during one is not perceived (the last one felt

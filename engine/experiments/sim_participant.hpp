@@ -5,16 +5,20 @@
 // is read through a threshold with Gaussian perceptual noise (ParticipantModel, protocol.hpp),
 // drawn from the trial's seed, so a participant's answers are reproducible.
 //
-//   contour-following  runs the slide once to find when the edge is noticed: the element moving
-//                      `location_threshold_mm` back on the pad (contact location shown), else the
-//                      force turning `force_angle_threshold_deg` off the vertical, or contact
-//                      lost; after `reaction_time_s` the finger tips round the edge. The trial is
-//                      run again with that overshoot and timed from the start line (d from the
-//                      edge) to the finish line; it fails if contact breaks (seed 000).
+//   contour-following  slides along the top at the speed the person's cues allow (the pad left
+//                      beyond the first cue over `stop_time_s`), and runs the slide once to find
+//                      when the edge is noticed: the element moving `location_threshold_mm` back
+//                      on the pad (contact location shown), else the force turning
+//                      `force_angle_threshold_deg` off the vertical, or contact lost, outside
+//                      the trial's attention lapses; after the trial's reaction time the finger
+//                      tips round the edge. The trial is run again with that overshoot and timed
+//                      from the start line (d from the edge) to the finish line; it fails if
+//                      contact breaks (seed 000).
 //   bump-counting      counts rise-and-fall excursions of the force's direction (and, with contact
 //                      location, of the element's position; the larger count) over a bump's width
 //                      (means over 4 mm of travel less means over 16 mm, which takes out the base
-//                      shape's slow turn) beyond a noisy threshold; answers 0..4 (seed 002)
+//                      shape's slow turn) beyond a noisy threshold, holding the last cue
+//                      through a lapse; answers 0..4 (seed 002)
 //   curvature          the force direction's range over the slide, with noise, against the range
 //                      each height would give (arc_slope_range_deg): the nearest height (seed 003)
 //   surface-orientation the force's growth per mm along each downward diagonal, each with
