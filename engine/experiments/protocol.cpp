@@ -387,10 +387,11 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
         p.edge_slope_deg = r.number(root["edge"], "edge", "slope_deg", 5.0, 60.0, "deg", p.edge_slope_deg);
     }
     if (root.contains("bumps")) {
-        r.only(root["bumps"], "bumps", {"small", "large", "length"});
+        r.only(root["bumps"], "bumps", {"small", "large", "length", "base_span"});
         p.small_bump = r.number(root["bumps"], "bumps", "small", 0.0005, 0.05, "m", p.small_bump);
         p.large_bump = r.number(root["bumps"], "bumps", "large", 0.0005, 0.05, "m", p.large_bump);
         p.traced_length = r.number(root["bumps"], "bumps", "length", 0.05, 1.0, "m", p.traced_length);
+        p.base_span = r.number(root["bumps"], "bumps", "base_span", 0.0, 1.0, "m", p.base_span);
     }
     if (root.contains("arc")) {
         r.only(root["arc"], "arc", {"chord"});

@@ -142,6 +142,7 @@ Stimulus make_stimulus(const Protocol& p, const Condition& c, const PlannedTrial
             def.small_height = p.small_bump;
             def.large_height = p.large_bump;
             def.length = p.traced_length;
+            def.base_span = p.base_span;
             st.scene = generate_bumps(def).scene;
             set_finger_and_force(st.scene, p);
             const SurfaceProfile pts = profile_of(surface_points(st.scene));

@@ -7,6 +7,7 @@
 #include "engine/experiments/results_table.hpp"
 #include "engine/experiments/sim_participant.hpp"
 #include "engine/experiments/statistics.hpp"
+#include "engine/experiments/stimulus.hpp"
 #include "engine/experiments/trial_plan.hpp"
 #include "process.hpp"
 
@@ -227,6 +228,34 @@ TEST_CASE("simulated participant: a lapse when the edge comes lets the pad run o
     p.participant.lapse_duration_s = 0.3;
     const ResultsTable lapsing = run_one(p, dir, "lapsing.csv");
     CHECK(failures(lapsing) * 2 >= static_cast<int>(lapsing.rows.size()));
+}
+
+TEST_CASE("protocols: seed 002's base shape spans bumps.base_span, 0 a flat line, out of range refused") {
+    // The base shape is scaled to span base_span vertically over the traced length (haptics/
+    // stimuli.hpp): with no bumps the contour's points span exactly that, 0 leaves it flat.
+    Protocol p = load_protocol(protocol_path("002-bump-counting.json"));
+    CHECK(p.base_span == 0.20);
+    PlannedTrial t;
+    t.stimulus = 0;  // no bumps
+    t.seed = 7;
+    for (const double span : {0.20, 0.05, 0.0}) {
+        p.base_span = span;
+        const Stimulus st = make_stimulus(p, p.conditions[0], t);
+        double lo = 1e9, hi = -1e9;
+        for (const auto& seg : st.scene.contours.at(0).segments)
+            for (const contactlab::Vec2 q : {contactlab::segment_start(seg), contactlab::segment_end(seg)}) {
+                lo = std::min(lo, q.y);
+                hi = std::max(hi, q.y);
+            }
+        CAPTURE(span);
+        // The segments' ends lie on the base within a millimetre of its samples (every 2 mm), so
+        // they span it to within a few per cent (a turn's top is flat to second order).
+        CHECK(std::abs((hi - lo) - span) <= 0.05 * span + 1e-12);
+    }
+    std::string text = R"({"format": "contactlab experiment protocol", "version": 1, "name": "x", "seed": "002",
+      "task": "bump-counting", "conditions": [{"name": "F"}], "stimuli": [0, 1], "answers": ["0", "1"],
+      "bumps": {"base_span": 2}})";
+    CHECK_THROWS_WITH_AS(parse_protocol(text, "p.json"), doctest::Contains("bumps.base_span"), std::runtime_error);
 }
 
 TEST_CASE("simulated participant: seed 004's field is felt when eccentric and not when e = 1") {
