@@ -79,15 +79,18 @@ void common_measures(const TrialTrace& tr, TrialOutcome& o, double t_end = 1e300
 }
 
 // Rise-and-fall excursions of `s` beyond +-h, counted either way round (a bump is + then -
-// for one cue and may be - then + for another).
-int excursions(const std::vector<double>& s, double h) {
+// for one cue and may be - then + for another). `felt(i)` says whether the person attended at
+// sample i: an excursion completed during a lapse goes uncounted.
+template <class Felt>
+int excursions(const std::vector<double>& s, double h, Felt felt) {
     int pm = 0, mp = 0, state = 0;
-    for (double v : s) {
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        const double v = s[i];
         if (v > h && state != 1) {
-            if (state == -1) ++mp;
+            if (state == -1 && felt(i)) ++mp;
             state = 1;
         } else if (v < -h && state != -1) {
-            if (state == 1) ++pm;
+            if (state == 1 && felt(i)) ++pm;
             state = -1;
         }
     }
@@ -157,13 +160,13 @@ TrialOutcome bump_counting(const Protocol& p, const Condition& c, const PlannedT
     const ParticipantModel& m = p.participant;
     const Stimulus st = make_stimulus(p, c, t);
     const TrialTrace tr = run_servo_trial(st.scene, st.path, c.contact_location);
-    std::vector<double> angle, location;
+    std::vector<double> angle, location, when;
     double last_angle = 0.0, last_loc = 0.0;
     const Lapses lapses = draw_lapses(m, st.slide_start, st.slide_end, rng);
     for (const TickRecord& r : tr.ticks) {
         if (r.t < st.slide_start || r.t > st.slide_end) continue;
-        // Out of contact, or in a lapse, the finger feels nothing new: the last cue stays.
-        if (r.contact && !lapses.at(r.t)) {
+        when.push_back(r.t);
+        if (r.contact) {  // out of contact the finger feels nothing new: the last cue stays
             last_angle = force_angle_deg(r);
             last_loc = r.roller_l * 1e3;
         }
@@ -173,9 +176,11 @@ TrialOutcome bump_counting(const Protocol& p, const Condition& c, const PlannedT
     // Cues over a bump's width (15-30 mm): means over 4 mm less means over 16 mm of travel.
     const double per_m = kTrialRate / p.hand_speed;  // samples per m of travel
     const auto narrow = static_cast<std::size_t>(0.002 * per_m), wide = static_cast<std::size_t>(0.008 * per_m);
-    int count = excursions(band(angle, narrow, wide), noisy(m.force_angle_threshold_deg, m.force_angle_noise_deg, rng));
+    // A bump whose swing completes during a lapse passes unfelt.
+    const auto felt = [&](std::size_t i) { return !lapses.at(when[i]); };
+    int count = excursions(band(angle, narrow, wide), noisy(m.force_angle_threshold_deg, m.force_angle_noise_deg, rng), felt);
     if (c.contact_location)
-        count = std::max(count, excursions(band(location, narrow, wide), noisy(m.location_threshold_mm, m.location_noise_mm, rng)));
+        count = std::max(count, excursions(band(location, narrow, wide), noisy(m.location_threshold_mm, m.location_noise_mm, rng), felt));
     TrialOutcome o;
     common_measures(tr, o);
     o.small_bumps = st.small_bumps;

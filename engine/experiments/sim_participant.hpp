@@ -17,8 +17,8 @@
 //   bump-counting      counts rise-and-fall excursions of the force's direction (and, with contact
 //                      location, of the element's position; the larger count) over a bump's width
 //                      (means over 4 mm of travel less means over 16 mm, which takes out the base
-//                      shape's slow turn) beyond a noisy threshold, holding the last cue
-//                      through a lapse; answers 0..4 (seed 002)
+//                      shape's slow turn) beyond a noisy threshold; a swing that completes
+//                      during a lapse is not counted; answers 0..4 (seed 002)
 //   curvature          the force direction's range over the slide, with noise, against the range
 //                      each height would give (arc_slope_range_deg): the nearest height (seed 003)
 //   surface-orientation the force's growth per mm along each downward diagonal, each with

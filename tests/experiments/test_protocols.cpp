@@ -230,6 +230,33 @@ TEST_CASE("simulated participant: a lapse when the edge comes lets the pad run o
     CHECK(failures(lapsing) * 2 >= static_cast<int>(lapsing.rows.size()));
 }
 
+TEST_CASE("simulated participant: a person lapsing nearly all the time counts no bumps (seed 002)") {
+    // A swing that completes during a lapse is not counted (sim_participant.hpp). Lapsing 10 times
+    // a second for 0.3 s each, a moment is outside every lapse with probability exp(-3) = 5 %, so a
+    // trial with n swings is answered 0 with probability 0.95^n: at least 0.74 for the up to 6
+    // swings (4 bumps and the base's turns) a trial has, 14.7 of 20 trials expected at the least.
+    // Attentive, the same person counts at least one bump in most trials (4 in 5 stimuli have one).
+    Protocol p = load_protocol(protocol_path("002-bump-counting.json"));
+    p.trials = 20;
+    p.warmup = 0;
+    p.conditions.resize(1);  // F
+    TempDir dir;
+    const auto zeros = [](const ResultsTable& t) {
+        int n = 0;
+        for (const auto& row : t.rows) n += row[*t.column("response")] == "0";
+        return n;
+    };
+    p.participant.lapse_rate_hz = 0.0;
+    const ResultsTable attentive = run_one(p, dir, "attentive.csv");
+    p.participant.lapse_rate_hz = 10.0;
+    p.participant.lapse_duration_s = 0.3;
+    const ResultsTable lapsing = run_one(p, dir, "lapsing.csv");
+    REQUIRE(attentive.rows.size() == 20);
+    REQUIRE(lapsing.rows.size() == 20);
+    CHECK(zeros(attentive) <= 10);
+    CHECK(zeros(lapsing) >= 14);
+}
+
 TEST_CASE("protocols: seed 002's base shape spans bumps.base_span, 0 a flat line, out of range refused") {
     // The base shape is scaled to span base_span vertically over the traced length (haptics/
     // stimuli.hpp): with no bumps the contour's points span exactly that, 0 leaves it flat.
