@@ -2,21 +2,27 @@
 // (drivers/sim/sim_wearable_device.hpp) on a finger that is the cursor, as the mouse device's is:
 // the wearable renders no force on the hand, so nothing moves the finger but the user. The servo
 // loop turns the contact into a platform pose (haptics/wearable/contact_display.hpp); the frame
-// draws the platform from platform_view().
+// draws the platform from platform_view(). In seed 003's live trial the finger is the trial's
+// sweep instead (finger_script.hpp).
 #pragma once
 
 #include "drivers/sim/sim_wearable_device.hpp"
+#include "engine/editor/finger_script.hpp"
 #include "engine/editor/pose_input.hpp"
-#include "haptics/servo_seqlock.hpp"
 
 namespace contactlab::editor {
 
 class CursorWearableDevice final : public drivers::Device, public PoseInput {
 public:
-    explicit CursorWearableDevice(const MousePose& start) { pose_.store(start); }
+    explicit CursorWearableDevice(const MousePose& start) : script_(start) {}
 
     // --- UI thread ---------------------------------------------------------------------------
-    void set_pose(const MousePose& p) noexcept override { pose_.store(p); }
+    void set_pose(const MousePose& p) noexcept override { script_.set_pose(p); }
+    bool start_sweep(const drivers::FingerSweep& s) noexcept override {
+        script_.start_sweep(s);
+        return true;
+    }
+    void stop_sweep() noexcept override { script_.stop_sweep(); }
     drivers::sim::WearablePlatformView platform_view() const noexcept { return inner_.platform_view(); }
     // The Wearable section's live gains, fit mode and FSR noise (parameter_edit.hpp checks them).
     void set_tuning(const wearable::RigTuning& t) noexcept { inner_.set_tuning(t); }
@@ -33,9 +39,7 @@ public:
     void set_engaged(bool on) noexcept override { inner_.set_engaged(on); }
     bool read(drivers::DeviceReading& out) noexcept override {
         const bool ok = inner_.read(out);
-        const MousePose p = pose_.load();
-        out.finger = p.finger;
-        out.phi = p.phi;
+        script_.apply(out);
         return ok;
     }
     void write(const drivers::DeviceCommand& cmd) noexcept override { inner_.write(cmd); }
@@ -43,7 +47,7 @@ public:
 
 private:
     drivers::sim::SimWearableDevice inner_;
-    Seqlock<MousePose> pose_;
+    FingerScript script_;
 };
 
 }  // namespace contactlab::editor

@@ -21,6 +21,21 @@ const Scene& nothing() {
     return empty;
 }
 
+// Seed 003's sweep on the device, when the trial has one and the device takes it (a platform:
+// PoseInput::start_sweep); stop_sweep hands the finger back to the cursor.
+bool start_sweep(EditorState& s) {
+    ExperimentState* e = s.experiment;
+    const auto sweep = e->session->sweep();
+    e->sweeping = sweep && s.pose_input && s.pose_input->start_sweep(*sweep);
+    return e->sweeping;
+}
+
+void stop_sweep(EditorState& s) {
+    if (!s.experiment || !s.experiment->sweeping) return;
+    if (s.pose_input) s.pose_input->stop_sweep();
+    s.experiment->sweeping = false;
+}
+
 void start_trial(ExperimentState& e) {
     e.trial_start = -1.0;
     e.touched = e.in_contact = e.faulted = false;
@@ -28,11 +43,12 @@ void start_trial(ExperimentState& e) {
     e.peak_force = 0.0;
 }
 
-std::string prompt(const experiments::LiveSession& s) {
+std::string prompt(const experiments::LiveSession& s, bool sweeping) {
     switch (s.protocol().task) {
         case experiments::Task::contour_following: return "Follow the top to its edge, tip round it and go down the far side; then Enter.";
         case experiments::Task::bump_counting: return "Trace the contour and count the bumps.";
-        case experiments::Task::curvature: return "Which height was the arc (mm)?";
+        case experiments::Task::curvature:
+            return sweeping ? "The arc passes under the finger (N: again). Which height was it (mm)?" : "Which height was the arc (mm)?";
         case experiments::Task::surface_orientation: return "Press the surface: which shape, A or B?";
         case experiments::Task::edge_sharpness:
             return s.interval() < s.intervals() ? "Edge 1 of 2: slide across it, then Next (N) for edge 2."
@@ -116,6 +132,7 @@ void experiment_scene_published(EditorState& s, double now) {
         box.grow(s.pose.finger - Vec2(reach));
         box.grow(s.pose.finger + Vec2(reach));
         s.camera.fit(box);
+        if (start_sweep(s)) s.say("the arc passes under the finger; N passes it again");
     }
 }
 
@@ -153,6 +170,7 @@ bool cmd_experiment_answer(EditorState& s, const std::string& response, double n
         s.say(ex.what(), true);
         return false;
     }
+    stop_sweep(s);  // the next trial's starts when its scene reaches the servo
     start_trial(*e);
     record_device_serial(s);
     char buf[160];
@@ -183,6 +201,7 @@ void cmd_experiment_pause(EditorState& s, bool paused) {
     if (!e || !e->session) return;
     if (e->paused == paused) return;
     e->paused = paused;
+    stop_sweep(s);
     start_trial(*e);  // a paused trial starts again from the beginning
     s.say(paused ? "experiment paused: nothing to feel until Resume" : "experiment resumed");
 }
@@ -192,6 +211,11 @@ bool cmd_experiment_next_interval(EditorState& s) {
     if (!e || !e->session || e->session->finished() || e->paused || e->trial_start < 0.0) {
         s.say("no trial is running", true);
         return false;
+    }
+    if (e->sweeping) {  // seed 003 on the platform: the arc passes again
+        start_sweep(s);
+        s.say("the arc passes under the finger again");
+        return true;
     }
     if (!e->session->next_interval()) {
         s.say(e->session->intervals() > 1 ? "this is the trial's last edge: answer which felt sharper" : "this task has one stimulus per trial",
@@ -211,7 +235,7 @@ bool experiment_key(EditorState& s, const std::string& key, double now) {
         cmd_experiment_pause(s, !e->paused);
         return true;
     }
-    if (key == "n" && e->session->intervals() > 1) return cmd_experiment_next_interval(s), true;
+    if (key == "n" && (e->session->intervals() > 1 || e->sweeping)) return cmd_experiment_next_interval(s), true;
     const auto& answers = e->session->protocol().answers;
     if (key == "enter" && answers.empty()) return cmd_experiment_answer(s, "", now), true;
     if (key.size() == 1 && key[0] >= '1' && key[0] <= '9') {
@@ -247,10 +271,12 @@ void experiment_window(EditorState& s, double now) {
         if (ImGui::Button("Resume (P)")) cmd_experiment_pause(s, false);
     } else {
         ImGui::Text("Trial %d (%s)%s", x.trial().trial, x.condition().name.c_str(), x.trial().warmup ? ", warm-up" : "");
-        ImGui::TextUnformatted(prompt(x).c_str());
+        ImGui::TextUnformatted(prompt(x, e->sweeping).c_str());
         const auto& answers = x.interval() < x.intervals() ? std::vector<std::string>{} : x.protocol().answers;
         if (x.interval() < x.intervals()) {
             if (ImGui::Button("Next edge (N)")) cmd_experiment_next_interval(s);
+        } else if (e->sweeping) {
+            if (ImGui::Button("Again (N)")) cmd_experiment_next_interval(s);
         } else if (answers.empty()) {
             if (ImGui::Button("Done (Enter)")) cmd_experiment_answer(s, "", now);
         }

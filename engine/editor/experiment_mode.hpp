@@ -8,6 +8,9 @@
 // script's `answer X`. A two-interval trial (edge sharpness) shows its first edge, then its second
 // after Next (N, or `key n`); the answer comes after the second. Pause (P, or `pause`) takes the
 // stimulus away until Resume. An adaptive procedure's progress reads "n trials (at most N)".
+// Seed 003 on a display that moves no hand (sim-wearable, a hapio model 2 board): each trial's
+// arc passes under the held finger once when the trial starts (the device takes the finger from
+// LiveSession::sweep() instead of the cursor), and again after N.
 #pragma once
 
 #include "drivers/tick_record.hpp"
@@ -26,6 +29,9 @@ struct ExperimentState {
     // The trial in progress: when it began (s of editor time), what happened since.
     double trial_start = -1.0;
     bool touched = false, in_contact = false, faulted = false;
+    // Seed 003 on the wearable platform: the trial's sweep is playing on the device (the finger
+    // passing over the still arc, LiveSession::sweep()).
+    bool sweeping = false;
     int contact_breaks = 0;
     double peak_force = 0.0;  // N
     // "spec serial" last written to the results' meta: the meta is read and rewritten only when

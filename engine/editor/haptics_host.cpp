@@ -7,6 +7,7 @@
 #include "drivers/usb/usb_devices.hpp"
 #include "engine/editor/cursor_cld_device.hpp"
 #include "engine/editor/cursor_wearable_device.hpp"
+#include "engine/editor/platform_finger_device.hpp"
 #include "engine/editor/mouse_device.hpp"
 #include "engine/editor/servo_view.hpp"
 
@@ -50,7 +51,9 @@ std::unique_ptr<drivers::Device> HapticsHost::make_device(const std::string& spe
             return nullptr;
         }
     }
-    if (spec == "usb:hapio") return std::make_unique<drivers::hapio::HapioDevice>();
+    // A model 2 board (the wearable platform) tracks no finger: the cursor, or seed 003's live
+    // sweep, supplies it (platform_finger_device.hpp).
+    if (spec == "usb:hapio") return std::make_unique<PlatformFingerDevice>(std::make_unique<drivers::hapio::HapioDevice>(), pose);
     if (spec == "usb:falcon") return std::make_unique<drivers::falcon::FalconDevice>();
     error = "unknown device \"" + spec + "\" (mouse, sim-cld, sim-wearable, replay:FILE, usb:hapio, usb:falcon)";
     return nullptr;

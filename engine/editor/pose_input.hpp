@@ -4,6 +4,7 @@
 // take no pose: the recording or the user's real hand moves the finger.
 #pragma once
 
+#include "drivers/finger_sweep.hpp"
 #include "haptics/vec2.hpp"
 
 namespace contactlab::editor {
@@ -18,6 +19,15 @@ public:
     virtual ~PoseInput() = default;
     // UI thread; never blocks the servo (devices keep the pose in a seqlock).
     virtual void set_pose(const MousePose& p) noexcept = 0;
+    // Seed 003's live trial (finger_script.hpp): the finger passes over the arc as `s` says, from
+    // the device's next reading, until stop_sweep(). False where the device cannot take it: one
+    // whose finger is the user's hand (the mouse's cursor, the CLD rig's grip); only a display
+    // that tracks no finger, the wearable platform, can.
+    virtual bool start_sweep(const drivers::FingerSweep& s) noexcept {
+        (void)s;
+        return false;
+    }
+    virtual void stop_sweep() noexcept {}
 };
 
 }  // namespace contactlab::editor

@@ -289,6 +289,7 @@ bool Script::run(EditorState& s, const Line& line, double now) {
             else if (n == "experiment_done") v = s.experiment && s.experiment->session ? static_cast<double>(s.experiment->session->done()) : 0;
             else if (n == "experiment_total") v = s.experiment && s.experiment->session ? static_cast<double>(s.experiment->session->total()) : 0;
             else if (n == "experiment_paused") v = s.experiment && s.experiment->paused ? 1 : 0;
+            else if (n == "experiment_sweeping") v = s.experiment && s.experiment->sweeping ? 1 : 0;
             else if (n == "experiment_interval") v = s.experiment && s.experiment->session && !s.experiment->session->finished() ? s.experiment->session->interval() : 0;
             else if (n == "error") v = s.message_is_error ? 1 : 0;
             else if (n == "idle_frames") v = static_cast<double>(idle_frames_);

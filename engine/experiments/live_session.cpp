@@ -86,6 +86,20 @@ const Condition& LiveSession::condition() const {
     return protocol_.conditions.at(static_cast<std::size_t>(trial().condition));
 }
 
+std::optional<drivers::FingerSweep> LiveSession::sweep() const {
+    if (protocol_.task != Task::curvature || finished()) return std::nullopt;
+    drivers::FingerSweep s;
+    const double half = 0.5 * protocol_.chord + 0.02;  // m, as stimulus.cpp's slide for the task
+    s.x0 = condition().motion == "B" ? half : -half;
+    s.x1 = -s.x0;
+    s.speed = protocol_.hand_speed;
+    s.finger_radius = protocol_.finger_radius;
+    s.press = protocol_.hand_press;
+    s.chord = protocol_.chord;
+    s.height = trial().stimulus;
+    return s;
+}
+
 void LiveSession::build_scene() {
     // The live trial is felt as the simulated participant's first run is: the same scene (a
     // two-interval trial's edge in the interval shown).

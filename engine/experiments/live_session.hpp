@@ -19,6 +19,7 @@
 #include "engine/experiments/adaptive_plan.hpp"
 #include "engine/experiments/protocol.hpp"
 #include "engine/experiments/trial_plan.hpp"
+#include "drivers/finger_sweep.hpp"
 #include "haptics/scene.hpp"
 
 #include <cstdint>
@@ -68,6 +69,12 @@ public:
     const Scene& scene() const { return scene_; }
     // Force-only condition: the contact element is held at the pad's centre.
     bool roller_held() const { return !condition().contact_location; }
+    // Seed 003's trial on a display that moves no hand (the wearable platform): the finger held
+    // still and the arc passing under it is the finger passing over the still arc, left to right
+    // for motion A and right to left for B, from 2 cm before the arc to 2 cm after it at the
+    // protocol's hand speed, as the simulated trial (drivers/finger_sweep.hpp). Empty for the
+    // other tasks and when finished.
+    std::optional<drivers::FingerSweep> sweep() const;
     // Number of the scene's build: changes with every trial (for "publish when it changed").
     std::uint64_t scene_version() const { return version_; }
 

@@ -128,3 +128,39 @@ TEST_CASE("experiment mode: the edge protocol live, two edges a trial and the an
     CHECK(t.rows[0][*t.column("procedure")] == "staircase 1-up-2-down");
     CHECK(t.rows[0][*t.column("warmup")] == "1");
 }
+
+TEST_CASE("experiment mode: seed 003 on the simulated wearable, the arc passes under the held finger, again after N") {
+    // The device takes the finger from the trial's sweep (LiveSession::sweep): from 2 cm before
+    // the 30 cm arc to 2 cm after it at 10 cm/s, left to right for task A, right to left for B.
+    TempDir dir;
+    const std::string results = dir.file("p1.csv");
+    const std::string script = dir.file("s.txt");
+    write_text(script,
+               "frames 2\nexpect experiment_sweeping 1\nreport start\nwait 2\nreport later\n"
+               "answer 20\nexpect error 0\nexpect experiment_done 1\nframes 2\nexpect experiment_sweeping 1\n"
+               "key n\nexpect error 0\nexpect experiment_sweeping 1\nquit\n");
+    const auto p = run_under_xvfb({"edit", "--device", "sim-wearable", "--experiment",
+                                   (source_dir() / "scenes/experiments/003-curvature.json").string(), "--participant", "P1",
+                                   "--results", results, "--software", "--timeout", "90", "--script", script});
+    INFO(p.err);
+    REQUIRE(p.exit_code == 0);
+    CHECK_FALSE(contains(p.err, "FAILED"));
+    const auto t = contactlab::experiments::read_results_csv(results);
+    REQUIRE(t.rows.size() == 1);
+    CHECK(t.rows[0][*t.column("device")] == "sim-wearable");
+    const bool a = t.rows[0][*t.column("condition")] == "A";
+    const double x0 = a ? -170.0 : 170.0;  // mm
+    const double start = num(report(p.err, "start"), "finger_x_mm"), later = num(report(p.err, "later"), "finger_x_mm");
+    CAPTURE(start);
+    CAPTURE(later);
+    // The finger comes down onto x0 (0.3 s), settles (0.3 s), then passes one way at 0.1 mm a
+    // millisecond of servo time (the servo runs in real time): after the first frames it is at
+    // x0 or a little past it; two seconds later 140 mm past it (20 mm allows for a servo running
+    // at half speed on a loaded machine: 1 s of its time, 0.4 s of it passing).
+    CHECK((a ? start - x0 : x0 - start) >= 0.0);
+    CHECK((a ? start - x0 : x0 - start) < 100.0);
+    CHECK((a ? later - start : start - later) > 20.0);
+    // The finger touched the arc's floor and was pressed (the platform shows it).
+    CHECK(t.rows[0][*t.column("touched")] == "1");
+    CHECK(t.rows[0][*t.column("valid")] == "1");
+}

@@ -5,10 +5,13 @@
 #include "hapio_emulator.hpp"
 #include "usb_fixture.hpp"
 
+#include "drivers/finger_sweep.hpp"
 #include "drivers/usb/hapio_device.hpp"
+#include "engine/editor/platform_finger_device.hpp"
 
 #include <doctest/doctest.h>
 
+#include <memory>
 #include <string>
 
 using namespace contactlab;
@@ -103,4 +106,45 @@ TEST_CASE("hapio model 2: a board with too few analog channels is refused at ope
     CHECK_FALSE(dev.open());
     CHECK(dev.state() == DeviceState::fault);
     CHECK(std::string(dev.fault().detail).find("wearable platform") != std::string::npos);
+}
+
+TEST_CASE("hapio model 2: in the editor the board's finger is seed 003's live sweep, and a model 1 board keeps its own") {
+    // The platform tracks no finger: behind PlatformFingerDevice (as `edit --device usb:hapio`
+    // opens it) each reading's finger is the sweep's, timed from the first reading after it
+    // started, on the board's clock. A CLD rig (model 1) measures the finger and refuses it.
+    drivers::FingerSweep s;
+    s.x0 = -0.17;
+    s.x1 = 0.17;
+    s.speed = 0.1;
+    s.finger_radius = 0.010;
+    s.chord = 0.30;
+    s.height = 0.01;
+    {
+        HapioEmulator emu(wearable_board());
+        editor::PlatformFingerDevice dev(std::make_unique<hapio::HapioDevice>(tolerant()), editor::MousePose{{0.0, 0.03}, 0.0});
+        REQUIRE(dev.open());
+        REQUIRE(dev.capabilities().platform);
+        REQUIRE(dev.start_sweep(s));
+        DeviceReading r;
+        REQUIRE(wait_until([&] { return dev.read(r); }));
+        const double t0 = r.t;
+        CHECK(r.finger.x == s.x0);
+        for (int i = 0; i < 20; ++i) {
+            REQUIRE(wait_until([&] { return dev.read(r) && r.t > t0 + 0.05 * i; }));
+            const Vec2 want = drivers::finger_sweep_at(s, r.t - t0);
+            CHECK(r.finger.x == want.x);
+            CHECK(r.finger.y == want.y);
+        }
+        dev.close();
+    }
+    {
+        HapioEmulator::Config rig;  // the emulator's default board: model 1, the CLD rig
+        rig.frame_period = 1e-3;
+        HapioEmulator emu(rig);
+        editor::PlatformFingerDevice dev(std::make_unique<hapio::HapioDevice>(tolerant()), editor::MousePose{});
+        REQUIRE(dev.open());
+        CHECK_FALSE(dev.capabilities().platform);
+        CHECK_FALSE(dev.start_sweep(s));
+        dev.close();
+    }
 }
