@@ -1,6 +1,8 @@
 // finger_sweep.cpp — the finger's pass over the curvature task's arc (finger_sweep.hpp).
 #include "drivers/finger_sweep.hpp"
 
+#include "haptics/stimuli.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -11,7 +13,7 @@ double finger_sweep_duration(const FingerSweep& s) { return s.speed > 0.0 ? std:
 double finger_sweep_resting_height(const FingerSweep& s, double x) {
     const double R = s.finger_radius, half = 0.5 * s.chord;
     // The cap: the circle through (-c/2, 0), (0, h), (c/2, 0), radius r_a, centre (0, h - r_a).
-    const double ra = (half * half + s.height * s.height) / (2.0 * s.height);
+    const double ra = arc_cap_radius(s.chord, s.height);
     const double cy = s.height - ra;
     double best = std::abs(x) >= half ? R : -1e9;  // the floor, beside the cap
     // On the cap: the centre R + r_a from the cap's centre, in a direction that meets the cap

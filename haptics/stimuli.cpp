@@ -160,8 +160,8 @@ Scene generate_arc(double chord, double height, double margin) {
     require(std::isfinite(chord) && chord >= 0.01 && chord <= 1.0, "--chord: must lie in [0.01, 1] m");
     require(std::isfinite(height) && height > 0.0 && height <= 0.5 * chord,
             "--height: must lie in (0, chord / 2] m");
-    // Circle through (-c/2, 0), (0, h), (c/2, 0): radius r = (c^2/4 + h^2) / (2h), centre (0, h - r).
-    const double r = (0.25 * chord * chord + height * height) / (2.0 * height);
+    // Circle through (-c/2, 0), (0, h), (c/2, 0): radius r, centre (0, h - r).
+    const double r = arc_cap_radius(chord, height);
     const double half = std::asin(std::clamp(0.5 * chord / r, -1.0, 1.0));
     const double a0 = 0.5 * kPi + half, a1 = 0.5 * kPi - half;  // clockwise over the top: convex
     const Vec2 center{0.0, height - r};

@@ -53,5 +53,8 @@ Scene generate_block(double d, double drop = 0.10, double floor = 0.16);
 // Seed 003's curvature stimulus: a convex circular arc of chord `chord` and height `height` (m)
 // centred at x = 0 on a floor at y = 0 that extends `margin` m on each side.
 Scene generate_arc(double chord, double height, double margin = 0.05);
+// That arc's radius r_a (m): the circle through (-c/2, 0), (0, h), (c/2, 0), (c^2/4 + h^2) / 2h
+// (seed 003 section 4); its centre is (0, h - r_a).
+inline double arc_cap_radius(double chord, double height) { return (0.25 * chord * chord + height * height) / (2.0 * height); }
 
 }  // namespace contactlab

@@ -2,6 +2,8 @@
 // platform (see wearable_tasks.hpp).
 #include "drivers/sim/wearable_tasks.hpp"
 
+#include "haptics/stimuli.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -132,7 +134,7 @@ CurvatureArcResult curvature_arc(const RigDef& def, const CurvatureArcDef& cd) {
     if (!(cd.speed > 0.0) || !(cd.contact_force >= 0.0) || !(cd.sample_period > 0.0))
         throw std::invalid_argument("curvature arc: speed, contact force and sample period must be positive");
     CurvatureArcResult out;
-    out.radius = (0.25 * cd.chord * cd.chord + cd.height * cd.height) / (2.0 * cd.height);  // seed §4: r_a
+    out.radius = arc_cap_radius(cd.chord, cd.height);  // seed §4: r_a
     out.max_surface_angle = std::asin(0.5 * cd.chord / out.radius);
     WearableRig rig(def);
     const Pose rest = def.plant.platform.rest;

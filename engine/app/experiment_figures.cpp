@@ -6,6 +6,8 @@
 #include "engine/experiments/intervals.hpp"
 #include "engine/experiments/statistics.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -342,6 +344,13 @@ std::vector<ReportFigure> seed004(const ResultsTable& t) {
 }  // namespace
 
 // ---- shared with experiment_report.cpp -----------------------------------------------------------
+
+std::string report_number(const nlohmann::json& v, const char* format) {
+    if (!v.is_number()) return "-";
+    char buf[64];
+    std::snprintf(buf, sizeof buf, format, v.get<double>());
+    return buf;
+}
 
 Chart report_chart(std::string title, std::string x, std::string y) {
     Chart c;

@@ -23,6 +23,8 @@
 #include "engine/experiments/results_table.hpp"
 #include "engine/render/chart.hpp"
 
+#include <nlohmann/json_fwd.hpp>
+
 #include <string>
 #include <vector>
 
@@ -38,6 +40,9 @@ struct ReportFigure {
 render::Chart report_chart(std::string title, std::string x, std::string y);
 // A series of markers with no line between them, palette colour and marker shape by `index`.
 render::ChartSeries marker_series(const std::string& name, int index);
+// A JSON number printed with `format` (printf) for a report's tables; "-" for null or anything
+// not a number (a test with no variance, a fit that did not converge).
+std::string report_number(const nlohmann::json& v, const char* format = "%.3g");
 // Where series `index` of `count` stands within its category's slot (width 1): they share half.
 double dodge(int index, int count);
 

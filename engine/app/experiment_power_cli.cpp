@@ -86,28 +86,20 @@ render::Chart power_chart(const json& r) {
     return c;
 }
 
-// Four significant digits, "-" for null.
-std::string fmt(const json& v) {
-    if (!v.is_number()) return "-";
-    char b[32];
-    std::snprintf(b, sizeof b, "%.4g", v.get<double>());
-    return b;
-}
-
 void write_report(const json& r, const std::string& dir) {
     fs::create_directories(dir);
     std::ostringstream md;
     md << "# Power: " << r["measure"].get<std::string>() << "\n\n"
        << "- test: " << r["test"].get<std::string>() << "\n- sampling: " << r["sampling"].get<std::string>()
        << "\n- pool: " << r["pool"] << " participants; effect in the pool: mean difference "
-       << fmt(r["pool_effect"]["mean_difference"]) << ", sd " << fmt(r["pool_effect"]["sd_difference"]) << ", d_z "
-       << fmt(r["pool_effect"]["dz"]) << "\n- alpha " << r["alpha"] << ", seed " << r["seed"] << "\n\n"
+       << report_number(r["pool_effect"]["mean_difference"], "%.4g") << ", sd " << report_number(r["pool_effect"]["sd_difference"], "%.4g") << ", d_z "
+       << report_number(r["pool_effect"]["dz"], "%.4g") << "\n- alpha " << r["alpha"] << ", seed " << r["seed"] << "\n\n"
        << "| participants | power | 95 % interval | undefined tests | median p |\n| ---: | ---: | --- | ---: | ---: |\n";
     for (const auto& p : r["points"]) {
         char line[160];
         std::snprintf(line, sizeof line, "| %d | %.3f | %.3f .. %.3f | %ld | %s |\n", p["participants"].get<int>(), p["power"].get<double>(),
                       p["power_ci"][0].get<double>(), p["power_ci"][1].get<double>(), p["undefined"].get<long>(),
-                      fmt(p["median_p"]).c_str());
+                      report_number(p["median_p"], "%.4g").c_str());
         md << line;
     }
     try {

@@ -26,13 +26,6 @@ using nlohmann::json;
 using render::Chart;
 using render::ChartSeries;
 
-std::string fmt(const json& v, const char* f = "%.3g") {
-    if (!v.is_number()) return "-";
-    char buf[64];
-    std::snprintf(buf, sizeof buf, f, v.get<double>());
-    return buf;
-}
-
 // Where the results came from, per file: what its meta says (run_meta.hpp), or that it has none.
 void provenance_section(std::ostringstream& md, const json& a) {
     if (!a.contains("provenance")) return;
@@ -68,15 +61,15 @@ void bump_section(std::ostringstream& md, const json& a) {
     for (const auto& [name, c] : a["conditions"].items()) {
         if (!c.contains("by_small_bumps")) continue;
         for (const auto& [k, f] : c["by_small_bumps"].items())
-            md << "| " << name << " | " << k << " | " << f["n"] << " | " << fmt(f["proportion_correct"]) << " | "
-               << fmt(f["average_error"]) << " |\n";
+            md << "| " << name << " | " << k << " | " << f["n"] << " | " << report_number(f["proportion_correct"]) << " | "
+               << report_number(f["average_error"]) << " |\n";
     }
     md << "\n## Small bumps only, large bumps only (seed 002 Fig. 6)\n\n| condition | small only: n | correct | large only: n | correct |\n"
           "| --- | ---: | ---: | ---: | ---: |\n";
     for (const auto& [name, c] : a["conditions"].items())
         if (c.contains("small_only"))
-            md << "| " << name << " | " << c["small_only"]["n"] << " | " << fmt(c["small_only"]["proportion_correct"]) << " | "
-               << c["large_only"]["n"] << " | " << fmt(c["large_only"]["proportion_correct"]) << " |\n";
+            md << "| " << name << " | " << c["small_only"]["n"] << " | " << report_number(c["small_only"]["proportion_correct"]) << " | "
+               << c["large_only"]["n"] << " | " << report_number(c["large_only"]["proportion_correct"]) << " |\n";
 }
 
 // Any other protocol: proportion correct per stimulus, one marker series per condition on a
@@ -126,11 +119,11 @@ std::string write_experiment_report(const experiments::ResultsTable& table, cons
     md << "| condition | n | proportion correct | IT_est (bits) | Cramer's phi | time (s, mean +- sd) | failures |\n";
     md << "| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n";
     for (const auto& [name, c] : a["conditions"].items()) {
-        md << "| " << name << " | " << c["n"] << " | " << fmt(c.value("proportion_correct", json())) << " | "
-           << fmt(c.value("it_est_bits", json())) << " | " << fmt(c.value("cramers_phi", json())) << " | ";
-        if (c.contains("time_s")) md << fmt(c["time_s"]["mean"]) << " +- " << fmt(c["time_s"]["sd"]);
+        md << "| " << name << " | " << c["n"] << " | " << report_number(c.value("proportion_correct", json())) << " | "
+           << report_number(c.value("it_est_bits", json())) << " | " << report_number(c.value("cramers_phi", json())) << " | ";
+        if (c.contains("time_s")) md << report_number(c["time_s"]["mean"]) << " +- " << report_number(c["time_s"]["sd"]);
         else md << "-";
-        md << " | " << fmt(c.value("failure_proportion", json())) << " |\n";
+        md << " | " << report_number(c.value("failure_proportion", json())) << " |\n";
     }
     for (const auto& [name, c] : a["conditions"].items()) {
         if (!c.contains("confusion")) continue;
@@ -152,12 +145,12 @@ std::string write_experiment_report(const experiments::ResultsTable& table, cons
            << "| measure | a - b | test | t | df | p | interval |\n| --- | --- | --- | ---: | ---: | ---: | --- |\n";
         for (const auto& t : a["comparisons"]) {
             char ci[96];
-            std::snprintf(ci, sizeof ci, "%.0f %%: %s .. %s", 100.0 * t["confidence"].get<double>(), fmt(t["ci_low"]).c_str(),
-                          fmt(t["ci_high"]).c_str());
+            std::snprintf(ci, sizeof ci, "%.0f %%: %s .. %s", 100.0 * t["confidence"].get<double>(), report_number(t["ci_low"]).c_str(),
+                          report_number(t["ci_high"]).c_str());
             md << "| " << t["measure"].get<std::string>() << " | " << t["a"].get<std::string>() << " - " << t["b"].get<std::string>()
-               << " = " << fmt(t["mean_difference"]) << " | " << (t["test"]["kind"] == "paired" ? "paired" : "Welch") << " ("
+               << " = " << report_number(t["mean_difference"]) << " | " << (t["test"]["kind"] == "paired" ? "paired" : "Welch") << " ("
                << t["test"]["because"].get<std::string>() << ") | ";
-            if (t["valid"].get<bool>()) md << fmt(t["t"]) << " | " << fmt(t["df"]) << " | " << fmt(t["p"]) << " | " << ci << " |\n";
+            if (t["valid"].get<bool>()) md << report_number(t["t"]) << " | " << report_number(t["df"]) << " | " << report_number(t["p"]) << " | " << ci << " |\n";
             else md << "undefined: " << t["undefined"].get<std::string>() << " | - | - | - |\n";
         }
     }

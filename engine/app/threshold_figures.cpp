@@ -17,13 +17,6 @@ using nlohmann::json;
 using render::Chart;
 using render::ChartSeries;
 
-std::string num(const json& v, const char* f = "%.3g") {
-    if (!v.is_number()) return "-";
-    char buf[48];
-    std::snprintf(buf, sizeof buf, f, v.get<double>());
-    return buf;
-}
-
 // A file name from a condition's name: letters and digits kept, others '_'.
 std::string slug(const std::string& s) {
     std::string out;
@@ -47,8 +40,8 @@ void threshold_section(std::ostringstream& md, const json& a) {
         md << "| " << name << " | ";
         if (c.contains("adaptive")) {
             const json& ad = c["adaptive"];
-            md << ad.value("procedure", std::string("-")) << " | " << num(ad.value("target_p", json()), "%.3f") << " | "
-               << num(ad.value("estimate", json()), "%.4g") << " | " << ad.value("participants", json(1)).dump() << " | ";
+            md << ad.value("procedure", std::string("-")) << " | " << report_number(ad.value("target_p", json()), "%.3f") << " | "
+               << report_number(ad.value("estimate", json()), "%.4g") << " | " << ad.value("participants", json(1)).dump() << " | ";
         } else {
             md << "- | - | - | - | ";
         }
@@ -56,9 +49,9 @@ void threshold_section(std::ostringstream& md, const json& a) {
             const json& f = c["psychometric"];
             md << f["function"].get<std::string>() << " | ";
             if (f.contains("threshold"))
-                md << num(f["threshold"], "%.4g") << " | "
-                   << (f.contains("threshold_ci") ? num(f["threshold_ci"][0], "%.4g") + " .. " + num(f["threshold_ci"][1], "%.4g") : "-")
-                   << " | " << num(f["scale"], "%.3g") << " | " << num(f["lapse"], "%.3f") << " | " << num(f["deviance"], "%.3g") << " |\n";
+                md << report_number(f["threshold"], "%.4g") << " | "
+                   << (f.contains("threshold_ci") ? report_number(f["threshold_ci"][0], "%.4g") + " .. " + report_number(f["threshold_ci"][1], "%.4g") : "-")
+                   << " | " << report_number(f["scale"], "%.3g") << " | " << report_number(f["lapse"], "%.3f") << " | " << report_number(f["deviance"], "%.3g") << " |\n";
             else
                 md << f.value("undefined", std::string("undefined")) << " | - | - | - | - |\n";
         } else {
@@ -79,7 +72,7 @@ void threshold_section(std::ostringstream& md, const json& a) {
             if (!c.contains("participants")) continue;
             for (const auto& [p, f] : c["participants"].items())
                 if (f.contains("adaptive"))
-                    md << "| " << name << " | " << p << " | " << num(f["adaptive"]["estimate"], "%.4g") << " | "
+                    md << "| " << name << " | " << p << " | " << report_number(f["adaptive"]["estimate"], "%.4g") << " | "
                        << f["adaptive"]["reversals"] << " | " << f["adaptive"]["trials"] << " |\n";
         }
     }
@@ -124,12 +117,12 @@ std::vector<ReportFigure> threshold_figures(const json& a) {
             }
             ch.series.push_back(std::move(data));
             ch.series.push_back(std::move(curve));
-            ch.references.push_back({"threshold " + num(f["threshold"], "%.3g"), true, t});
+            ch.references.push_back({"threshold " + report_number(f["threshold"], "%.3g"), true, t});
             std::string interval = "no interval";
             if (f.contains("threshold_ci")) {
                 ch.references.push_back({"95 % interval", true, f["threshold_ci"][0].get<double>(), {150, 150, 150, 255}});
                 ch.references.push_back({"", true, f["threshold_ci"][1].get<double>(), {150, 150, 150, 255}});
-                interval = "95 % interval " + num(f["threshold_ci"][0], "%.3g") + " .. " + num(f["threshold_ci"][1], "%.3g");
+                interval = "95 % interval " + report_number(f["threshold_ci"][0], "%.3g") + " .. " + report_number(f["threshold_ci"][1], "%.3g");
             }
             out.push_back({"psychometric_" + slug(name) + ".png", ch,
                            "Each point: the share correct of the n analysed trials at one stimulus value (all participants), "
@@ -161,7 +154,7 @@ std::vector<ReportFigure> threshold_figures(const json& a) {
             }
             if (pi > 0) {
                 if (c.contains("adaptive") && c["adaptive"].contains("estimate") && c["adaptive"]["estimate"].is_number())
-                    ch.references.push_back({"median estimate " + num(c["adaptive"]["estimate"], "%.3g"), false,
+                    ch.references.push_back({"median estimate " + report_number(c["adaptive"]["estimate"], "%.3g"), false,
                                              c["adaptive"]["estimate"].get<double>()});
                 out.push_back({"track_" + slug(name) + ".png", ch,
                                "Each line: one participant's stimulus on each analysed trial of this condition, in order (" +

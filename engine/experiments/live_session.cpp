@@ -89,8 +89,7 @@ const Condition& LiveSession::condition() const {
 std::optional<drivers::FingerSweep> LiveSession::sweep() const {
     if (protocol_.task != Task::curvature || finished()) return std::nullopt;
     drivers::FingerSweep s;
-    const double half = 0.5 * protocol_.chord + 0.02;  // m, as stimulus.cpp's slide for the task
-    s.x0 = condition().motion == "B" ? half : -half;
+    s.x0 = curvature_slide_start(protocol_, condition());
     s.x1 = -s.x0;
     s.speed = protocol_.hand_speed;
     s.finger_radius = protocol_.finger_radius;

@@ -109,8 +109,13 @@ double edge_radius(const Protocol& p, const PlannedTrial& t, int interval) {
     return p.reference_radius + (interval == comparison_interval(t.seed) ? t.stimulus * 1e-3 : 0.0);
 }
 
+double curvature_slide_start(const Protocol& p, const Condition& c) {
+    const double half = 0.5 * p.chord + 0.02;  // m: from before the arc to after it
+    return c.motion == "B" ? half : -half;
+}
+
 double arc_slope_range_deg(double chord, double height) {
-    const double ra = (chord * chord / 4.0 + height * height) / (2.0 * height);
+    const double ra = arc_cap_radius(chord, height);
     return 2.0 * std::asin(std::min(1.0, chord / (2.0 * ra))) * 180.0 / kPi;
 }
 
@@ -154,8 +159,7 @@ Stimulus make_stimulus(const Protocol& p, const Condition& c, const PlannedTrial
             st.scene = generate_arc(p.chord, t.stimulus);
             set_finger_and_force(st.scene, p);
             const SurfaceProfile pts = profile_of(surface_points(st.scene));
-            const double half = 0.5 * p.chord + 0.02;  // m: from before the arc to after it
-            const double x0 = c.motion == "B" ? half : -half;
+            const double x0 = curvature_slide_start(p, c);
             st.path = slide_path(pts, x0, -x0, p.finger_radius, p.hand_speed, p.hand_press, st.slide_start, st.slide_end);
             break;
         }

@@ -41,6 +41,10 @@ struct Stimulus {
 Stimulus make_stimulus(const Protocol& p, const Condition& c, const PlannedTrial& t, double overshoot = 0.0,
                        double top_speed = 0.0);
 
+// Curvature: where the slide across the arc starts (m): 2 cm before the arc, on the left for
+// motion A (which ends as far on the right), on the right for B. The live sweep starts there too.
+double curvature_slide_start(const Protocol& p, const Condition& c);
+
 // Edge sharpness: the edge of radius `radius` (m) and the slide across it.
 Stimulus make_edge_stimulus(const Protocol& p, double radius);
 // The radius (m) of a trial's edge in `interval` (1 or 2).
