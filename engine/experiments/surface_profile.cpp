@@ -12,6 +12,9 @@ SurfaceProfile profile_of(std::vector<Vec2> pts) {
     p.block_top.assign((pts.size() + SurfaceProfile::kBlock - 1) / SurfaceProfile::kBlock, -1e300);
     for (std::size_t i = 0; i < pts.size(); ++i)
         p.block_top[i / SurfaceProfile::kBlock] = std::max(p.block_top[i / SurfaceProfile::kBlock], pts[i].y);
+    p.run_top.assign((p.block_top.size() + SurfaceProfile::kRun - 1) / SurfaceProfile::kRun, -1e300);
+    for (std::size_t k = 0; k < p.block_top.size(); ++k)
+        p.run_top[k / SurfaceProfile::kRun] = std::max(p.run_top[k / SurfaceProfile::kRun], p.block_top[k]);
     p.pts = std::move(pts);
     return p;
 }
@@ -21,7 +24,11 @@ SurfaceProfile profile_of(std::vector<Vec2> pts) {
 // |dx| <= r test decides) are looked at, the block of the last answer (`hint`) first, and a block
 // is skipped when its highest point plus its nearest reach cannot beat the best so far. Rounding
 // cannot break that bound: each step of it is a monotone rounded operation on inputs no smaller
-// than a point's own. A maximum does not depend on the order it is taken in.
+// than a point's own. A maximum does not depend on the order it is taken in. Before that, a run
+// of blocks (and then a block) whose top plus the whole radius cannot beat the best is passed
+// over without a square root: sqrt(r * r - d * d) <= sqrt(r * r) = `reach_max` for every point's
+// d, by the same monotonicity. On seed 002's steep base shape most blocks within r lie on the
+// lower side and go this way (the square roots had been most of a hand path's time).
 double resting_height(const SurfaceProfile& s, double x, double r, std::size_t& hint) {
     constexpr std::size_t B = SurfaceProfile::kBlock;
     const double margin = 1e-9;  // m
@@ -47,8 +54,13 @@ double resting_height(const SurfaceProfile& s, double x, double r, std::size_t& 
     scan(std::max(lo, first * B), std::min(hi, (first + 1) * B));
     // Every point of a block is at least `gap` from x (the same rounded subtraction as its dx), so
     // none rises above the block's top + sqrt(r^2 - gap^2).
+    const double reach_max = std::sqrt(r * r);  // m, no smaller than any point's reach
     for (std::size_t k = lo / B; k * B < hi; ++k) {
-        if (k == first) continue;
+        if (k % SurfaceProfile::kRun == 0 && s.run_top[k / SurfaceProfile::kRun] + reach_max <= best) {
+            k += SurfaceProfile::kRun - 1;  // the whole run is too low (the hint's block included: it was scanned)
+            continue;
+        }
+        if (k == first || s.block_top[k] + reach_max <= best) continue;
         const std::size_t a = std::max(lo, k * B), b = std::min(hi, (k + 1) * B);
         const double gap = s.pts[b - 1].x < x ? x - s.pts[b - 1].x : s.pts[a].x > x ? s.pts[a].x - x : 0.0;  // m
         const double reach = gap >= r ? 0.0 : std::sqrt(r * r - gap * gap);  // m

@@ -11,11 +11,14 @@
 namespace contactlab::experiments {
 
 // A contour sampled as points (m), sorted by x, with the highest y of each block of kBlock of
-// them, so that a resting height looks at a few blocks instead of every point.
+// them and of each run of kRun blocks, so that a resting height looks at a few blocks instead of
+// every point, and passes over a run that cannot reach the best height in one test.
 struct SurfaceProfile {
     static constexpr std::size_t kBlock = 8;
+    static constexpr std::size_t kRun = 8;  // blocks
     std::vector<Vec2> pts;          // m, by x
     std::vector<double> block_top;  // m: max y over pts[i * kBlock, (i + 1) * kBlock)
+    std::vector<double> run_top;    // m: max of block_top[i * kRun, (i + 1) * kRun)
 };
 
 SurfaceProfile profile_of(std::vector<Vec2> pts);
