@@ -43,6 +43,11 @@ bool ServoLoop::start() {
 }
 
 void ServoLoop::step(double wall_period, bool wait_for_ring) noexcept {
+    // Profiled stages (set_profile): off, the clock is never read and `spare` takes the laps.
+    ServoLoopStages spare;
+    ServoLoopStages& stages = profile_ ? *profile_ : spare;
+    StageClock clock;
+    clock.start(profile_ != nullptr);
     const bool ok = dev_.read(reading_);
     ServoInput in;
     in.t = reading_.t;
@@ -50,7 +55,9 @@ void ServoLoop::step(double wall_period, bool wait_for_ring) noexcept {
     in.phi = reading_.phi;
     in.roller_l = reading_.roller_l;
     in.device_fault = !ok || !reading_.valid || dev_.state() == DeviceState::fault;
+    clock.lap(stages.device);
     const ServoCommand& c = tick_.tick(in);
+    clock.lap(stages.tick);
     command_.force = c.force;
     command_.roller_drive = c.roller_drive;
     command_.roller_target = c.roller_target;
@@ -64,6 +71,7 @@ void ServoLoop::step(double wall_period, bool wait_for_ring) noexcept {
     dev_.write(command_);
     dev_.set_engaged(tick_.state() == ServoState::engaged || tick_.state() == ServoState::ramping);
     ++ticks_;
+    clock.lap(stages.device);
 
     if (ring_ != nullptr) {
         const ProxyOutput& o = tick_.proxy_output();
@@ -95,7 +103,9 @@ void ServoLoop::step(double wall_period, bool wait_for_ring) noexcept {
             }
         }
     }
+    clock.lap(stages.records);
     dev_.advance(period_);
+    clock.lap(stages.device);
 }
 
 void ServoLoop::run_virtual(std::uint64_t ticks) noexcept {

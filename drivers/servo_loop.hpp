@@ -7,6 +7,7 @@
 #include "drivers/tick_record.hpp"
 #include "haptics/servo_tick.hpp"
 #include "haptics/spsc_ring.hpp"
+#include "haptics/stage_clock.hpp"
 
 #include <atomic>
 #include <cstdint>
@@ -18,6 +19,15 @@ namespace contactlab::drivers {
 
 // The servo configuration a device's declared limits imply at `rate` (Hz).
 ServoConfig servo_config_for(const Device& dev, double rate);
+
+// Wall time (ns) of a step's parts, summed over the steps while set (ServoLoop::set_profile):
+// where a simulated study's time goes between the device and the tick
+// (engine/experiments/trial_profile.hpp). Unset, a step reads no clock.
+struct ServoLoopStages {
+    double device = 0.0;   // read, write, engage and advance (a simulated device's dynamics)
+    double tick = 0.0;     // ServoTick::tick
+    double records = 0.0;  // the tick record into the ring
+};
 
 class ServoLoop {
 public:
@@ -41,6 +51,8 @@ public:
     ServoTick& servo() { return tick_; }
     // Test hook: skip the tick but let the device's physics run (a stalled servo).
     void stall(double seconds) noexcept;
+    // Sum each step's parts into `stages` (null: stop); five clock reads a step (StageClock).
+    void set_profile(ServoLoopStages* stages) { profile_ = stages; }
 
 private:
     Device& dev_;
@@ -52,6 +64,7 @@ private:
     DeviceReading reading_;
     DeviceCommand command_;
     bool platform_ = false;  // the device is seed 003's platform: the force becomes a platform pose
+    ServoLoopStages* profile_ = nullptr;
 };
 
 // Period statistics from a fixed histogram (100 ns bins up to 20 ms): no allocation per tick.

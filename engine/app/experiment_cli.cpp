@@ -1,6 +1,6 @@
 // experiment_cli.cpp — `contactlab experiment run|analyze` (issue 16): the seeds' experiments
 // (engine/experiments/). `run PROTOCOL --participant sim|sim:N | --participants sim:A-B --seed S
-// --output RESULTS.csv [--jobs J] [--no-traces] [--overwrite]` performs the protocol's trials
+// --output RESULTS.csv [--jobs J] [--no-traces] [--overwrite] [--profile]` performs the protocol's trials
 // with simulated participants through the servo and the simulated rig, durably (started again,
 // the same command resumes) with RESULTS.csv.meta.json beside it. `analyze RESULTS.csv...
 // [--json OUT.json] [--report DIR] [--confidence C] [--pool-protocols]` prints the figures per
@@ -35,7 +35,7 @@ struct RunArgs {
     std::string protocol, participant, participants, output;
     unsigned long long seed = 1;
     int jobs = 0;  // 0: every core
-    bool no_traces = false, overwrite = false;
+    bool no_traces = false, overwrite = false, profile = false;
 };
 
 // "sim" -> {1}; "sim:3" -> {3}; "sim:1-20" -> {1..20}; "observer:FN:KEY=V,...[:N|:A-B]" ->
@@ -89,6 +89,7 @@ int run_protocol(const RunArgs& a) {
     o.output = a.output;
     o.traces = !a.no_traces;
     o.overwrite = a.overwrite;
+    o.profile = a.profile;
     o.protocol_path = a.protocol;
     o.command = command_line();
     o.jobs = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -109,6 +110,7 @@ int run_protocol(const RunArgs& a) {
                      p.name.c_str(), experiments::to_string(p.task), o.participants.size(), s.rows, s.warmup, s.invalid, secs,
                      a.output.c_str(), (a.output + ".meta.json").c_str(), o.traces ? ", traces in " : "",
                      o.traces ? (a.output + ".traces/").c_str() : "");
+        if (a.profile) std::printf("%s", experiments::profile_table(s.profile).c_str());
     } catch (const experiments::ExperimentError& e) {
         throw BadInput(e.what());
     }
@@ -242,6 +244,9 @@ void register_experiment_command(CLI::App& app, int& rc) {
     r->add_option("--jobs", run->jobs, "Participants run in parallel (0: every core); the results do not depend on it")
         ->default_val(0);
     r->add_flag("--no-traces", run->no_traces, "Skip the per-trial traces (RESULTS.csv.traces/)");
+    r->add_flag("--profile", run->profile,
+                "Print where the wall time went, by stage (servo tick, simulated rig, hand paths, perception, files), in ms "
+                "per s of virtual time; the results do not change");
     r->add_flag("--overwrite", run->overwrite,
                 "Replace the results, meta and traces of another run in --output (without it such a run is refused; the same "
                 "run resumes)");

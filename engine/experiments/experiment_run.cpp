@@ -8,12 +8,14 @@
 #include "engine/experiments/run_meta.hpp"
 #include "engine/experiments/servo_trial.hpp"
 #include "engine/experiments/sim_participant.hpp"
+#include "engine/experiments/trial_profile.hpp"
 #include "engine/experiments/trial_plan.hpp"
 #include "engine/experiments/wearable_trial.hpp"
 #include "haptics/atomic_file.hpp"
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <mutex>
@@ -63,6 +65,7 @@ struct Shared {
     std::mutex lock;
     std::atomic<std::size_t> done{0};
     std::size_t total = 0;
+    TrialProfile profile;  // the workers' profiles, added as each ends (RunOptions::profile)
 
     // RESULTS.csv with every participant finished so far, in participant order.
     void write_results(bool all) {
@@ -79,8 +82,20 @@ std::string participant_id(const RunOptions& o, std::uint64_t n) { return (o.obs
 constexpr const char* kObserverDevice = "model-observer";
 
 // One trial performed: by the model observer, or by the simulated participant through the servo.
+// Profiled, what the trial's stages did not take is the person's perception (trial_profile.hpp).
 TrialOutcome perform(const Protocol& p, const RunOptions& o, const PlannedTrial& t) {
-    return o.observer ? observe_trial(p, *o.observer, t) : perform_sim_trial(p, t);
+    TrialProfile* const profile = thread_profile();
+    if (!profile) return o.observer ? observe_trial(p, *o.observer, t) : perform_sim_trial(p, t);
+    const TrialProfile before = *profile;
+    const auto t0 = std::chrono::steady_clock::now();
+    TrialOutcome r = o.observer ? observe_trial(p, *o.observer, t) : perform_sim_trial(p, t);
+    const double all = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();  // s
+    const TrialProfile& a = *profile;
+    const double staged = (a.stimulus - before.stimulus) + (a.servo_scene - before.servo_scene) + (a.device - before.device) +
+                          (a.tick - before.tick) + (a.records - before.records) + (a.platform - before.platform);
+    profile->perception += all - staged;
+    ++profile->trials;
+    return r;
 }
 
 // Where a results column is (results_columns always has the ones asked for here).
@@ -141,7 +156,10 @@ void run_adaptive_participant(Shared& sh, std::size_t index, const std::vector<s
             rec.reversal = a.reversal;
             rec.estimate = a.estimate;
             row = results_row(p, rec);
-            if (o.traces && !o.observer) write_file_atomically(sh.files.trace(id, c.name, t.trial), trace_csv(r));
+            if (o.traces && !o.observer) {
+                const StageTimer timer(&TrialProfile::files);
+                write_file_atomically(sh.files.trace(id, c.name, t.trial), trace_csv(r));
+            }
             out.invalid += !r.valid;
         }
         out.warmup += t.warmup;
@@ -151,12 +169,16 @@ void run_adaptive_participant(Shared& sh, std::size_t index, const std::vector<s
             std::lock_guard<std::mutex> g(sh.lock);
             out.lines.push_back(line);
         }
-        if (k >= done_rows.size()) write_file_atomically(part, part_text);  // on disk before the next trial
+        if (k >= done_rows.size()) {
+            const StageTimer timer(&TrialProfile::files);
+            write_file_atomically(part, part_text);  // on disk before the next trial
+        }
         if (o.progress) o.progress(++sh.done, std::max(sh.total, sh.done.load()));
     }
     if (k < done_rows.size())
         throw ExperimentError(part + ": " + std::to_string(done_rows.size()) + " rows, the procedure ended after " + std::to_string(k) +
                               " (the file is not this run's); give --overwrite to start again");
+    const StageTimer timer(&TrialProfile::files);
     std::lock_guard<std::mutex> g(sh.lock);
     out.finished = true;
     sh.write_results(false);
@@ -195,7 +217,10 @@ void run_participant(Shared& sh, std::size_t index, const std::vector<std::vecto
                 valid = r.valid;
                 row = results_row(p, record_of(p, o, id, t, r));
                 // The trace first, then the row: a row on disk always has its trace.
-                if (o.traces && !o.observer) write_file_atomically(sh.files.trace(id, c.name, t.trial), trace_csv(r));
+                if (o.traces && !o.observer) {
+                    const StageTimer timer(&TrialProfile::files);
+                    write_file_atomically(sh.files.trace(id, c.name, t.trial), trace_csv(r));
+                }
             }
             // At most as many repeats as planned trials: a stimulus that always faults the servo
             // cannot keep the block going for ever.
@@ -215,13 +240,17 @@ void run_participant(Shared& sh, std::size_t index, const std::vector<std::vecto
                 out.lines.push_back(line);
             }
             // On disk before the next trial starts.
-            if (k >= done_rows.size()) write_file_atomically(part, part_text);
+            if (k >= done_rows.size()) {
+                const StageTimer timer(&TrialProfile::files);
+                write_file_atomically(part, part_text);
+            }
             if (o.progress) o.progress(++sh.done, sh.total);
         }
     }
     if (k < done_rows.size())
         throw ExperimentError(part + ": " + std::to_string(done_rows.size()) + " rows, the plan has " + std::to_string(k) +
                               " (the file is not this run's); give --overwrite to start again");
+    const StageTimer timer(&TrialProfile::files);
     std::lock_guard<std::mutex> g(sh.lock);
     out.finished = true;
     sh.write_results(false);
@@ -269,7 +298,7 @@ RunSummary run_experiment(const Protocol& p, const RunOptions& o) {
         const int most = p.procedure.type == ProcedureType::staircase ? p.procedure.max_trials : p.procedure.trials;
         per_participant = static_cast<std::size_t>(most + p.warmup) * p.conditions.size();
     }
-    Shared sh{p, o, files, std::vector<ParticipantRun>(o.participants.size()), {}, {}, 0};
+    Shared sh{p, o, files, std::vector<ParticipantRun>(o.participants.size()), {}, {}, 0, {}};
     sh.total = per_participant * o.participants.size();
     std::vector<std::vector<std::vector<std::string>>> done_rows(o.participants.size());
     for (std::size_t i = 0; i < o.participants.size(); ++i) done_rows[i] = files.done_rows(results_columns(p), id.participants[i]);
@@ -278,6 +307,9 @@ RunSummary run_experiment(const Protocol& p, const RunOptions& o) {
     std::mutex error_lock;
     std::string error;
     auto worker = [&] {
+        TrialProfile mine;  // this thread's stages (RunOptions::profile)
+        const ProfileScope scope(o.profile ? &mine : nullptr);
+        const auto t0 = std::chrono::steady_clock::now();
         for (std::size_t i; (i = next++) < o.participants.size();) {
             try {
                 run_participant(sh, i, done_rows[i]);
@@ -286,6 +318,10 @@ RunSummary run_experiment(const Protocol& p, const RunOptions& o) {
                 if (error.empty()) error = e.what();
             }
         }
+        if (!o.profile) return;
+        mine.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        std::lock_guard<std::mutex> g(sh.lock);
+        sh.profile += mine;
     };
     const int jobs = std::max(1, std::min<int>(o.jobs, static_cast<int>(o.participants.size())));
     std::vector<std::thread> threads;
@@ -301,6 +337,7 @@ RunSummary run_experiment(const Protocol& p, const RunOptions& o) {
         sum.warmup += r.warmup;
         sum.resumed += r.resumed;
     }
+    sum.profile = sh.profile;
     finish_meta(meta, sum.rows);
     write_meta(o.output, meta);
     files.finish();  // the parts are in RESULTS.csv now

@@ -25,6 +25,7 @@
 #include "engine/experiments/model_observer.hpp"
 #include "engine/experiments/protocol.hpp"
 #include "engine/experiments/results_row.hpp"
+#include "engine/experiments/trial_profile.hpp"
 
 #include <cstdint>
 #include <functional>
@@ -46,6 +47,9 @@ struct RunOptions {
     bool traces = true;                       // RESULTS.csv.traces/P-CONDITION-TRIAL.csv at 100 Hz
     bool overwrite = false;                   // replace another run's files instead of refusing
     int jobs = 1;
+    // Time each stage of the trials (trial_profile.hpp) into RunSummary::profile; the rows and
+    // traces do not change.
+    bool profile = false;
     std::function<void(std::size_t done, std::size_t total)> progress;  // trials, any thread
 };
 
@@ -53,6 +57,7 @@ struct RunSummary {
     std::size_t rows = 0, invalid = 0, warmup = 0;
     std::size_t resumed = 0;        // rows found on disk from an earlier, interrupted start
     bool already_complete = false;  // the file held the whole run: nothing was run
+    TrialProfile profile;           // RunOptions::profile: the trials run now, by stage
 };
 
 // Throws ExperimentError for options it cannot honour and files it must not touch.

@@ -1,18 +1,24 @@
 // servo_trial.cpp — a trial through the servo and the simulated rig (servo_trial.hpp).
 #include "engine/experiments/servo_trial.hpp"
 
+#include "engine/experiments/trial_profile.hpp"
+
 #include "drivers/servo_loop.hpp"
 #include "drivers/sim/sim_cld_device.hpp"
 #include "haptics/servo_scene.hpp"
 #include "haptics/servo_tick.hpp"
 #include "haptics/spsc_ring.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 
 namespace contactlab::experiments {
 
 TrialTrace run_servo_trial(const Scene& scene, const drivers::HandPath& path, bool contact_location) {
+    TrialProfile* const profile = thread_profile();  // null unless `experiment run --profile`
+    auto setup = std::make_optional<StageTimer>(&TrialProfile::servo_scene);
     drivers::sim::SimCldParams sp;
     sp.max_force = scene.force.max_force;
     drivers::sim::SimCldDevice dev(sp, path);
@@ -33,12 +39,25 @@ TrialTrace run_servo_trial(const Scene& scene, const drivers::HandPath& path, bo
     }
     const auto ticks = static_cast<std::uint64_t>(std::llround((path.end() - path.start()) * kTrialRate));
     trace.ticks.reserve(ticks);
+    setup.reset();
+    // Profiled, the loop's own stages (device, tick, ring) are timed by the loop; the rest of
+    // this loop (taking the records off the ring into the trace) counts as records.
+    drivers::ServoLoopStages stages;
+    if (profile) loop.set_profile(&stages);
+    const auto t0 = profile ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
     for (std::uint64_t k = 0; k < ticks; ++k) {
         loop.step(1.0 / kTrialRate, true);
         for (drivers::TickRecord r; ring.try_pop(r);) {
             trace.faulted |= r.fault != ServoFault::none;
             trace.ticks.push_back(r);
         }
+    }
+    if (profile) {
+        const double all = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();  // s
+        profile->device += stages.device * 1e-9;
+        profile->tick += stages.tick * 1e-9;
+        profile->records += all - (stages.device + stages.tick) * 1e-9;
+        profile->virtual_s += static_cast<double>(ticks) / kTrialRate;
     }
     return trace;
 }

@@ -2,6 +2,7 @@
 #include "engine/experiments/stimulus.hpp"
 
 #include "engine/experiments/surface_profile.hpp"
+#include "engine/experiments/trial_profile.hpp"
 
 #include "drivers/tasks.hpp"
 #include "haptics/bezier.hpp"
@@ -97,6 +98,7 @@ Scene generate_edge(double radius, double slope, double half_width) {
 }
 
 Stimulus make_edge_stimulus(const Protocol& p, double radius) {
+    const StageTimer timer(&TrialProfile::stimulus);
     Stimulus st;
     st.scene = generate_edge(radius, p.edge_slope_deg * kPi / 180.0, 0.05);
     set_finger_and_force(st.scene, p);
@@ -120,6 +122,7 @@ double arc_slope_range_deg(double chord, double height) {
 }
 
 Stimulus make_stimulus(const Protocol& p, const Condition& c, const PlannedTrial& t, double overshoot, double top_speed) {
+    const StageTimer timer(&TrialProfile::stimulus);
     Stimulus st;
     std::uint64_t rng = t.seed;
     switch (p.task) {

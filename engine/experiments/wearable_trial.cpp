@@ -4,6 +4,7 @@
 
 #include "drivers/sim/wearable_tasks.hpp"
 #include "engine/experiments/stimulus.hpp"
+#include "engine/experiments/trial_profile.hpp"
 #include "haptics/wearable/rig.hpp"
 
 #include <algorithm>
@@ -19,7 +20,13 @@ TrialOutcome wearable_curvature_trial(const Protocol& p, const Condition& c, con
     def.speed = p.hand_speed;  // m/s: here the arc's speed under the still finger
     def.contact_force = kWearableContactForce;
     def.reverse = c.motion == "B";
-    const drivers::sim::CurvatureArcResult run = drivers::sim::curvature_arc(wearable::seed_fit_rig(), def);
+    drivers::sim::CurvatureArcResult run;
+    {
+        StageTimer timer(&TrialProfile::platform);
+        run = drivers::sim::curvature_arc(wearable::seed_fit_rig(), def);
+    }
+    if (TrialProfile* profile = thread_profile())  // each sample advanced the rig by one period
+        profile->virtual_s += static_cast<double>(run.samples.size()) * def.sample_period;
     TrialOutcome o;
     o.valid = !run.fault;
     double lo = 1e9, hi = -1e9, first = -1.0, last = -1.0;  // deg, s
