@@ -16,7 +16,11 @@ PathPoint HandPath::at(double t) const noexcept {
     if (n == 0) return {};
     if (!(t > samples_.front().t)) return {samples_.front().x, Vec2{0.0}, samples_.front().phi};
     if (t >= samples_.back().t) return {samples_.back().x, Vec2{0.0}, samples_.back().phi};
-    if (cursor_ >= n - 1 || samples_[cursor_].t > t) cursor_ = 0;
+    // The interval is the last sample at or before t (and before the last sample): found from the
+    // cursor, stepping back or on, so a call a little behind the last one (a simulated device's
+    // substeps ask for the hand at t and at t + h) costs a step, not a scan from sample 0.
+    if (cursor_ >= n - 1) cursor_ = n - 2;
+    while (cursor_ > 0 && samples_[cursor_].t > t) --cursor_;
     while (cursor_ + 1 < n - 1 && samples_[cursor_ + 1].t <= t) ++cursor_;
     const PathSample& a = samples_[cursor_];
     const PathSample& b = samples_[cursor_ + 1];

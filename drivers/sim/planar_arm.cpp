@@ -100,7 +100,13 @@ void PlanarArm::step(double h, Vec2 ext) {
     const double M01 = m * (J[0][0] * J[0][1] + J[1][0] * J[1][1]);
     const double M11 = p_.inertia2 + m * (J[0][1] * J[0][1] + J[1][1] * J[1][1]);
     const Vec2 f = ext - m * jdqd;
-    auto friction = [&](double w) { return p_.friction * std::tanh(w / 1e-3); };
+    // Coulomb friction smoothed over 1 mrad/s. Beyond |x| = 22 glibc's tanh returns exactly +-1
+    // (its own branch: 1 - tiny rounds to 1), so the exponentials are skipped there with the same
+    // bits; a moving arm is nearly always there, and they had been a tenth of a simulated trial.
+    auto friction = [&](double w) {
+        const double x = w / 1e-3;
+        return p_.friction * (std::abs(x) >= 22.0 ? std::copysign(1.0, x) : std::tanh(x));
+    };
     const double r0 = tau1_ + J[0][0] * f.x + J[1][0] * f.y - p_.damping * w1_ - friction(w1_);
     const double r1 = tau2_ + J[0][1] * f.x + J[1][1] * f.y - p_.damping * w2_ - friction(w2_);
     const double det = M00 * M11 - M01 * M01;

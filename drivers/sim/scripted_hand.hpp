@@ -27,7 +27,11 @@ public:
     // Advances the finger angle over h (s) toward the path's angle at time t (s).
     void step_phi(double t, double h) noexcept {
         const double goal = path_.at(t).phi;
-        phi_ += (goal - phi_) * (1.0 - std::exp(-h / p_.phi_lag));
+        if (h != gain_h_) {  // the substep is nearly always the last one: keep its gain (same bits)
+            gain_h_ = h;
+            gain_ = 1.0 - std::exp(-h / p_.phi_lag);
+        }
+        phi_ += (goal - phi_) * gain_;
     }
     void reset(double t) noexcept { phi_ = path_.at(t).phi; }
     double phi() const noexcept { return phi_; }
@@ -38,6 +42,7 @@ private:
     HandParams p_;
     HandPath path_;
     double phi_ = 0.0;  // rad
+    double gain_h_ = -1.0, gain_ = 0.0;  // s, and 1 - exp(-gain_h_ / phi_lag) for it
 };
 
 }  // namespace contactlab::drivers::sim
