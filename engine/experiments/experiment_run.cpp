@@ -86,14 +86,11 @@ constexpr const char* kObserverDevice = "model-observer";
 TrialOutcome perform(const Protocol& p, const RunOptions& o, const PlannedTrial& t) {
     TrialProfile* const profile = thread_profile();
     if (!profile) return o.observer ? observe_trial(p, *o.observer, t) : perform_sim_trial(p, t);
-    const TrialProfile before = *profile;
+    const double before = profile->staged();  // s
     const auto t0 = std::chrono::steady_clock::now();
     TrialOutcome r = o.observer ? observe_trial(p, *o.observer, t) : perform_sim_trial(p, t);
     const double all = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();  // s
-    const TrialProfile& a = *profile;
-    const double staged = (a.stimulus - before.stimulus) + (a.servo_scene - before.servo_scene) + (a.device - before.device) +
-                          (a.tick - before.tick) + (a.records - before.records) + (a.platform - before.platform);
-    profile->perception += all - staged;
+    profile->perception += all - (profile->staged() - before);
     ++profile->trials;
     return r;
 }

@@ -45,8 +45,7 @@ std::string profile_table(const TrialProfile& p) {
         double s;
     };
     // The loops around the stages (plans, rows in memory, thread start); never below 0 (rounding).
-    const double other =
-        std::max(0.0, p.wall - (p.stimulus + p.servo_scene + p.device + p.tick + p.records + p.platform + p.perception + p.files));
+    const double other = std::max(0.0, p.wall - p.staged());
     const Row rows[] = {{"servo tick", p.tick},
                         {"simulated rig (sim-cld)", p.device},
                         {"tick records", p.records},

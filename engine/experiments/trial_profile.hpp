@@ -31,6 +31,8 @@ struct TrialProfile {
     double virtual_s = 0.0;    // s of trial time simulated (servo ticks / rate, platform runs)
     std::uint64_t trials = 0;
 
+    // The stages' sum (s): all but `wall`, which also holds the loops around them.
+    double staged() const { return stimulus + servo_scene + device + tick + records + platform + perception + files; }
     TrialProfile& operator+=(const TrialProfile& o);
 };
 

@@ -30,7 +30,7 @@ RunSummary run(const Protocol& p, const std::string& out, bool profile) {
 // counted twice (the sum stays within the wall time, which also holds the loops around them).
 void check_stages(const TrialProfile& t) {
     for (const double s : {t.stimulus, t.servo_scene, t.device, t.tick, t.records, t.platform, t.perception, t.files}) CHECK(s >= 0.0);
-    const double staged = t.stimulus + t.servo_scene + t.device + t.tick + t.records + t.platform + t.perception + t.files;
+    const double staged = t.staged();
     CHECK(staged <= t.wall * (1.0 + 1e-9));
     CHECK(staged >= 0.5 * t.wall);  // the stages are the trials: the loops around them are small
 }
