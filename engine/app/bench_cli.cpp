@@ -5,6 +5,7 @@
 //
 //   contactlab bench [--quick] [--json OUT.json] [--report DIR]
 //   contactlab bench --scene SCENE.json --input IN.csv [--passes N] [--json OUT.json]
+#include "engine/app/data_path.hpp"
 #include "engine/app/subcommands.hpp"
 #include "engine/bench/report.hpp"
 #include "engine/bench/suites.hpp"
@@ -57,6 +58,7 @@ int run_trace_timing(const BenchArgs& a) {
 int run_suites(const BenchArgs& a) {
     bench::BenchOptions options;
     options.quick = a.quick;
+    options.study_protocol = installed_data_path("scenes/experiments/002-bump-counting.json");
     const bench::BenchResults r = bench::run_suites(options);
     const std::string md = bench::results_markdown(r);
     std::printf("\n%s", md.c_str());

@@ -193,6 +193,31 @@ nlohmann::json results_json(const BenchResults& r) {
                                       {"device", sb.device},
                                       {"scheduling", sb.scheduling}};
     }
+    // The simulated study's speed (study_speed.hpp): x real time and each stage in ms per s of
+    // virtual time.
+    const StudySpeed& st = r.study;
+    if (!st.skipped.empty()) {
+        j["simulated_study"]["skipped"] = st.skipped;
+    } else {
+        const experiments::TrialProfile& p = st.profile;
+        const auto per_s = [&](double s) { return p.virtual_s > 0.0 ? 1e3 * s / p.virtual_s : 0.0; };
+        j["simulated_study"] = {{"protocol", st.protocol},
+                                {"trials", p.trials},
+                                {"virtual_s", p.virtual_s},
+                                {"wall_s", p.wall},
+                                {"x_real_time", st.x_real_time()},
+                                {"goal_x_real_time", kStudySpeedGoal},
+                                {"ms_per_virtual_s",
+                                 {{"servo_tick", per_s(p.tick)},
+                                  {"simulated_rig", per_s(p.device)},
+                                  {"tick_records", per_s(p.records)},
+                                  {"servo_scene", per_s(p.servo_scene)},
+                                  {"stimulus", per_s(p.stimulus)},
+                                  {"wearable_platform", per_s(p.platform)},
+                                  {"perception", per_s(p.perception)},
+                                  {"files", per_s(p.files)},
+                                  {"all", per_s(p.wall)}}}};
+    }
     return j;
 }
 
@@ -379,6 +404,16 @@ std::string results_markdown(const BenchResults& r, const ReportPlots* plots) {
         md += fmt("\np99 beside / alone: %.3f at 1 kHz, ", sb.alone.p99 > 0.0 ? sb.beside.p99 / sb.alone.p99 : 0.0) +
               fmt("%.3f at 10 kHz (goal: at most 1.1; at 10 kHz also at most 1 overrun per 10,000 ticks).\n",
                   sb.alone_10k.p99 > 0.0 ? sb.beside_10k.p99 / sb.alone_10k.p99 : 0.0);
+    }
+    const StudySpeed& st = r.study;
+    md += "\n## Simulated study speed (seed 002, one participant, one core)\n\n";
+    if (!st.skipped.empty()) {
+        md += "Skipped: " + st.skipped + "\n";
+    } else {
+        md += st.protocol + (r.quick ? ", 10 trials per condition (`--quick`)" : ", as shipped") +
+              ", through `experiment run`'s code with `--profile` (no traces): " +
+              fmt("**%.0fx real time**", st.x_real_time()) + fmt(" (goal: %.0fx).\n\n", kStudySpeedGoal) +
+              experiments::profile_table(st.profile);
     }
     return md;
 }

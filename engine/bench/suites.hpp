@@ -10,6 +10,7 @@
 #include "engine/bench/energy_table.hpp"
 #include "engine/bench/render_frames.hpp"
 #include "engine/bench/servo_beside_renderer.hpp"
+#include "engine/bench/study_speed.hpp"
 #include "engine/bench/tick_stats.hpp"
 #include "drivers/sim/bench_probes.hpp"
 #include "haptics/proxy.hpp"
@@ -23,6 +24,8 @@ namespace contactlab::bench {
 
 struct BenchOptions {
     bool quick = false;  // CI smoke run: fewer sizes and ticks, within a minute
+    // Seed 002's protocol file, for the simulated study's speed (study_speed.hpp); empty skips it.
+    std::string study_protocol;
 };
 
 // One scene size: ContactLab's proxy, and in the same process the baselines: brute force (every
@@ -71,6 +74,7 @@ struct BenchResults {
     std::vector<ParetoRow> pareto;
     RenderFrameResults render;                    // offscreen frame time (engine/render)
     ServoBesideRenderer servo_beside;             // the real-time servo's period, alone and drawing
+    StudySpeed study;                             // a simulated participant of seed 002, by stage
 };
 
 BenchResults run_suites(const BenchOptions& options);

@@ -357,6 +357,27 @@ TEST_CASE("bench --quick --report: every PNG decodes at the plot size, render_ms
         }
     }
     CHECK(md.find("## Where the energy comes from") != std::string::npos);
+    // The simulated study (study_speed.hpp): seed 002's shipped protocol, found from the
+    // checkout's root, 10 trials per condition. Each trial's hand path is 4.08 s of servo ticks
+    // (0.3 s down, 0.3 s settling, 0.164 m at 5 cm/s, a 0.2 s hold), and the stages are parts of
+    // the wall time the speed is taken from.
+    const nlohmann::json& st = j["simulated_study"];
+    CAPTURE(st.dump());
+    REQUIRE_FALSE(st.contains("skipped"));
+    CHECK(st["trials"].get<int>() == 20);
+    CHECK(st["virtual_s"].get<double>() == doctest::Approx(20 * 4.08).epsilon(0.003 / 4.08));
+    CHECK(st["x_real_time"].get<double>() == doctest::Approx(st["virtual_s"].get<double>() / st["wall_s"].get<double>()));
+    CHECK(st["goal_x_real_time"].get<double>() == 500.0);
+    double staged = 0.0;
+    for (const char* k : {"servo_tick", "simulated_rig", "tick_records", "servo_scene", "stimulus", "wearable_platform", "perception", "files"}) {
+        CAPTURE(k);
+        CHECK(st["ms_per_virtual_s"][k].get<double>() >= 0.0);
+        staged += st["ms_per_virtual_s"][k].get<double>();
+    }
+    CHECK(st["ms_per_virtual_s"]["servo_tick"].get<double>() > 0.0);
+    CHECK(st["ms_per_virtual_s"]["wearable_platform"].get<double>() == 0.0);  // seed 002 runs on the CLD rig
+    CHECK(staged <= st["ms_per_virtual_s"]["all"].get<double>() * (1.0 + 1e-9));
+    CHECK(md.find("## Simulated study speed") != std::string::npos);
     // What the user reads: one header, none of the library's per-run context or warnings, the
     // summary tables (issue 19: it was ~800 lines with 80 "built as DEBUG" warnings).
     const std::string out = read_text(CONTACTLAB_BENCH_QUICK_STDOUT);

@@ -1,0 +1,27 @@
+// study_speed.hpp — how fast a simulated study runs: one simulated participant of seed 002's
+// shipped protocol through `contactlab experiment run`'s own code (run_experiment, one job, no
+// traces, files in a temporary folder), with the stages timed (engine/experiments/
+// trial_profile.hpp). The figure is x real time per core (virtual seconds of trials over wall
+// seconds), beside the goal of 500x; the stages say where the wall time went. `--quick` runs 10
+// trials per condition instead of the protocol's 135 (and no warm-up).
+#pragma once
+
+#include "engine/experiments/trial_profile.hpp"
+
+#include <string>
+
+namespace contactlab::bench {
+
+inline constexpr double kStudySpeedGoal = 500.0;  // x real time per core (seed 002)
+
+struct StudySpeed {
+    std::string skipped = "not run";  // why it did not run (no protocol file, or it failed); empty when it ran
+    std::string protocol;  // the protocol's name
+    experiments::TrialProfile profile;
+    double x_real_time() const { return profile.wall > 0.0 ? profile.virtual_s / profile.wall : 0.0; }
+};
+
+// `protocol_path`: seed 002's protocol file (the CLI passes the installed one); empty skips.
+StudySpeed study_speed(const std::string& protocol_path, bool quick);
+
+}  // namespace contactlab::bench
