@@ -201,22 +201,16 @@ nlohmann::json results_json(const BenchResults& r) {
     } else {
         const experiments::TrialProfile& p = st.profile;
         const auto per_s = [&](double s) { return p.virtual_s > 0.0 ? 1e3 * s / p.virtual_s : 0.0; };
+        nlohmann::json stages;
+        for (const experiments::ProfileStage& stage : experiments::kProfileStages) stages[stage.key] = per_s(p.*stage.field);
+        stages["all"] = per_s(p.wall);
         j["simulated_study"] = {{"protocol", st.protocol},
                                 {"trials", p.trials},
                                 {"virtual_s", p.virtual_s},
                                 {"wall_s", p.wall},
                                 {"x_real_time", st.x_real_time()},
                                 {"goal_x_real_time", kStudySpeedGoal},
-                                {"ms_per_virtual_s",
-                                 {{"servo_tick", per_s(p.tick)},
-                                  {"simulated_rig", per_s(p.device)},
-                                  {"tick_records", per_s(p.records)},
-                                  {"servo_scene", per_s(p.servo_scene)},
-                                  {"stimulus", per_s(p.stimulus)},
-                                  {"wearable_platform", per_s(p.platform)},
-                                  {"perception", per_s(p.perception)},
-                                  {"files", per_s(p.files)},
-                                  {"all", per_s(p.wall)}}}};
+                                {"ms_per_virtual_s", stages}};
     }
     return j;
 }

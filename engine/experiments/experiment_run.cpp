@@ -15,7 +15,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <mutex>
@@ -87,10 +86,12 @@ TrialOutcome perform(const Protocol& p, const RunOptions& o, const PlannedTrial&
     TrialProfile* const profile = thread_profile();
     if (!profile) return o.observer ? observe_trial(p, *o.observer, t) : perform_sim_trial(p, t);
     const double before = profile->staged();  // s
-    const auto t0 = std::chrono::steady_clock::now();
+    StageClock clock;
+    clock.start(true);
     TrialOutcome r = o.observer ? observe_trial(p, *o.observer, t) : perform_sim_trial(p, t);
-    const double all = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();  // s
-    profile->perception += all - (profile->staged() - before);
+    double all = 0.0;  // ns
+    clock.lap(all);
+    profile->perception += all * 1e-9 - (profile->staged() - before);
     ++profile->trials;
     return r;
 }
@@ -306,7 +307,8 @@ RunSummary run_experiment(const Protocol& p, const RunOptions& o) {
     auto worker = [&] {
         TrialProfile mine;  // this thread's stages (RunOptions::profile)
         const ProfileScope scope(o.profile ? &mine : nullptr);
-        const auto t0 = std::chrono::steady_clock::now();
+        StageClock clock;  // the worker's wall time, ns
+        clock.start(o.profile);
         for (std::size_t i; (i = next++) < o.participants.size();) {
             try {
                 run_participant(sh, i, done_rows[i]);
@@ -316,7 +318,9 @@ RunSummary run_experiment(const Protocol& p, const RunOptions& o) {
             }
         }
         if (!o.profile) return;
-        mine.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        double wall = 0.0;
+        clock.lap(wall);
+        mine.wall = wall * 1e-9;
         std::lock_guard<std::mutex> g(sh.lock);
         sh.profile += mine;
     };

@@ -9,7 +9,6 @@
 #include "haptics/servo_tick.hpp"
 #include "haptics/spsc_ring.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -44,7 +43,8 @@ TrialTrace run_servo_trial(const Scene& scene, const drivers::HandPath& path, bo
     // this loop (taking the records off the ring into the trace) counts as records.
     drivers::ServoLoopStages stages;
     if (profile) loop.set_profile(&stages);
-    const auto t0 = profile ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
+    StageClock clock;  // the whole loop, ns (read only when profiling)
+    clock.start(profile != nullptr);
     for (std::uint64_t k = 0; k < ticks; ++k) {
         loop.step(1.0 / kTrialRate, true);
         for (drivers::TickRecord r; ring.try_pop(r);) {
@@ -53,10 +53,11 @@ TrialTrace run_servo_trial(const Scene& scene, const drivers::HandPath& path, bo
         }
     }
     if (profile) {
-        const double all = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();  // s
+        double all = 0.0;  // ns
+        clock.lap(all);
         profile->device += stages.device * 1e-9;
         profile->tick += stages.tick * 1e-9;
-        profile->records += all - (stages.device + stages.tick) * 1e-9;
+        profile->records += (all - stages.device - stages.tick) * 1e-9;
         profile->virtual_s += static_cast<double>(ticks) / kTrialRate;
     }
     return trace;

@@ -11,15 +11,14 @@ thread_local TrialProfile* current = nullptr;
 
 }  // namespace
 
+double TrialProfile::staged() const {
+    double sum = 0.0;
+    for (const ProfileStage& st : kProfileStages) sum += this->*st.field;
+    return sum;
+}
+
 TrialProfile& TrialProfile::operator+=(const TrialProfile& o) {
-    stimulus += o.stimulus;
-    servo_scene += o.servo_scene;
-    device += o.device;
-    tick += o.tick;
-    records += o.records;
-    platform += o.platform;
-    perception += o.perception;
-    files += o.files;
+    for (const ProfileStage& st : kProfileStages) this->*st.field += o.*st.field;
     wall += o.wall;
     virtual_s += o.virtual_s;
     trials += o.trials;
@@ -31,42 +30,31 @@ TrialProfile* thread_profile() { return current; }
 ProfileScope::ProfileScope(TrialProfile* p) : previous_(current) { current = p; }
 ProfileScope::~ProfileScope() { current = previous_; }
 
-StageTimer::StageTimer(double TrialProfile::*stage) : profile_(current), stage_(stage) {
-    if (profile_) start_ = std::chrono::steady_clock::now();
-}
+StageTimer::StageTimer(double TrialProfile::*stage) : profile_(current), stage_(stage) { clock_.start(profile_ != nullptr); }
 
 StageTimer::~StageTimer() {
-    if (profile_) profile_->*stage_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    if (!profile_) return;
+    double ns = 0.0;
+    clock_.lap(ns);
+    profile_->*stage_ += ns * 1e-9;
 }
 
 std::string profile_table(const TrialProfile& p) {
-    struct Row {
-        const char* name;
-        double s;
-    };
-    // The loops around the stages (plans, rows in memory, thread start); never below 0 (rounding).
-    const double other = std::max(0.0, p.wall - p.staged());
-    const Row rows[] = {{"servo tick", p.tick},
-                        {"simulated rig (sim-cld)", p.device},
-                        {"tick records", p.records},
-                        {"servo scene and index", p.servo_scene},
-                        {"stimulus and hand path", p.stimulus},
-                        {"wearable platform (sim-wearable)", p.platform},
-                        {"perception", p.perception},
-                        {"files", p.files},
-                        {"other (plans, results, threads)", other}};
     std::string out;
     char buf[160];
     std::snprintf(buf, sizeof buf, "profile: %llu trials, %.1f s of virtual time in %.2f s of wall time summed over the threads (%.0fx real time per thread)\n",
                   static_cast<unsigned long long>(p.trials), p.virtual_s, p.wall, p.wall > 0.0 ? p.virtual_s / p.wall : 0.0);
     out += buf;
     out += "| stage | ms per s of virtual time | share |\n| --- | ---: | ---: |\n";
-    for (const Row& r : rows) {
-        if (r.s == 0.0) continue;  // a stage this protocol does not have (the platform, the CLD rig)
-        std::snprintf(buf, sizeof buf, "| %s | %.3f | %.1f %% |\n", r.name, p.virtual_s > 0.0 ? 1e3 * r.s / p.virtual_s : 0.0,
-                      p.wall > 0.0 ? 100.0 * r.s / p.wall : 0.0);
+    auto row = [&](const char* label, double s) {
+        if (s == 0.0) return;  // a stage this protocol does not have (the platform, the CLD rig)
+        std::snprintf(buf, sizeof buf, "| %s | %.3f | %.1f %% |\n", label, p.virtual_s > 0.0 ? 1e3 * s / p.virtual_s : 0.0,
+                      p.wall > 0.0 ? 100.0 * s / p.wall : 0.0);
         out += buf;
-    }
+    };
+    for (const ProfileStage& st : kProfileStages) row(st.label, p.*st.field);
+    // The loops around the stages (plans, rows in memory, thread start); never below 0 (rounding).
+    row("other (plans, results, threads)", std::max(0.0, p.wall - p.staged()));
     std::snprintf(buf, sizeof buf, "| all | %.3f | 100 %% |\n", p.virtual_s > 0.0 ? 1e3 * p.wall / p.virtual_s : 0.0);
     out += buf;
     return out;

@@ -11,7 +11,8 @@
 // Each thread running trials has its own profile (set with ProfileScope); the run adds them up.
 #pragma once
 
-#include <chrono>
+#include "haptics/stage_clock.hpp"
+
 #include <cstdint>
 #include <string>
 
@@ -32,8 +33,26 @@ struct TrialProfile {
     std::uint64_t trials = 0;
 
     // The stages' sum (s): all but `wall`, which also holds the loops around them.
-    double staged() const { return stimulus + servo_scene + device + tick + records + platform + perception + files; }
+    double staged() const;
     TrialProfile& operator+=(const TrialProfile& o);
+};
+
+// The stages, in the order reports list them: a key (the bench JSON's), a label (the tables'),
+// and the field. One list, so a stage added here is summed, added up and reported everywhere.
+struct ProfileStage {
+    const char* key;
+    const char* label;
+    double TrialProfile::*field;
+};
+inline constexpr ProfileStage kProfileStages[] = {
+    {"servo_tick", "servo tick", &TrialProfile::tick},
+    {"simulated_rig", "simulated rig (sim-cld)", &TrialProfile::device},
+    {"tick_records", "tick records", &TrialProfile::records},
+    {"servo_scene", "servo scene and index", &TrialProfile::servo_scene},
+    {"stimulus", "stimulus and hand path", &TrialProfile::stimulus},
+    {"wearable_platform", "wearable platform (sim-wearable)", &TrialProfile::platform},
+    {"perception", "perception", &TrialProfile::perception},
+    {"files", "files", &TrialProfile::files},
 };
 
 // The profile the calling thread's trials add to; null (the default) when not profiling.
@@ -63,7 +82,7 @@ public:
 private:
     TrialProfile* profile_;
     double TrialProfile::*stage_;
-    std::chrono::steady_clock::time_point start_{};
+    StageClock clock_;  // reads the clock only when profiling
 };
 
 // The profile as a table: ms of wall time per s of virtual time for each stage, its share, and
