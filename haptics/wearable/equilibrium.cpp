@@ -64,24 +64,10 @@ Equilibrium solve_equilibrium(const PlatformDef& platform, const Mat6& k, const 
         Mat6 h = k;
         for (int i = 0; i < 3; ++i)
             if (cur.stretch(i) > 0.0) h += kc * j.row(i).transpose() * j.row(i);
-        // Geometric stiffness sum_i Q_i d^2 l_i/dxi^2: central differences of (dl/dxi)^T Q.
-        Mat6 g = Mat6::Zero();
-        bool geometric_ok = true;
-        constexpr double fd_step = 1e-7;  // m or rad: truncation ~1e-14 relative, rounding ~1e-9
-        for (int a = 0; a < 6 && geometric_ok; ++a) {
-            Pose e = Pose::Zero();
-            e(a) = fd_step;
-            const IkResult plus = inverse_kinematics(platform, xi + e), minus = inverse_kinematics(platform, xi - e);
-            if (plus.status != IkStatus::ok || minus.status != IkStatus::ok) {
-                geometric_ok = false;
-                break;
-            }
-            g.col(a) = ((jacobian_l(plus) * euler_rate_map(xi + e)).transpose() * tension -
-                        (jacobian_l(minus) * euler_rate_map(xi - e)).transpose() * tension) / (2.0 * fd_step);
-        }
+        // Geometric stiffness sum_i Q_i d^2 l_i/dxi^2, in closed form (weighted_length_hessian).
         Pose step;
-        const Eigen::LLT<Mat6> full(h + 0.5 * (g + g.transpose()));
-        if (geometric_ok && full.info() == Eigen::Success)
+        const Eigen::LLT<Mat6> full(h + weighted_length_hessian(platform, xi, cur.ik, tension));
+        if (full.info() == Eigen::Success)
             step = -full.solve(grad);
         else
             step = -h.llt().solve(grad);

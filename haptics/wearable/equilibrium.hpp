@@ -10,8 +10,8 @@
 //   U(xi) = 1/2 (xi - xi_0)^T K (xi - xi_0) + sum_i 1/2 k_c max(0, l_i(xi) - lambda_i)^2
 //
 // by Newton's method and a backtracking line search. The Hessian is K + k_c sum_taut (J_l T)_i^T
-// (J_l T)_i plus the cables' geometric stiffness sum_i Q_i d^2 l_i / dxi^2 (central differences of
-// the analytic Jacobian): with the fingertip's soft rotational stiffness (finger_stiffness.hpp)
+// (J_l T)_i plus the cables' geometric stiffness sum_i Q_i d^2 l_i / dxi^2 (in closed form,
+// weighted_length_hessian in kinematics.hpp): with the fingertip's soft rotational stiffness (finger_stiffness.hpp)
 // that term is as large as K itself, and Gauss-Newton alone crawls. When the full Hessian is not
 // positive definite the Gauss-Newton one (always positive definite) is used; a trial pose outside the
 // workspace (inverse kinematics fails) counts as infinite energy. A slack cable (l_i <= lambda_i)

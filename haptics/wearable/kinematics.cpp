@@ -82,6 +82,56 @@ Mat36 jacobian_l(const IkResult& ik) noexcept {
     return j;
 }
 
+Mat6 weighted_length_hessian(const PlatformDef& def, const Pose& xi, const IkResult& ik,
+                             const Eigen::Vector3d& w) noexcept {
+    Mat6 h = Mat6::Zero();
+    if (ik.status != IkStatus::ok) return h;
+    // R = Rz(gamma) Ry(beta) Rx(alpha); each factor commutes with its own axis' cross product,
+    // so a derivative of a factor is that factor followed by "axis x".
+    const Eigen::Matrix3d rx = Eigen::AngleAxisd(xi(3), Vec3::UnitX()).toRotationMatrix();
+    const Eigen::Matrix3d ry = Eigen::AngleAxisd(xi(4), Vec3::UnitY()).toRotationMatrix();
+    const Eigen::Matrix3d rz = Eigen::AngleAxisd(xi(5), Vec3::UnitZ()).toRotationMatrix();
+    const Vec3 ex = Vec3::UnitX(), ey = Vec3::UnitY(), ez = Vec3::UnitZ();
+    for (int i = 0; i < 3; ++i) {
+        if (w(i) == 0.0) continue;  // a slack cable pulls with nothing
+        const CableGeometry& c = ik.cables[i];
+        const Vec3 u = rx * def.b[i];  // Rx b
+        const Vec3 ux = ex.cross(u), uxx = ex.cross(ux);
+        const Vec3 yu = ry * u, yux = ry * ux;
+        const Vec3 ey_yu = ey.cross(yu);
+        // First derivatives of R b (m per rad) ...
+        Vec3 d1[3];
+        d1[0] = rz * yux;                  // d/dalpha
+        d1[1] = rz * ey_yu;                // d/dbeta
+        d1[2] = ez.cross(rz * yu);         // d/dgamma
+        // ... and second (m per rad^2), [j][k] for angles j <= k.
+        Vec3 d2[3][3];
+        d2[0][0] = rz * (ry * uxx);
+        d2[1][1] = rz * ey.cross(ey_yu);
+        d2[2][2] = ez.cross(d1[2]);
+        d2[0][1] = rz * ey.cross(yux);
+        d2[0][2] = ez.cross(d1[0]);
+        d2[1][2] = ez.cross(d1[1]);
+        // D (3x6) and g = D^T s.
+        Mat36 dd;
+        dd.block<3, 3>(0, 0) = Eigen::Matrix3d::Identity();
+        for (int j = 0; j < 3; ++j) dd.col(3 + j) = d1[j];
+        const Pose g = dd.transpose() * c.s;
+        const double ratio = c.q / (2.0 * def.finger_radius[i]);
+        const double f1 = c.dl_dq;                                                     // dl/dq
+        const double f2 = f1 * f1 * f1 * ratio / (2.0 * def.finger_radius[i]);         // d^2 l/dq^2 (1/m)
+        Mat6 hi = (f2 - f1 / c.q) * g * g.transpose() + (f1 / c.q) * dd.transpose() * dd;
+        for (int j = 0; j < 3; ++j)
+            for (int k = j; k < 3; ++k) {
+                const double a = f1 * c.s.dot(d2[j][k]);
+                hi(3 + j, 3 + k) += a;
+                if (k != j) hi(3 + k, 3 + j) += a;
+            }
+        h += w(i) * hi;
+    }
+    return h;
+}
+
 FkResult forward_kinematics(const PlatformDef& def, const Eigen::Vector3d& l, const Pose& guess,
                             const FkDef& fk) noexcept {
     FkResult out;

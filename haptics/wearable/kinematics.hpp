@@ -52,6 +52,19 @@ IkResult inverse_kinematics(const PlatformDef& def, const Pose& xi) noexcept;
 Mat36 jacobian_p(const IkResult& ik) noexcept;
 Mat36 jacobian_l(const IkResult& ik) noexcept;
 
+// The cables' geometric stiffness: sum_i w_i d^2 l_i / dxi^2 (6x6, symmetric) at pose xi, from
+// its IK result (zero unless ok). With w the tensions Q (N) it is the Hessian of sum_i Q_i l_i(xi)
+// with Q held fixed: N/m on p, N on p x angles, N m on the angles. Differentiating eq. 2 twice:
+//
+//   d^2 l_i = f''(q) g g^T + f'(q) [ D^T (I - s s^T) D / q + sum_c s_c d^2 d_c ],   g = D^T s
+//
+// with D = dd_i/dxi = [I | dR/dalpha b_i, dR/dbeta b_i, dR/dgamma b_i], f' = dl/dq and
+// f'' = f'^3 q / (2 R_i)^2, and the second derivatives of R = Rz Ry Rx taken factor by factor
+// (d/dalpha Rx = Rx [e_x]x, ...). Closed form: the plant's Newton solve took it from central
+// differences of J_l T, 12 inverse kinematics per iteration (all but 2 % of a wearable study).
+Mat6 weighted_length_hessian(const PlatformDef& def, const Pose& xi, const IkResult& ik,
+                             const Eigen::Vector3d& w) noexcept;
+
 // Forward kinematics of the actuated freedoms: the pose whose cable lengths are `l` (m), with
 // the three freedoms the cables do not set (p_x, p_y, gamma) held at the guess's values, solved
 // for (p_z, alpha, beta) by Newton's method on eq. 2 (Eigen's full-pivot LU of the 3x3 block

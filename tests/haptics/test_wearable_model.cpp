@@ -130,6 +130,48 @@ TEST_CASE("wearable Jacobians J_p and J_l against central differences") {
     }
 }
 
+TEST_CASE("wearable geometric stiffness: the closed-form sum_i w_i d^2 l_i / dxi^2 against central differences of J_l T") {
+    const PlatformDef def;
+    // Central differences of dl/dxi = J_l T (checked above against the chords themselves) with
+    // step h: truncation h^2 |d^3 (dl/dxi)| ~ 1e-12 x 3 / (1 cm)^3 ~ 3e-6 relative to entries of
+    // |d^2 l| ~ 3 / (1 cm) ~ 300 /m, i.e. ~1e-8, and rounding eps |J| / h ~ 1e-10: agreement to
+    // 1e-6 of the largest entry is a thousand times what either allows, and a wrong sign, factor
+    // or missing term (each at least a few per cent of it over these poses) fails it.
+    const double h = 1e-6;
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> tension(0.0, 3.0);  // N
+    int checked = 0;
+    for (const Pose& xi : sample_poses(def, 50, 7)) {
+        const IkResult ik = inverse_kinematics(def, xi);
+        REQUIRE(ik.status == IkStatus::ok);
+        Eigen::Vector3d w(tension(rng), tension(rng), tension(rng));
+        if (checked % 5 == 0) w(checked % 3) = 0.0;  // a slack cable
+        const Mat6 g = weighted_length_hessian(def, xi, ik, w);
+        Mat6 fd;
+        for (int a = 0; a < 6; ++a) {
+            Pose e = Pose::Zero();
+            e(a) = h;
+            const IkResult plus = inverse_kinematics(def, xi + e), minus = inverse_kinematics(def, xi - e);
+            REQUIRE(plus.status == IkStatus::ok);
+            REQUIRE(minus.status == IkStatus::ok);
+            fd.col(a) = ((jacobian_l(plus) * euler_rate_map(xi + e)).transpose() * w -
+                         (jacobian_l(minus) * euler_rate_map(xi - e)).transpose() * w) / (2.0 * h);
+        }
+        const double scale = fd.cwiseAbs().maxCoeff();
+        REQUIRE(scale > 0.0);
+        CHECK((g - fd).cwiseAbs().maxCoeff() <= 1e-6 * scale);
+        // Symmetric to rounding (the products D^T D and g g^T round each half on its own).
+        CHECK((g - g.transpose()).cwiseAbs().maxCoeff() <= 1e-13 * scale);
+        ++checked;
+    }
+    CHECK(checked == 50);
+    // Zero weights, and a pose outside the workspace: zero, never NaN.
+    const IkResult rest = inverse_kinematics(def, def.rest);
+    CHECK(weighted_length_hessian(def, def.rest, rest, Eigen::Vector3d::Zero()).isZero());
+    IkResult bad;
+    CHECK(weighted_length_hessian(def, def.rest, bad, Eigen::Vector3d::Ones()).isZero());
+}
+
 TEST_CASE("wearable statics: eq. 5 against a brute-force equilibrium of the fingertip spring") {
     // Constant tensions Q do work -Q . l: the platform on the fingertip spring rests at a
     // stationary point of U(xi) = 1/2 (xi - xi_0)^T K (xi - xi_0) + Q . l(xi). Found here by
