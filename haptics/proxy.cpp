@@ -746,9 +746,9 @@ Vec2 Proxy::walk(Vec2 p, Vec2 goal) {
             hit = first_entry_line(proxy_, foot.point, current, -1);
         } else {
             hit = first_entry_arc(piece, s0, foot.param, current);
-            // The slide follows the circle, which may bulge beyond both its ends.
-            note_path_box(arc_bounds(piece.center, piece.radius, piece.span.start + std::min(s0, foot.param),
-                                     std::abs(foot.param - s0)));
+            // The slide follows the circle, which may bulge beyond both its ends: its box, as
+            // first_entry_arc made it (the same arc: making it again was 2 % of a dense tick).
+            note_path_box(arc_slide_box_);
         }
         if (hit.found) {  // slid into another piece: a corner
             note_path(hit.point);
@@ -901,6 +901,7 @@ Proxy::Hit Proxy::first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b,
 Proxy::Hit Proxy::first_entry_arc(const CPiece& on, double s0, double s1, int exclude) {
     Hit best;
     const double ds = s1 - s0;
+    arc_slide_box_ = arc_bounds(on.center, on.radius, on.span.start + std::min(s0, s1), std::abs(ds));
     if (std::abs(ds) * on.radius <= 0.0) return best;
     const double direction = ds > 0.0 ? 1.0 : -1.0;
     const double s_slack = kOnTolerance / (on.radius * std::abs(ds));
@@ -918,8 +919,7 @@ Proxy::Hit Proxy::first_entry_arc(const CPiece& on, double s0, double s1, int ex
         if (handed_over(i, x, t)) return;
         best = {true, std::max(s, 0.0), s < 0.0 ? proxy_ : x, i};
     };
-    const Aabb motion = arc_bounds(on.center, on.radius, on.span.start + std::min(s0, s1), std::abs(ds))
-                            .grown(kBoxSlack + kNearMargin + kLocalAcceptRadius);
+    const Aabb motion = arc_slide_box_.grown(kBoxSlack + kNearMargin + kLocalAcceptRadius);
     // Like first_entry_line's full scan, this keeps the pieces near the slide as local_ (its box
     // grown by local_near's margins).
     local_valid_ = false;

@@ -172,7 +172,9 @@ private:
     // Where the straight move p -> q first enters a piece. A full scan keeps local_; among_local
     // asks only local_ (the caller judges whether that answer is the full one).
     Hit first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b, int ended = -1, bool among_local = false);
+    // ... along the circle `on` from parameter s0 to s1 (rad); arc_slide_box_ is then that arc's box.
     Hit first_entry_arc(const CPiece& on, double s0, double s1, int exclude);
+    Aabb arc_slide_box_;
     // Whether local_ holds every piece whose box comes within kNearMargin of any point `within`
     // (m) of `at`.
     bool local_near(Vec2 at, double within) const;
