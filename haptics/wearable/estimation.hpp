@@ -15,8 +15,8 @@
 // still (tests/haptics/test_wearable_estimation.cpp shows it). The default
 // (EstimatorMethod::newton) solves eq. 8 with the tensions of eq. 7 for the pose itself,
 //   K (xi - xi_0) + T(xi)^T J_l(xi)^T Q-hat(xi) = 0,  Q-hat_i(xi) = F_m,i / cos(theta_i(xi)),
-// by Newton's method from the previous estimate (the residual's Jacobian by central
-// differences, Eigen's full-pivot LU): the same fixed point, reached stably.
+// by Newton's method from the previous estimate (the residual's Jacobian in closed form,
+// Eigen's full-pivot LU): the same fixed point, reached stably.
 //
 // The sensor model is eq. 7 itself, F_m,i = Q_i cos(theta_i) (fsr_model), as the seed assumes
 // (sensors decoupled, forces applied at B_i, finger curvature neglected).
@@ -76,6 +76,18 @@ struct Estimate {
 
 // Eq. 7 as a sensor model: the FSR readings (N) for tensions Q (N) at a pose (an ok IK result).
 Eigen::Vector3d fsr_model(const IkResult& ik, const Eigen::Vector3d& tension) noexcept;
+
+// What EstimatorMethod::newton drives to zero at pose xi for readings `reading` (N, each >= 0):
+// the residual K (xi - xi_0) + T^T J_l^T Q-hat(xi) (N, N m) and its Jacobian in closed form.
+// ok is false (both zero) where the pose is outside the workspace or a cable lies in the
+// platform's plane.
+struct Eq8Residual {
+    bool ok = false;
+    Pose value = Pose::Zero();
+    Mat6 jacobian = Mat6::Zero();
+};
+Eq8Residual eq8_residual(const EstimatorDef& def, const PlatformDef& platform, const Mat6& k,
+                         const Eigen::Vector3d& reading, const Pose& xi);
 
 // One sample of Fig. 4.
 Estimate estimate(const EstimatorDef& def, const PlatformDef& platform, const Mat6& k,

@@ -82,44 +82,63 @@ Mat36 jacobian_l(const IkResult& ik) noexcept {
     return j;
 }
 
+namespace {
+// R = Rz(gamma) Ry(beta) Rx(alpha) by its factors. Each factor commutes with its own axis' cross
+// product, so the derivative of a factor is that factor followed by "axis x".
+struct EulerFactors {
+    Eigen::Matrix3d rx, ry, rz;
+    explicit EulerFactors(const Pose& xi)
+        : rx(Eigen::AngleAxisd(xi(3), Vec3::UnitX()).toRotationMatrix()),
+          ry(Eigen::AngleAxisd(xi(4), Vec3::UnitY()).toRotationMatrix()),
+          rz(Eigen::AngleAxisd(xi(5), Vec3::UnitZ()).toRotationMatrix()) {}
+};
+
+// d(R v)/d(alpha, beta, gamma) for v fixed in S_1, one column per angle; with `second`, also the
+// second derivatives second[j][k] for j <= k.
+Eigen::Matrix3d rotated_derivatives(const EulerFactors& f, const Vec3& v, Vec3 (*second)[3] = nullptr) {
+    const Vec3 ex = Vec3::UnitX(), ey = Vec3::UnitY(), ez = Vec3::UnitZ();
+    const Vec3 u = f.rx * v;  // Rx v
+    const Vec3 ux = ex.cross(u);
+    const Vec3 yu = f.ry * u, yux = f.ry * ux;
+    const Vec3 ey_yu = ey.cross(yu);
+    Eigen::Matrix3d d1;
+    d1.col(0) = f.rz * yux;           // d/dalpha
+    d1.col(1) = f.rz * ey_yu;         // d/dbeta
+    d1.col(2) = ez.cross(f.rz * yu);  // d/dgamma
+    if (second) {
+        second[0][0] = f.rz * (f.ry * ex.cross(ux));
+        second[1][1] = f.rz * ey.cross(ey_yu);
+        second[2][2] = ez.cross(Vec3(d1.col(2)));
+        second[0][1] = f.rz * ey.cross(yux);
+        second[0][2] = ez.cross(Vec3(d1.col(0)));
+        second[1][2] = ez.cross(Vec3(d1.col(1)));
+    }
+    return d1;
+}
+}  // namespace
+
+Eigen::Matrix3d rotated_vector_jacobian(const Pose& xi, const Vec3& v) noexcept {
+    return rotated_derivatives(EulerFactors(xi), v);
+}
+
 Mat6 weighted_length_hessian(const PlatformDef& def, const Pose& xi, const IkResult& ik,
                              const Eigen::Vector3d& w) noexcept {
     Mat6 h = Mat6::Zero();
     if (ik.status != IkStatus::ok) return h;
-    // R = Rz(gamma) Ry(beta) Rx(alpha); each factor commutes with its own axis' cross product,
-    // so a derivative of a factor is that factor followed by "axis x".
-    const Eigen::Matrix3d rx = Eigen::AngleAxisd(xi(3), Vec3::UnitX()).toRotationMatrix();
-    const Eigen::Matrix3d ry = Eigen::AngleAxisd(xi(4), Vec3::UnitY()).toRotationMatrix();
-    const Eigen::Matrix3d rz = Eigen::AngleAxisd(xi(5), Vec3::UnitZ()).toRotationMatrix();
-    const Vec3 ex = Vec3::UnitX(), ey = Vec3::UnitY(), ez = Vec3::UnitZ();
+    const EulerFactors factors(xi);
     for (int i = 0; i < 3; ++i) {
         if (w(i) == 0.0) continue;  // a slack cable pulls with nothing
         const CableGeometry& c = ik.cables[i];
-        const Vec3 u = rx * def.b[i];  // Rx b
-        const Vec3 ux = ex.cross(u), uxx = ex.cross(ux);
-        const Vec3 yu = ry * u, yux = ry * ux;
-        const Vec3 ey_yu = ey.cross(yu);
-        // First derivatives of R b (m per rad) ...
-        Vec3 d1[3];
-        d1[0] = rz * yux;                  // d/dalpha
-        d1[1] = rz * ey_yu;                // d/dbeta
-        d1[2] = ez.cross(rz * yu);         // d/dgamma
-        // ... and second (m per rad^2), [j][k] for angles j <= k.
+        // D = dd_i/dxi (3x6): the identity on p, the first derivatives of R b_i (m per rad) on
+        // the angles; d2: the second derivatives (m per rad^2).
         Vec3 d2[3][3];
-        d2[0][0] = rz * (ry * uxx);
-        d2[1][1] = rz * ey.cross(ey_yu);
-        d2[2][2] = ez.cross(d1[2]);
-        d2[0][1] = rz * ey.cross(yux);
-        d2[0][2] = ez.cross(d1[0]);
-        d2[1][2] = ez.cross(d1[1]);
-        // D (3x6) and g = D^T s.
         Mat36 dd;
         dd.block<3, 3>(0, 0) = Eigen::Matrix3d::Identity();
-        for (int j = 0; j < 3; ++j) dd.col(3 + j) = d1[j];
+        dd.block<3, 3>(0, 3) = rotated_derivatives(factors, def.b[i], d2);
         const Pose g = dd.transpose() * c.s;
         const double ratio = c.q / (2.0 * def.finger_radius[i]);
-        const double f1 = c.dl_dq;                                                     // dl/dq
-        const double f2 = f1 * f1 * f1 * ratio / (2.0 * def.finger_radius[i]);         // d^2 l/dq^2 (1/m)
+        const double f1 = c.dl_dq;                                                // dl/dq
+        const double f2 = f1 * f1 * f1 * ratio / (2.0 * def.finger_radius[i]);    // d^2 l/dq^2 (1/m)
         Mat6 hi = (f2 - f1 / c.q) * g * g.transpose() + (f1 / c.q) * dd.transpose() * dd;
         for (int j = 0; j < 3; ++j)
             for (int k = j; k < 3; ++k) {

@@ -52,6 +52,10 @@ IkResult inverse_kinematics(const PlatformDef& def, const Pose& xi) noexcept;
 Mat36 jacobian_p(const IkResult& ik) noexcept;
 Mat36 jacobian_l(const IkResult& ik) noexcept;
 
+// d(R_1^0 v)/d(alpha, beta, gamma) (3x3, one column per Euler angle) for a vector v fixed in S_1:
+// m per rad for v in m.
+Eigen::Matrix3d rotated_vector_jacobian(const Pose& xi, const Vec3& v) noexcept;
+
 // The cables' geometric stiffness: sum_i w_i d^2 l_i / dxi^2 (6x6, symmetric) at pose xi, from
 // its IK result (zero unless ok). With w the tensions Q (N) it is the Hessian of sum_i Q_i l_i(xi)
 // with Q held fixed: N/m on p, N on p x angles, N m on the angles. Differentiating eq. 2 twice:

@@ -20,6 +20,57 @@ Equilibrium truth(const PlatformDef& def, const Mat6& k, const Eigen::Vector3d& 
 }
 }  // namespace
 
+TEST_CASE("wearable estimation: the Newton residual's closed-form Jacobian against central differences") {
+    const PlatformDef def;
+    const Mat6 k = finger_stiffness();
+    const EstimatorDef est;
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> lat(-0.001, 0.001), up(0.0, 0.0025), ang(-0.3, 0.3), reading(0.0, 3.0);
+    const double h = 3e-7;  // m or rad
+    int checked = 0;
+    double worst = 0.0;
+    while (checked < 40) {
+        Pose xi = def.rest;
+        xi(0) += lat(rng), xi(1) += lat(rng), xi(2) += up(rng), xi(3) += ang(rng), xi(4) += ang(rng), xi(5) += 0.3 * ang(rng);
+        const Eigen::Vector3d f(reading(rng), reading(rng), checked % 4 == 0 ? 0.0 : reading(rng));
+        const Eq8Residual at = eq8_residual(est, def, k, f, xi);
+        if (!at.ok) continue;
+        Mat6 fd;
+        bool inside = true;
+        for (int a = 0; a < 6 && inside; ++a) {
+            Pose e = Pose::Zero();
+            e(a) = h;
+            const Eq8Residual plus = eq8_residual(est, def, k, f, xi + e), minus = eq8_residual(est, def, k, f, xi - e);
+            inside = plus.ok && minus.ok;
+            // The readings' part only (K (xi - xi_0) is linear, its derivative K exactly): left
+            // in, its rounding would swamp the rest.
+            if (inside)
+                fd.col(a) = ((plus.value - k * (xi + e - def.rest)) - (minus.value - k * (xi - e - def.rest))) / (2.0 * h);
+        }
+        if (!inside) continue;
+        // The tensions' geometric stiffness and their change with cos(theta_i). Central
+        // differences carry truncation ~h^2 |third derivative| and rounding ~eps |T^T J_l^T Q| / h
+        // (~1e-16 x 1 N / 3e-7 ~ 3e-10 N per m or rad). Measured over these poses, the largest
+        // difference scales as h^2 (2e-5, 2e-7, 2e-9 of the largest entry at h = 1e-5, 1e-6,
+        // 1e-7): truncation, about 2e-8 at this h. 1e-6 is fifty times that, and a dropped term or
+        // a wrong sign (each at least a few per cent of it over these poses) fails.
+        const Mat6 analytic = at.jacobian - k, numeric = fd;
+        const double scale = numeric.cwiseAbs().maxCoeff();
+        REQUIRE(scale > 0.0);
+        const double err = (analytic - numeric).cwiseAbs().maxCoeff() / scale;
+        worst = std::max(worst, err);
+        CHECK(err <= 1e-6);
+        ++checked;
+    }
+    MESSAGE("worst relative difference " << worst);
+    // Outside the workspace: not ok, zeros, never NaN.
+    Pose far = def.rest;
+    far(2) = -0.5;
+    const Eq8Residual out = eq8_residual(est, def, k, Eigen::Vector3d::Ones(), far);
+    CHECK_FALSE(out.ok);
+    CHECK(out.jacobian.isZero());
+}
+
 TEST_CASE("wearable estimation recovers a known pose and cable tensions from exact FSR readings") {
     const PlatformDef def;
     const Mat6 k = finger_stiffness();
