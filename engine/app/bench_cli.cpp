@@ -59,6 +59,7 @@ int run_suites(const BenchArgs& a) {
     bench::BenchOptions options;
     options.quick = a.quick;
     options.study_protocol = installed_data_path("scenes/experiments/002-bump-counting.json");
+    options.wearable_study_protocol = installed_data_path("scenes/experiments/003-curvature.json");
     const bench::BenchResults r = bench::run_suites(options);
     const std::string md = bench::results_markdown(r);
     std::printf("\n%s", md.c_str());

@@ -1,4 +1,4 @@
-// study_speed.cpp — a simulated participant of seed 002, timed by stage (study_speed.hpp).
+// study_speed.cpp — a simulated participant of a shipped protocol, timed by stage (study_speed.hpp).
 #include "engine/bench/study_speed.hpp"
 
 #include "engine/experiments/experiment_run.hpp"
@@ -30,7 +30,8 @@ StudySpeed study_speed(const std::string& protocol_path, bool quick) {
         experiments::Protocol p = experiments::load_protocol(protocol_path);
         s.protocol = p.name;
         if (quick) {
-            p.trials = 10;
+            if (p.trials > 0) p.trials = 10;  // seed 002: trials per condition drawn at random
+            p.repetitions = 1;
             p.warmup = 0;
         }
         experiments::RunOptions o;

@@ -1,9 +1,11 @@
-// study_speed.hpp — how fast a simulated study runs: one simulated participant of seed 002's
-// shipped protocol through `contactlab experiment run`'s own code (run_experiment, one job, no
-// traces, files in a temporary folder), with the stages timed (engine/experiments/
-// trial_profile.hpp). The figure is x real time per core (virtual seconds of trials over wall
-// seconds), beside the goal of 500x; the stages say where the wall time went. `--quick` runs 10
-// trials per condition instead of the protocol's 135 (and no warm-up).
+// study_speed.hpp — how fast a simulated study runs: one simulated participant of a shipped
+// protocol through `contactlab experiment run`'s own code (run_experiment, one job, no traces,
+// files in a temporary folder), with the stages timed (engine/experiments/trial_profile.hpp).
+// The figure is x real time per core (virtual seconds of trials over wall seconds); the stages say
+// where the wall time went. `contactlab bench` runs two: seed 002 on the CLD rig, against the
+// goal of 500x, and seed 003 on the wearable platform (its plant's equilibrium every 0.1 ms, the
+// slowest protocol). `--quick` runs 10 trials per condition instead of seed 002's 135 (and no
+// warm-up), and one presentation of each stimulus instead of seed 003's 4.
 #pragma once
 
 #include "engine/experiments/trial_profile.hpp"
@@ -21,7 +23,7 @@ struct StudySpeed {
     double x_real_time() const { return profile.wall > 0.0 ? profile.virtual_s / profile.wall : 0.0; }
 };
 
-// `protocol_path`: seed 002's protocol file (the CLI passes the installed one); empty skips.
+// `protocol_path`: the protocol file (the CLI passes the installed one); empty skips.
 StudySpeed study_speed(const std::string& protocol_path, bool quick);
 
 }  // namespace contactlab::bench

@@ -240,6 +240,7 @@ BenchResults run_suites(const BenchOptions& options) {
     r.zwidth = zwidth_table(options.quick);
     r.energy = energy_table(options.quick);
     r.study = study_speed(options.study_protocol, options.quick);
+    r.wearable_study = study_speed(options.wearable_study_protocol, options.quick);
     r.roller = roller_tracking_table(options.quick);
     r.roller_jump = roller_jump_table(options.quick);
     r.roller_bandwidth_hz = roller_bandwidth_hz(options.quick);

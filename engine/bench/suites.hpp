@@ -26,6 +26,8 @@ struct BenchOptions {
     bool quick = false;  // CI smoke run: fewer sizes and ticks, within a minute
     // Seed 002's protocol file, for the simulated study's speed (study_speed.hpp); empty skips it.
     std::string study_protocol;
+    // Seed 003's on the wearable platform, the same way; empty skips it.
+    std::string wearable_study_protocol;
 };
 
 // One scene size: ContactLab's proxy, and in the same process the baselines: brute force (every
@@ -75,6 +77,7 @@ struct BenchResults {
     RenderFrameResults render;                    // offscreen frame time (engine/render)
     ServoBesideRenderer servo_beside;             // the real-time servo's period, alone and drawing
     StudySpeed study;                             // a simulated participant of seed 002, by stage
+    StudySpeed wearable_study;                    // ... and of seed 003 on the wearable platform
 };
 
 BenchResults run_suites(const BenchOptions& options);

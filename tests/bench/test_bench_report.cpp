@@ -378,6 +378,19 @@ TEST_CASE("bench --quick --report: every PNG decodes at the plot size, render_ms
     CHECK(st["ms_per_virtual_s"]["wearable_platform"].get<double>() == 0.0);  // seed 002 runs on the CLD rig
     CHECK(staged <= st["ms_per_virtual_s"]["all"].get<double>() * (1.0 + 1e-9));
     CHECK(md.find("## Simulated study speed") != std::string::npos);
+    // Seed 003 on the wearable platform, each of its 3 stimuli once per task (A and B): 6 trials
+    // of 3.41 s each (the arc's sweep; test_trial_profile.cpp), all of it the platform's time.
+    const nlohmann::json& sw = j["simulated_study_wearable"];
+    CAPTURE(sw.dump());
+    REQUIRE_FALSE(sw.contains("skipped"));
+    CHECK(sw["trials"].get<int>() == 6);
+    CHECK(sw["virtual_s"].get<double>() == doctest::Approx(6 * 3.41).epsilon(0.01));
+    CHECK(sw["x_real_time"].get<double>() == doctest::Approx(sw["virtual_s"].get<double>() / sw["wall_s"].get<double>()));
+    CHECK_FALSE(sw.contains("goal_x_real_time"));
+    CHECK(sw["ms_per_virtual_s"]["wearable_platform"].get<double>() > 0.0);
+    CHECK(sw["ms_per_virtual_s"]["servo_tick"].get<double>() == 0.0);  // no CLD servo: the platform's own loop
+    CHECK(sw["ms_per_virtual_s"]["wearable_platform"].get<double>() <= sw["ms_per_virtual_s"]["all"].get<double>() * (1.0 + 1e-9));
+    CHECK(md.find("## Simulated study speed on the wearable platform") != std::string::npos);
     // What the user reads: one header, none of the library's per-run context or warnings, the
     // summary tables (issue 19: it was ~800 lines with 80 "built as DEBUG" warnings).
     const std::string out = read_text(CONTACTLAB_BENCH_QUICK_STDOUT);
