@@ -24,7 +24,21 @@ Eigen::Vector3d WearablePlant::unstretched_lengths() const {
 }
 
 void WearablePlant::settle() {
-    const Equilibrium next = solve_equilibrium(def_.platform, def_.stiffness, unstretched_lengths(), eq_.pose, def_.equilibrium);
+    const Eigen::Vector3d lambda = unstretched_lengths();
+    // Newton starts from the last two poses' extrapolation while the cables move (xi_n +
+    // (xi_n - xi_n-1): one iteration a solve instead of two, the answer held to the same
+    // tolerance), and from the last pose when they stand still (it is the answer: no iteration),
+    // when that start fails, or when there is no history.
+    Equilibrium next;
+    if (previous_valid_ && lambda != settled_lambda_) {
+        const Pose guess = 2.0 * eq_.pose - previous_pose_;
+        next = solve_equilibrium(def_.platform, def_.stiffness, lambda, guess, def_.equilibrium);
+    }
+    if (next.status != EquilibriumStatus::ok)
+        next = solve_equilibrium(def_.platform, def_.stiffness, lambda, eq_.pose, def_.equilibrium);
+    previous_pose_ = eq_.pose;
+    previous_valid_ = next.status == EquilibriumStatus::ok;
+    if (previous_valid_) settled_lambda_ = lambda;
     // A pose the solver could not reach keeps the last good one (and its tensions): the motors
     // then see the old load for one step rather than a NaN.
     if (next.status == EquilibriumStatus::ok) eq_ = next;

@@ -55,6 +55,9 @@ private:
     Eigen::Vector3d rest_lengths_;
     std::array<MotorState, 3> motors_{};
     Equilibrium eq_;
+    Pose previous_pose_ = Pose::Zero();  // the pose before the last settle (Newton's start: settle())
+    bool previous_valid_ = false;
+    Eigen::Vector3d settled_lambda_ = Eigen::Vector3d::Zero();  // m, the unstretched lengths eq_ is for
     std::mt19937_64 rng_;
     std::normal_distribution<double> noise_{0.0, 1.0};
     double time_ = 0.0;

@@ -4,10 +4,12 @@
 #include "haptics/wearable/equilibrium.hpp"
 #include "haptics/wearable/finger_stiffness.hpp"
 #include "haptics/wearable/kinematics.hpp"
+#include "haptics/wearable/plant.hpp"
 #include "haptics/wearable/statics.hpp"
 
 #include <doctest/doctest.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
 #include <cmath>
@@ -327,4 +329,48 @@ TEST_CASE("wearable plant equilibrium: taut and slack cables, eqs. 5 and 8 at th
     REQUIRE(t.status == EquilibriumStatus::ok);
     CHECK(t.pose(2) > def.rest(2));
     CHECK(t.tension.minCoeff() > 0.0);
+}
+
+TEST_CASE("wearable plant: starting each equilibrium from the last two poses' extrapolation changes nothing but the start") {
+    // The plant settles its platform every 0.1 ms, starting Newton from xi_n + (xi_n - xi_n-1)
+    // (one iteration instead of two while the motors move). The answer is held to the same
+    // gradient tolerance as a solve from the last pose: two poses whose gradients are both within
+    // g (1e-10 N, N m per component) differ by at most |H^-1| |dg| <= sqrt(6) 2g / lambda_min(H),
+    // and H >= K (the cables add positive semi-definite stiffness; their geometric term is small
+    // next to K here): the bound below uses K's smallest eigenvalue, times 10 for that term.
+    PlantDef def;
+    WearablePlant plant(def);
+    const Eigen::SelfAdjointEigenSolver<Mat6> eig(def.stiffness);
+    const double lambda_min = eig.eigenvalues().minCoeff();
+    REQUIRE(lambda_min > 0.0);
+    const double bound = 10.0 * std::sqrt(6.0) * 2.0 * def.equilibrium.gradient_tolerance / lambda_min;
+    double worst = 0.0, worst_gradient = 0.0;
+    int moved = 0;
+    for (int k = 0; k < 3000; ++k) {
+        // Torques that reel the cables in and out unequally: the platform presses and tilts.
+        const double t = 1e-4 * k;
+        // N m at the shafts, within Table 1's stall torque (0.24 mN m).
+        const Eigen::Vector3d torque(1e-4 + 1e-4 * std::sin(2 * 3.14159 * 7 * t), 1e-4 + 1e-4 * std::sin(2 * 3.14159 * 11 * t + 1.0),
+                                     1.2e-4 + 0.8e-4 * std::cos(2 * 3.14159 * 5 * t));
+        const Pose before = plant.pose();
+        plant.step(torque, 1e-4);
+        const Equilibrium fresh = solve_equilibrium(def.platform, def.stiffness, plant.unstretched_lengths(), before, def.equilibrium);
+        REQUIRE(fresh.status == EquilibriumStatus::ok);
+        worst = std::max(worst, (plant.pose() - fresh.pose).cwiseAbs().maxCoeff());
+        // And the plant's pose is itself an equilibrium to the solver's tolerance: dU/dxi =
+        // K (xi - xi_0) + (J_l T)^T k_c max(0, l - lambda), written here from its definition.
+        const IkResult ik = inverse_kinematics(def.platform, plant.pose());
+        REQUIRE(ik.status == IkStatus::ok);
+        const Eigen::Vector3d q = def.equilibrium.cable_stiffness * (ik.l - plant.unstretched_lengths()).cwiseMax(0.0);
+        const Pose grad = def.stiffness * (plant.pose() - def.platform.rest) +
+                          (jacobian_l(ik) * euler_rate_map(plant.pose())).transpose() * q;
+        worst_gradient = std::max(worst_gradient, grad.cwiseAbs().maxCoeff());
+        if ((plant.pose() - before).norm() > 1e-7) ++moved;
+    }
+    MESSAGE("worst difference " << worst << " against a bound of " << bound << "; moved on " << moved
+                                << " of 3000 steps; worst gradient " << worst_gradient);
+    CHECK(worst_gradient <= def.equilibrium.gradient_tolerance * (1.0 + 1e-9));  // (the solver's own test, up to rounding)
+    CHECK(plant.solve_failures() == 0);
+    CHECK(moved > 2000);  // the motors moved the platform: the extrapolation was exercised
+    CHECK(worst <= bound);
 }
