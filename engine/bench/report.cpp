@@ -88,6 +88,16 @@ nlohmann::json study_json(const StudySpeed& st) {
             {"ms_per_virtual_s", stages}};
 }
 
+// One simulated study's report section: the title, then the protocol, `how` it ran, its x real
+// time, `note`, and the stage table (or why it was skipped).
+std::string study_section(const std::string& title, const StudySpeed& st, const std::string& how,
+                          const std::string& note) {
+    std::string md = "\n## " + title + "\n\n";
+    if (!st.skipped.empty()) return md + "Skipped: " + st.skipped + "\n";
+    return md + st.protocol + how + fmt("**%.0fx real time**", st.x_real_time()) + note +
+           experiments::profile_table(st.profile);
+}
+
 }  // namespace
 
 nlohmann::json results_json(const BenchResults& r) {
@@ -401,25 +411,15 @@ std::string results_markdown(const BenchResults& r, const ReportPlots* plots) {
               fmt("%.3f at 10 kHz (goal: at most 1.1; at 10 kHz also at most 1 overrun per 10,000 ticks).\n",
                   sb.alone_10k.p99 > 0.0 ? sb.beside_10k.p99 / sb.alone_10k.p99 : 0.0);
     }
-    const StudySpeed& st = r.study;
-    md += "\n## Simulated study speed (seed 002, one participant, one core)\n\n";
-    if (!st.skipped.empty()) {
-        md += "Skipped: " + st.skipped + "\n";
-    } else {
-        md += st.protocol + (r.quick ? ", 10 trials per condition (`--quick`)" : ", as shipped") +
-              ", through `experiment run`'s code with `--profile` (no traces): " +
-              fmt("**%.0fx real time**", st.x_real_time()) + fmt(" (goal: %.0fx).\n\n", kStudySpeedGoal) +
-              experiments::profile_table(st.profile);
-    }
-    const StudySpeed& sw = r.wearable_study;
-    md += "\n## Simulated study speed on the wearable platform (seed 003, one participant, one core)\n\n";
-    if (!sw.skipped.empty()) {
-        md += "Skipped: " + sw.skipped + "\n";
-    } else {
-        md += sw.protocol + (r.quick ? ", each stimulus once per condition (`--quick`)" : ", as shipped") +
-              ", the same way: " + fmt("**%.0fx real time**", sw.x_real_time()) +
-              " (the plant's cable equilibrium is solved every 0.1 ms).\n\n" + experiments::profile_table(sw.profile);
-    }
+    md += study_section("Simulated study speed (seed 002, one participant, one core)", r.study,
+                        std::string(r.quick ? ", 10 trials per condition (`--quick`)" : ", as shipped") +
+                            ", through `experiment run`'s code with `--profile` (no traces): ",
+                        fmt(" (goal: %.0fx).\n\n", kStudySpeedGoal));
+    md += study_section("Simulated study speed on the wearable platform (seed 003, one participant, one core)",
+                        r.wearable_study,
+                        std::string(r.quick ? ", each stimulus once per condition (`--quick`)" : ", as shipped") +
+                            ", the same way: ",
+                        " (the plant's cable equilibrium is solved every 0.1 ms).\n\n");
     return md;
 }
 
