@@ -15,6 +15,19 @@
 
 namespace contactlab::experiments {
 
+namespace {
+// The largest tick buffer this thread's finished traces left behind (TrialTrace::~TrialTrace).
+std::vector<drivers::TickRecord>& spare_ticks() {
+    thread_local std::vector<drivers::TickRecord> spare;
+    return spare;
+}
+}  // namespace
+
+TrialTrace::~TrialTrace() {
+    std::vector<drivers::TickRecord>& spare = spare_ticks();
+    if (ticks.capacity() > spare.capacity()) spare.swap(ticks);
+}
+
 TrialTrace run_servo_trial(const Scene& scene, const drivers::HandPath& path, bool contact_location) {
     TrialProfile* const profile = thread_profile();  // null unless `experiment run --profile`
     auto setup = std::make_optional<StageTimer>(&TrialProfile::servo_scene);
@@ -29,9 +42,13 @@ TrialTrace run_servo_trial(const Scene& scene, const drivers::HandPath& path, bo
     const ServoConfig config = drivers::servo_config_for(dev, kTrialRate);
     ServoTick tick(config, params);
     tick.scenes().publish(std::make_unique<ServoScene>(scene));
-    SpscRing<drivers::TickRecord> ring(1u << 12);
+    // One record a step, taken off after every step: a few slots suffice (4,096 were 1.2 MB
+    // allocated and page-faulted in every trial).
+    SpscRing<drivers::TickRecord> ring(16);
     drivers::ServoLoop loop(dev, tick, 1.0 / kTrialRate, &ring);
     TrialTrace trace;
+    trace.ticks.swap(spare_ticks());  // a finished trial's memory, if this thread has one
+    trace.ticks.clear();
     if (!loop.start()) {
         trace.faulted = true;
         return trace;
