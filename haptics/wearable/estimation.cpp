@@ -55,6 +55,11 @@ Step tensions_at(const EstimatorDef& def, const PlatformDef& platform, const Eig
     return s;
 }
 
+// What Newton drives to zero: K (xi - xi_0) + T(xi)^T w-hat(xi) (N, N m), with `at` the step at xi.
+Pose residual(const PlatformDef& platform, const Mat6& k, const Pose& xi, const Step& at) {
+    return k * (xi - platform.rest) + euler_rate_map(xi).transpose() * at.wrench;
+}
+
 // d/dxi of the residual K (xi - xi_0) + sum_i Q-hat_i(xi) dl_i/dxi, in closed form:
 //   K + sum_i Q-hat_i d^2 l_i/dxi^2 + sum_i (dl_i/dxi) (dQ-hat_i/dxi)^T,
 //   dQ-hat_i/dxi = -(Q-hat_i / cos theta_i) d cos theta_i/dxi,
@@ -62,17 +67,18 @@ Step tensions_at(const EstimatorDef& def, const PlatformDef& platform, const Eig
 // n = R_1^0 e_z the platform's normal and D_i = dd_i/dxi (kinematics.hpp). It was central
 // differences, 12 inverse kinematics an iteration: a quarter of a simulated wearable study.
 Mat6 residual_jacobian(const PlatformDef& platform, const Mat6& k, const Pose& xi, const Step& at) {
-    Mat6 jac = k + weighted_length_hessian(platform, xi, at.ik, at.tension);
+    const EulerDerivatives rot(xi);  // one set of the angles' sines and cosines for every derivative
+    Mat6 jac = k + weighted_length_hessian(platform, rot, at.ik, at.tension);
     const Mat36 grad_l = jacobian_l(at.ik) * euler_rate_map(xi);  // row i: dl_i/dxi
     const Vec3 n = rotation(xi).col(2);
-    const Eigen::Matrix3d dn = rotated_vector_jacobian(xi, Vec3::UnitZ());  // dn/d(angles)
+    const Eigen::Matrix3d dn = rot.first(Vec3::UnitZ());  // dn/d(angles)
     for (int i = 0; i < 3; ++i) {
         const CableGeometry& c = at.ik.cables[i];
         const double sn = c.s.dot(n);  // +-cos theta_i
         Pose dsn;
         const Vec3 across = (n - sn * c.s) / c.q;  // d(s . n)/dd (1/m)
         dsn.head<3>() = across;
-        dsn.tail<3>() = rotated_vector_jacobian(xi, platform.b[i]).transpose() * across + dn.transpose() * c.s;
+        dsn.tail<3>() = rot.first(platform.b[i]).transpose() * across + dn.transpose() * c.s;
         const Pose dq = -(at.tension(i) / c.cos_theta) * (sn < 0.0 ? -dsn : dsn);  // dQ-hat_i/dxi (N per m or rad)
         jac += grad_l.row(i).transpose() * dq.transpose();
     }
@@ -86,7 +92,7 @@ Eq8Residual eq8_residual(const EstimatorDef& def, const PlatformDef& platform, c
     const Step at = tensions_at(def, platform, reading, xi);
     if (at.status != EstimateStatus::ok) return out;
     out.ok = true;
-    out.value = k * (xi - platform.rest) + euler_rate_map(xi).transpose() * at.wrench;
+    out.value = residual(platform, k, xi, at);
     out.jacobian = residual_jacobian(platform, k, xi, at);
     return out;
 }
@@ -116,12 +122,9 @@ Estimate estimate(const EstimatorDef& def, const PlatformDef& platform, const Ma
         xi = compliant_pose(k, platform.rest, at.wrench, xi);  // step 4, eq. 8 at the previous pose
     } else {
         // K (xi - xi_0) + T^T w-hat(xi) = 0 by Newton's method.
-        auto residual = [&](const Pose& x, const Step& s) -> Pose {
-            return k * (x - platform.rest) + euler_rate_map(x).transpose() * s.wrench;
-        };
         bool converged = false;
         for (int it = 0; it < def.max_iterations; ++it) {
-            const Pose r = residual(xi, at);
+            const Pose r = residual(platform, k, xi, at);
             if (r.cwiseAbs().maxCoeff() <= def.residual_tolerance) {
                 converged = true;
                 break;
@@ -135,7 +138,7 @@ Estimate estimate(const EstimatorDef& def, const PlatformDef& platform, const Ma
             for (int b = 0; b < 30; ++b, t *= 0.5) {
                 next = tensions_at(def, platform, reading, xi + t * step);
                 if (next.status == EstimateStatus::ok &&
-                    residual(xi + t * step, next).norm() < (1.0 - 1e-4 * t) * r.norm())
+                    residual(platform, k, xi + t * step, next).norm() < (1.0 - 1e-4 * t) * r.norm())
                     break;
                 next.status = EstimateStatus::not_converged;
             }
@@ -143,7 +146,7 @@ Estimate estimate(const EstimatorDef& def, const PlatformDef& platform, const Ma
             xi += t * step;
             at = next;
         }
-        if (!converged && residual(xi, at).cwiseAbs().maxCoeff() > 1e3 * def.residual_tolerance)
+        if (!converged && residual(platform, k, xi, at).cwiseAbs().maxCoeff() > 1e3 * def.residual_tolerance)
             return fault(EstimateStatus::not_converged, -1);
     }
     // Step 5: the inverse kinematics at xi-hat, and Q-hat, w-hat there.

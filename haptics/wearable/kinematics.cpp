@@ -82,50 +82,43 @@ Mat36 jacobian_l(const IkResult& ik) noexcept {
     return j;
 }
 
-namespace {
-// R = Rz(gamma) Ry(beta) Rx(alpha) by its factors. Each factor commutes with its own axis' cross
-// product, so the derivative of a factor is that factor followed by "axis x".
-struct EulerFactors {
-    Eigen::Matrix3d rx, ry, rz;
-    explicit EulerFactors(const Pose& xi)
-        : rx(Eigen::AngleAxisd(xi(3), Vec3::UnitX()).toRotationMatrix()),
-          ry(Eigen::AngleAxisd(xi(4), Vec3::UnitY()).toRotationMatrix()),
-          rz(Eigen::AngleAxisd(xi(5), Vec3::UnitZ()).toRotationMatrix()) {}
-};
+EulerDerivatives::EulerDerivatives(const Pose& xi)
+    : rx_(Eigen::AngleAxisd(xi(3), Vec3::UnitX()).toRotationMatrix()),
+      ry_(Eigen::AngleAxisd(xi(4), Vec3::UnitY()).toRotationMatrix()),
+      rz_(Eigen::AngleAxisd(xi(5), Vec3::UnitZ()).toRotationMatrix()) {}
 
-// d(R v)/d(alpha, beta, gamma) for v fixed in S_1, one column per angle; with `second`, also the
-// second derivatives second[j][k] for j <= k.
-Eigen::Matrix3d rotated_derivatives(const EulerFactors& f, const Vec3& v, Vec3 (*second)[3] = nullptr) {
+// Each factor of R = Rz Ry Rx commutes with its own axis' cross product, so the derivative of a
+// factor is that factor followed by "axis x".
+Eigen::Matrix3d EulerDerivatives::first(const Vec3& v, Vec3 (*second)[3]) const noexcept {
     const Vec3 ex = Vec3::UnitX(), ey = Vec3::UnitY(), ez = Vec3::UnitZ();
-    const Vec3 u = f.rx * v;  // Rx v
+    const Vec3 u = rx_ * v;  // Rx v
     const Vec3 ux = ex.cross(u);
-    const Vec3 yu = f.ry * u, yux = f.ry * ux;
+    const Vec3 yu = ry_ * u, yux = ry_ * ux;
     const Vec3 ey_yu = ey.cross(yu);
     Eigen::Matrix3d d1;
-    d1.col(0) = f.rz * yux;           // d/dalpha
-    d1.col(1) = f.rz * ey_yu;         // d/dbeta
-    d1.col(2) = ez.cross(f.rz * yu);  // d/dgamma
+    d1.col(0) = rz_ * yux;           // d/dalpha
+    d1.col(1) = rz_ * ey_yu;         // d/dbeta
+    d1.col(2) = ez.cross(rz_ * yu);  // d/dgamma
     if (second) {
-        second[0][0] = f.rz * (f.ry * ex.cross(ux));
-        second[1][1] = f.rz * ey.cross(ey_yu);
+        second[0][0] = rz_ * (ry_ * ex.cross(ux));
+        second[1][1] = rz_ * ey.cross(ey_yu);
         second[2][2] = ez.cross(Vec3(d1.col(2)));
-        second[0][1] = f.rz * ey.cross(yux);
+        second[0][1] = rz_ * ey.cross(yux);
         second[0][2] = ez.cross(Vec3(d1.col(0)));
         second[1][2] = ez.cross(Vec3(d1.col(1)));
     }
     return d1;
 }
-}  // namespace
-
-Eigen::Matrix3d rotated_vector_jacobian(const Pose& xi, const Vec3& v) noexcept {
-    return rotated_derivatives(EulerFactors(xi), v);
-}
 
 Mat6 weighted_length_hessian(const PlatformDef& def, const Pose& xi, const IkResult& ik,
                              const Eigen::Vector3d& w) noexcept {
+    return weighted_length_hessian(def, EulerDerivatives(xi), ik, w);
+}
+
+Mat6 weighted_length_hessian(const PlatformDef& def, const EulerDerivatives& rot, const IkResult& ik,
+                             const Eigen::Vector3d& w) noexcept {
     Mat6 h = Mat6::Zero();
     if (ik.status != IkStatus::ok) return h;
-    const EulerFactors factors(xi);
     for (int i = 0; i < 3; ++i) {
         if (w(i) == 0.0) continue;  // a slack cable pulls with nothing
         const CableGeometry& c = ik.cables[i];
@@ -134,7 +127,7 @@ Mat6 weighted_length_hessian(const PlatformDef& def, const Pose& xi, const IkRes
         Vec3 d2[3][3];
         Mat36 dd;
         dd.block<3, 3>(0, 0) = Eigen::Matrix3d::Identity();
-        dd.block<3, 3>(0, 3) = rotated_derivatives(factors, def.b[i], d2);
+        dd.block<3, 3>(0, 3) = rot.first(def.b[i], d2);
         const Pose g = dd.transpose() * c.s;
         const double ratio = c.q / (2.0 * def.finger_radius[i]);
         const double f1 = c.dl_dq;                                                // dl/dq

@@ -52,9 +52,18 @@ IkResult inverse_kinematics(const PlatformDef& def, const Pose& xi) noexcept;
 Mat36 jacobian_p(const IkResult& ik) noexcept;
 Mat36 jacobian_l(const IkResult& ik) noexcept;
 
-// d(R_1^0 v)/d(alpha, beta, gamma) (3x3, one column per Euler angle) for a vector v fixed in S_1:
-// m per rad for v in m.
-Eigen::Matrix3d rotated_vector_jacobian(const Pose& xi, const Vec3& v) noexcept;
+// Derivatives of R_1^0 v with respect to the Euler angles (alpha, beta, gamma) for vectors v fixed
+// in S_1, from R's three factors at one pose (their sines and cosines taken once for every v).
+class EulerDerivatives {
+public:
+    explicit EulerDerivatives(const Pose& xi);
+    // d(R v)/d(angles): one column per angle (m per rad for v in m); with `second`, also the
+    // second derivatives second[j][k] for j <= k (m per rad^2).
+    Eigen::Matrix3d first(const Vec3& v, Vec3 (*second)[3] = nullptr) const noexcept;
+
+private:
+    Eigen::Matrix3d rx_, ry_, rz_;
+};
 
 // The cables' geometric stiffness: sum_i w_i d^2 l_i / dxi^2 (6x6, symmetric) at pose xi, from
 // its IK result (zero unless ok). With w the tensions Q (N) it is the Hessian of sum_i Q_i l_i(xi)
@@ -67,6 +76,9 @@ Eigen::Matrix3d rotated_vector_jacobian(const Pose& xi, const Vec3& v) noexcept;
 // (d/dalpha Rx = Rx [e_x]x, ...). Closed form: the plant's Newton solve took it from central
 // differences of J_l T, 12 inverse kinematics per iteration (all but 2 % of a wearable study).
 Mat6 weighted_length_hessian(const PlatformDef& def, const Pose& xi, const IkResult& ik,
+                             const Eigen::Vector3d& w) noexcept;
+// The same with R's factors at xi already taken (a caller that needs other derivatives too).
+Mat6 weighted_length_hessian(const PlatformDef& def, const EulerDerivatives& rot, const IkResult& ik,
                              const Eigen::Vector3d& w) noexcept;
 
 // Forward kinematics of the actuated freedoms: the pose whose cable lengths are `l` (m), with
