@@ -18,6 +18,36 @@ void PlanarArm::jacobian(double q1, double q2, double J[2][2]) const {
 void PlanarArm::update_trig() {
     s1_ = std::sin(q1_), c1_ = std::cos(q1_);
     s12_ = std::sin(q1_ + q2_), c12_ = std::cos(q1_ + q2_);
+    turns_since_refresh_ = 0;
+}
+
+namespace {
+// A substep turns a joint by |w| h: at most a few rad/s over 0.1 ms, ~1e-4 rad. Below kSmallTurn
+// (rad) sin and cos of the turn come from their series, whose first omitted terms (d^7 / 5040,
+// d^8 / 40320) are below 2e-18 there: the rotation is exact to rounding, about an ulp a substep.
+constexpr double kSmallTurn = 1e-2;
+// Every this many turns the sines are taken from the library again, so the rounding of the
+// rotations (an ulp or two each) never accumulates past this many ulps.
+constexpr int kTrigRefresh = 16;
+
+// (s, c) turned by d (rad), |d| < kSmallTurn.
+void rotate(double& s, double& c, double d) {
+    const double d2 = d * d;
+    const double sd = d * (1.0 - d2 / 6.0 * (1.0 - d2 / 20.0));
+    const double cd = 1.0 - d2 / 2.0 * (1.0 - d2 / 12.0 * (1.0 - d2 / 30.0));
+    const double s0 = s;
+    s = s0 * cd + c * sd;
+    c = c * cd - s0 * sd;
+}
+}  // namespace
+
+void PlanarArm::turn_trig(double d1, double d12) {
+    if (++turns_since_refresh_ >= kTrigRefresh || !(std::abs(d1) < kSmallTurn) || !(std::abs(d12) < kSmallTurn)) {
+        update_trig();
+        return;
+    }
+    rotate(s1_, c1_, d1);
+    rotate(s12_, c12_, d12);
 }
 
 void PlanarArm::jacobian_now(double J[2][2]) const {
@@ -62,12 +92,24 @@ double PlanarArm::quantise(double q) const {
     return std::floor(q / step) * step;
 }
 
-Vec2 PlanarArm::measured_endpoint() const { return endpoint_of(quantise(q1_), quantise(q2_)); }
+const PlanarArm::MeasuredTrig& PlanarArm::measured_trig() const {
+    const double q1 = quantise(q1_), q2 = quantise(q2_);
+    if (!(measured_.valid && measured_.q1 == q1 && measured_.q2 == q2)) {
+        measured_ = {q1, q2, std::sin(q1), std::cos(q1), std::sin(q1 + q2), std::cos(q1 + q2), true};
+    }
+    return measured_;
+}
+
+Vec2 PlanarArm::measured_endpoint() const {
+    // endpoint_of at the quantised angles, from their kept sines.
+    const MeasuredTrig& m = measured_trig();
+    return p_.base + Vec2{p_.l1 * m.c1 + p_.l2 * m.c12, p_.l1 * m.s1 + p_.l2 * m.s12};
+}
 
 void PlanarArm::command_force(Vec2 f) {
     // The controller only knows the measured angles, so J is taken there.
-    double J[2][2];
-    jacobian(quantise(q1_), quantise(q2_), J);
+    const MeasuredTrig& m = measured_trig();
+    const double J[2][2] = {{-p_.l1 * m.s1 - p_.l2 * m.s12, -p_.l2 * m.s12}, {p_.l1 * m.c1 + p_.l2 * m.c12, p_.l2 * m.c12}};
     const double t1 = J[0][0] * f.x + J[1][0] * f.y;
     const double t2 = J[0][1] * f.x + J[1][1] * f.y;
     tau1_ = std::clamp(t1, -p_.max_torque, p_.max_torque);
@@ -116,9 +158,10 @@ void PlanarArm::step(double h, Vec2 ext) {
     // Semi-implicit Euler: velocities first, positions with the new velocities.
     w1_ += a1 * h;
     w2_ += a2 * h;
+    const double q1 = q1_, q12 = q1_ + q2_;
     q1_ += w1_ * h;
     q2_ += w2_ * h;
-    update_trig();
+    turn_trig(q1_ - q1, (q1_ + q2_) - q12);
 }
 
 double PlanarArm::cartesian_damping(Vec2 n) const {

@@ -35,6 +35,8 @@ public:
     Vec2 endpoint_of(double q1, double q2) const;
     Vec2 endpoint() const;
     Vec2 velocity() const;  // m/s, true endpoint velocity
+    double q1() const { return q1_; }  // rad, the true shoulder angle
+    double q2() const { return q2_; }  // rad, the true elbow angle (relative)
     // Endpoint from the quantised encoder angles (what the device reports).
     Vec2 measured_endpoint() const;
 
@@ -57,6 +59,16 @@ private:
     void jacobian(double q1, double q2, double J[2][2]) const;
     void jacobian_now(double J[2][2]) const;  // at the true state, from the stored sines
     void update_trig();                       // after q1_ or q2_ changed
+    void turn_trig(double d1, double d12);    // after a substep turned q1_ by d1, q1_ + q2_ by d12 (rad)
+    // sin and cos of the measured (quantised) q1 and q1 + q2, for the encoders' endpoint and the
+    // controller's Jacobian: kept while the counts stay the same (a slow or held arm), which
+    // skips the library calls with the same bits.
+    struct MeasuredTrig {
+        double q1 = 0.0, q2 = 0.0;  // rad, quantised
+        double s1 = 0.0, c1 = 1.0, s12 = 0.0, c12 = 1.0;
+        bool valid = false;
+    };
+    const MeasuredTrig& measured_trig() const;
     double quantise(double q) const;
 
     PlanarArmParams p_;
@@ -65,8 +77,11 @@ private:
     double tau1_ = 0.0, tau2_ = 0.0;  // N m, motor torques held over the servo period
     // sin and cos of q1_ and of q1_ + q2_, kept with the angles: each substep asked for them four
     // times (endpoint, velocity, the Jacobian and J-dot in step), a seventh of a simulated trial's
-    // time. The same library calls on the same angles: results are bit for bit unchanged.
+    // time. A substep turns them by its small increments (turn_trig) instead of calling sincos
+    // twice, and every kTrigRefresh-th substep takes them from the library again.
     double s1_ = 0.0, c1_ = 1.0, s12_ = 0.0, c12_ = 1.0;
+    int turns_since_refresh_ = 0;
+    mutable MeasuredTrig measured_;
 };
 
 }  // namespace contactlab::drivers::sim
