@@ -30,11 +30,14 @@ constexpr double kSmallTurn = 1e-2;
 // rotations (an ulp or two each) never accumulates past this many ulps.
 constexpr int kTrigRefresh = 16;
 
-// (s, c) turned by d (rad), |d| < kSmallTurn.
-void rotate(double& s, double& c, double d) {
+// (s, c) turned by d (rad), |d| < kSmallTurn. The series in Horner form with the coefficients as
+// constants: divisions (a tenth of a substep's time when written d2 / 6 ...) are not needed.
+inline void rotate(double& s, double& c, double d) {
+    constexpr double s3 = -1.0 / 6.0, s5 = 1.0 / 120.0;
+    constexpr double c2 = -1.0 / 2.0, c4 = 1.0 / 24.0, c6 = -1.0 / 720.0;
     const double d2 = d * d;
-    const double sd = d * (1.0 - d2 / 6.0 * (1.0 - d2 / 20.0));
-    const double cd = 1.0 - d2 / 2.0 * (1.0 - d2 / 12.0 * (1.0 - d2 / 30.0));
+    const double sd = d + d * d2 * (s3 + d2 * s5);
+    const double cd = 1.0 + d2 * (c2 + d2 * (c4 + d2 * c6));
     const double s0 = s;
     s = s0 * cd + c * sd;
     c = c * cd - s0 * sd;
