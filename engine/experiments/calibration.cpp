@@ -60,6 +60,8 @@ const std::vector<std::pair<const char*, double ParticipantModel::*>>& fields() 
         {"lapse_duration_s", &ParticipantModel::lapse_duration_s},
         {"tilt_range_noise", &ParticipantModel::tilt_range_noise},
         {"edge_rate_noise", &ParticipantModel::edge_rate_noise},
+        {"path_threshold_mm", &ParticipantModel::path_threshold_mm},
+        {"path_noise_mm", &ParticipantModel::path_noise_mm},
     };
     return f;
 }

@@ -405,7 +405,8 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
         const json& m = root["participant"];
         r.only(m, "participant", {"force_angle_threshold_deg", "force_angle_noise_deg", "location_threshold_mm",
                                   "location_noise_mm", "stiffness_noise", "reaction_time_s", "reaction_time_sd_s", "stop_time_s",
-                                  "lapse_rate_hz", "lapse_duration_s", "tilt_range_noise", "edge_rate_noise"});
+                                  "lapse_rate_hz", "lapse_duration_s", "tilt_range_noise", "edge_rate_noise",
+                                  "path_threshold_mm", "path_noise_mm"});
         ParticipantModel& pm = p.participant;
         pm.force_angle_threshold_deg = r.number(m, "participant", "force_angle_threshold_deg", 0.0, 90.0, "deg", pm.force_angle_threshold_deg);
         pm.force_angle_noise_deg = r.number(m, "participant", "force_angle_noise_deg", 0.0, 90.0, "deg", pm.force_angle_noise_deg);
@@ -419,6 +420,8 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
         pm.lapse_duration_s = r.number(m, "participant", "lapse_duration_s", 0.0, 5.0, "s", pm.lapse_duration_s);
         pm.tilt_range_noise = r.number(m, "participant", "tilt_range_noise", 0.0, 1.0, "", pm.tilt_range_noise);
         pm.edge_rate_noise = r.number(m, "participant", "edge_rate_noise", 0.0, 10.0, "", pm.edge_rate_noise);
+        pm.path_threshold_mm = r.number(m, "participant", "path_threshold_mm", 0.0, 50.0, "mm", pm.path_threshold_mm);
+        pm.path_noise_mm = r.number(m, "participant", "path_noise_mm", 0.0, 50.0, "mm", pm.path_noise_mm);
     }
     return p;
 }

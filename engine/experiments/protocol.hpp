@@ -55,6 +55,14 @@ struct ParticipantModel {
     // threshold (2-3 mm, Weinstein 1968).
     double location_threshold_mm = 1.5;
     double location_noise_mm = 0.5;
+    // A bump felt through the arm (seed 002): the finger's height less its running mean over
+    // 24 mm of travel must rise this far (mm) for the person to count a protrusion. Haptic
+    // detection of a Gaussian bump on a flat surface needs 1 um at 0.15 mm wide to 8 mm at
+    // 240 mm, a power law of exponent 1.3 (Louw, Kappers & Koenderink 2000): about 0.3 mm at
+    // the 15-30 mm of seed 002's bumps. Counting one on a curved base needs more than detecting
+    // it on a flat one; 0.7 mm, sd 0.2 mm, is this model's choice (docs/experiments.md).
+    double path_threshold_mm = 0.7;
+    double path_noise_mm = 0.2;
     // Seed 004: relative noise on felt stiffness, chosen so that seed 004's e = 0.40 gives about
     // its Table I (stiffness discrimination alone has a Weber fraction of about 0.2; the field's
     // two diagonals are felt one after the other, each through the hand's own compliance).

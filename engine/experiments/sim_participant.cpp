@@ -78,23 +78,58 @@ void common_measures(const TrialTrace& tr, TrialOutcome& o, double t_end = 1e300
     for (std::size_t i = 0; i < tr.ticks.size(); i += 10) o.shown.push_back(tr.ticks[i]);
 }
 
-// Rise-and-fall excursions of `s` beyond +-h, counted either way round (a bump is + then -
-// for one cue and may be - then + for another). `felt(i)` says whether the person attended at
-// sample i: an excursion completed during a lapse goes uncounted.
+// Where rise-and-fall excursions of `s` beyond +-h complete (sample indices), counted either way
+// round (a bump is + then - for one cue and may be - then + for another): the family with more.
+// `felt(i)` says whether the person attended at sample i: an excursion completed during a lapse
+// is not perceived.
 template <class Felt>
-int excursions(const std::vector<double>& s, double h, Felt felt) {
-    int pm = 0, mp = 0, state = 0;
+std::vector<std::size_t> excursion_ends(const std::vector<double>& s, double h, Felt felt) {
+    std::vector<std::size_t> pm, mp;
+    int state = 0;
     for (std::size_t i = 0; i < s.size(); ++i) {
         const double v = s[i];
         if (v > h && state != 1) {
-            if (state == -1 && felt(i)) ++mp;
+            if (state == -1 && felt(i)) mp.push_back(i);
             state = 1;
         } else if (v < -h && state != -1) {
-            if (state == 1 && felt(i)) ++pm;
+            if (state == 1 && felt(i)) pm.push_back(i);
             state = -1;
         }
     }
-    return std::max(pm, mp);
+    return pm.size() >= mp.size() ? pm : mp;
+}
+
+// Protrusions of the finger's path: the spans [first, last] (sample indices) where `s` (its
+// height less its running mean, m) stays above 0 and peaks above h, where the path turns over
+// its peak (`turns_over(peak)`: a top, not the flank of a valley, which the running mean also
+// lifts above 0) and the person attended there (`felt(peak)`).
+template <class TurnsOver, class Felt>
+std::vector<std::pair<std::size_t, std::size_t>> protrusions(const std::vector<double>& s, double h, TurnsOver turns_over,
+                                                             Felt felt) {
+    std::vector<std::pair<std::size_t, std::size_t>> out;
+    for (std::size_t i = 0; i < s.size();) {
+        if (!(s[i] > 0.0)) {
+            ++i;
+            continue;
+        }
+        std::size_t j = i, peak = i;
+        for (; j < s.size() && s[j] > 0.0; ++j)
+            if (s[j] > s[peak]) peak = j;
+        if (s[peak] > h && turns_over(peak) && felt(peak)) out.emplace_back(i, j - 1);
+        i = j;
+    }
+    return out;
+}
+
+// Curvature (1/m, negative where the path turns downward) of the path (x[i], y[i]) at sample i,
+// from the samples `half` either side: the second difference over the slope's (1 + y'^2)^1.5.
+double path_curvature(const std::vector<double>& x, const std::vector<double>& y, std::size_t i, std::size_t half) {
+    const std::size_t a = i > half ? i - half : 0, b = std::min(x.size() - 1, i + half), m = (a + b) / 2;
+    const double run = x[b] - x[a];  // m
+    if (!(run > 0.0) || m == a || m == b) return 0.0;
+    const double slope = (y[b] - y[a]) / run;
+    const double second = ((y[b] - y[m]) / (x[b] - x[m]) - (y[m] - y[a]) / (x[m] - x[a])) / (0.5 * run);  // 1/m
+    return second / std::pow(1.0 + slope * slope, 1.5);
 }
 
 // A band of `s`: its running mean over `narrow` samples each side less that over `wide`: what
@@ -160,7 +195,7 @@ TrialOutcome bump_counting(const Protocol& p, const Condition& c, const PlannedT
     const ParticipantModel& m = p.participant;
     const Stimulus st = make_stimulus(p, c, t);
     const TrialTrace tr = run_servo_trial(st.scene, st.path, c.contact_location);
-    std::vector<double> angle, location, when;
+    std::vector<double> angle, location, height, travel, when;
     double last_angle = 0.0, last_loc = 0.0;
     const Lapses lapses = draw_lapses(m, st.slide_start, st.slide_end, rng);
     for (const TickRecord& r : tr.ticks) {
@@ -172,15 +207,47 @@ TrialOutcome bump_counting(const Protocol& p, const Condition& c, const PlannedT
         }
         angle.push_back(last_angle);
         location.push_back(last_loc);
+        height.push_back(r.finger.y);  // the arm feels where the finger is, in contact or not
+        travel.push_back(r.finger.x);
     }
-    // Cues over a bump's width (15-30 mm): means over 4 mm less means over 16 mm of travel.
+    // Cues over a bump's width (15-30 mm): means over 4 mm less means over 16 mm of travel; the
+    // finger's height less its mean over 24 mm (a bump lifts the finger over 30-50 mm of travel
+    // once the 20 mm pad rolls over it).
     const double per_m = kTrialRate / p.hand_speed;  // samples per m of travel
-    const auto narrow = static_cast<std::size_t>(0.002 * per_m), wide = static_cast<std::size_t>(0.008 * per_m);
-    // A bump whose swing completes during a lapse passes unfelt.
+    const auto narrow = static_cast<std::size_t>(0.002 * per_m), wide = static_cast<std::size_t>(0.008 * per_m),
+               path_wide = static_cast<std::size_t>(0.012 * per_m);
+    // A cue that completes during a lapse passes unfelt.
     const auto felt = [&](std::size_t i) { return !lapses.at(when[i]); };
-    int count = excursions(band(angle, narrow, wide), noisy(m.force_angle_threshold_deg, m.force_angle_noise_deg, rng), felt);
-    if (c.contact_location)
-        count = std::max(count, excursions(band(location, narrow, wide), noisy(m.location_threshold_mm, m.location_noise_mm, rng), felt));
+    // Bumps as objects (docs/experiments.md, "The simulated person"): each rise of the finger's
+    // path over a top is one bump, and so is every swing felt while the pad is still on it
+    // (within a pad length of its span). Swings of the force's direction (and of the contact
+    // element) felt elsewhere are bumps the arm did not notice; those within a pad length of each
+    // other are the same one (the element swings both ways over one bump, the force turns at its
+    // foot and at its top). A top: the path turns over it more sharply than a 50 mm radius, over
+    // +-8 mm of travel (a bump's top, rounded by the 20 mm pad, turns the finger at 24-35 mm).
+    const auto top_half = static_cast<std::size_t>(0.008 * per_m);
+    const auto turns_over = [&](std::size_t i) { return path_curvature(travel, height, i, top_half) < -1.0 / 0.05; };
+    const auto bumps = protrusions(band(height, narrow, path_wide), noisy(m.path_threshold_mm, m.path_noise_mm, rng) * 1e-3,
+                                   turns_over, felt);
+    std::vector<std::size_t> swings =
+        excursion_ends(band(angle, narrow, wide), noisy(m.force_angle_threshold_deg, m.force_angle_noise_deg, rng), felt);
+    if (c.contact_location) {
+        const auto element =
+            excursion_ends(band(location, narrow, wide), noisy(m.location_threshold_mm, m.location_noise_mm, rng), felt);
+        swings.insert(swings.end(), element.begin(), element.end());
+    }
+    std::vector<double> elsewhere;  // m of travel
+    for (const std::size_t i : swings) {
+        const double x = travel[i];
+        const bool on_a_bump = std::any_of(bumps.begin(), bumps.end(), [&](const auto& b) {
+            return x >= travel[b.first] - p.pad_length && x <= travel[b.second] + p.pad_length;
+        });
+        if (!on_a_bump) elsewhere.push_back(x);
+    }
+    std::sort(elsewhere.begin(), elsewhere.end());
+    int count = static_cast<int>(bumps.size());
+    for (std::size_t k = 0; k < elsewhere.size(); ++k)
+        if (k == 0 || elsewhere[k] - elsewhere[k - 1] > p.pad_length) ++count;
     TrialOutcome o;
     common_measures(tr, o);
     o.small_bumps = st.small_bumps;

@@ -14,11 +14,14 @@
 //                      tips round the edge. The trial is run again with that overshoot and timed
 //                      from the start line (d from the edge) to the finish line; it fails if
 //                      contact breaks (seed 000).
-//   bump-counting      counts rise-and-fall excursions of the force's direction (and, with contact
-//                      location, of the element's position; the larger count) over a bump's width
-//                      (means over 4 mm of travel less means over 16 mm, which takes out the base
-//                      shape's slow turn) beyond a noisy threshold; a swing that completes
-//                      during a lapse is not counted; answers 0..4 (seed 002)
+//   bump-counting      counts the bumps felt through the arm: where the finger's height rises
+//                      above its mean over +-12 mm of travel by a noisy threshold and the path
+//                      turns over a top there (not the flank of a valley); the rise-and-fall
+//                      swings of the force's direction (and, with contact location, of the
+//                      element's position) over a bump's width (means over 4 mm of travel less
+//                      means over 16 mm) beyond their noisy thresholds are the same bump within a
+//                      pad length of such a rise, and bumps of their own elsewhere (one per pad
+//                      length); a rise or swing during a lapse is not felt; answers 0..4 (seed 002)
 //   curvature          the force direction's range over the slide, with noise, against the range
 //                      each height would give (arc_slope_range_deg): the nearest height (seed 003)
 //   surface-orientation the force's growth per mm along each downward diagonal, each with

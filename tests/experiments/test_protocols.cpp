@@ -17,6 +17,7 @@
 
 #include <cmath>
 #include <map>
+#include <map>
 #include <string>
 
 using namespace contactlab::experiments;
@@ -257,6 +258,54 @@ TEST_CASE("simulated participant: a person lapsing nearly all the time counts no
     CHECK(zeros(lapsing) >= 14);
 }
 
+TEST_CASE("simulated participant: on a flat base, without noise or lapses, every bump is counted once (seed 002)") {
+    // The person counts a bump where the finger's path rises and turns over a top, and takes the
+    // force's and the contact element's swings within a pad length of it as the same bump
+    // (sim_participant.hpp). On a flat base nothing else rises: with every threshold at its mean
+    // and no lapses the answer is the number of bumps, whether one or four, small or large. The
+    // counters that read only the swings got 36 % / 31 % here: a small bump turns the force by
+    // less than the threshold, and the element swings both ways over each bump. Bumps closer
+    // than a pad length (they may be 15 mm apart) can still read as one: 95 % is asked, not all.
+    Protocol p = load_protocol(protocol_path("002-bump-counting.json"));
+    p.base_span = 0.0;
+    p.trials = 30;
+    p.warmup = 0;
+    p.participant.force_angle_noise_deg = 0.0;
+    p.participant.location_noise_mm = 0.0;
+    p.participant.path_noise_mm = 0.0;
+    p.participant.lapse_rate_hz = 0.0;
+    TempDir dir;
+    const ResultsTable t = run_one(p, dir, "flat.csv");
+    std::map<std::string, std::pair<int, int>> by_condition;  // correct, trials
+    for (const auto& row : t.rows) {
+        auto& cell = by_condition[row[*t.column("condition")]];
+        cell.first += row[*t.column("correct")] == "1";
+        cell.second += 1;
+    }
+    REQUIRE(by_condition.size() == 2);
+    for (const auto& [condition, cell] : by_condition) {
+        CAPTURE(condition);
+        CAPTURE(cell.first);
+        REQUIRE(cell.second == 30);
+        CHECK(cell.first >= 29);  // 95 % of 30, rounded up
+    }
+}
+
+TEST_CASE("protocols: seed 002 on a 20 mm base is the shipped protocol with only the base's span changed") {
+    // The seed's text says 20 cm; 002-bump-counting-20mm.json reads it as 20 mm (docs/experiments.md).
+    const Protocol a = load_protocol(protocol_path("002-bump-counting.json"));
+    const Protocol b = load_protocol(protocol_path("002-bump-counting-20mm.json"));
+    CHECK(a.base_span == 0.20);
+    CHECK(b.base_span == 0.02);
+    CHECK(b.trials == a.trials);
+    CHECK(b.warmup == a.warmup);
+    CHECK(b.conditions.size() == a.conditions.size());
+    CHECK(b.small_bump == a.small_bump);
+    CHECK(b.large_bump == a.large_bump);
+    CHECK(b.traced_length == a.traced_length);
+    CHECK(b.hand_speed == a.hand_speed);
+}
+
 TEST_CASE("protocols: seed 002's base shape spans bumps.base_span, 0 a flat line, out of range refused") {
     // The base shape is scaled to span base_span vertically over the traced length (haptics/
     // stimuli.hpp): with no bumps the contour's points span exactly that, 0 leaves it flat.
@@ -372,7 +421,7 @@ TEST_CASE("protocols: answers are checked against what each task can answer and 
     CHECK_THROWS_WITH_AS(parse_protocol(proto("curvature", "[0.01, 0.02]", R"(["10", "25"])", R"(, "motion": "A")"), "p.json"),
                          "p.json: answers: curvature answers are the stimuli's heights in mm: \"10\", \"20\"", ExperimentError);
     // Every shipped protocol passes.
-    for (const char* f : {"000-contour-following.json", "002-bump-counting.json", "003-curvature.json", "003-curvature-cld.json",
-                          "004-surface-orientation.json"})
+    for (const char* f : {"000-contour-following.json", "002-bump-counting.json", "002-bump-counting-20mm.json", "003-curvature.json",
+                          "003-curvature-cld.json", "004-surface-orientation.json", "edge-sharpness.json"})
         CHECK_NOTHROW(load_protocol(protocol_path(f)));
 }
