@@ -369,7 +369,7 @@ TEST_CASE("passivity: every shipped protocol runs two simulated participants wit
         const char* file;
         double speed;  // m/s; 0: the protocol's
     };
-    for (const Case c : {Case{"002-bump-counting.json", 0.0}, Case{"002-bump-counting.json", 0.10},
+    for (const Case c : {Case{"002-bump-counting.json", 0.0}, Case{"002-bump-counting.json", 0.10}, Case{"002-bump-counting-20mm.json", 0.0},
                          Case{"000-contour-following.json", 0.0}, Case{"003-curvature-cld.json", 0.0},
                          Case{"004-surface-orientation.json", 0.0}}) {
         Protocol p = load_protocol(protocol_path(c.file));
