@@ -6,13 +6,15 @@
 
 namespace contactlab::drivers::sim {
 
-void PlanarArm::jacobian(double q1, double q2, double J[2][2]) const {
-    const double s1 = std::sin(q1), c1 = std::cos(q1);
-    const double s12 = std::sin(q1 + q2), c12 = std::cos(q1 + q2);
+void PlanarArm::jacobian_from(double s1, double c1, double s12, double c12, double J[2][2]) const {
     J[0][0] = -p_.l1 * s1 - p_.l2 * s12;
     J[0][1] = -p_.l2 * s12;
     J[1][0] = p_.l1 * c1 + p_.l2 * c12;
     J[1][1] = p_.l2 * c12;
+}
+
+Vec2 PlanarArm::endpoint_from(double s1, double c1, double s12, double c12) const {
+    return p_.base + Vec2{p_.l1 * c1 + p_.l2 * c12, p_.l1 * s1 + p_.l2 * s12};
 }
 
 void PlanarArm::update_trig() {
@@ -53,20 +55,12 @@ void PlanarArm::turn_trig(double d1, double d12) {
     rotate(s12_, c12_, d12);
 }
 
-void PlanarArm::jacobian_now(double J[2][2]) const {
-    J[0][0] = -p_.l1 * s1_ - p_.l2 * s12_;
-    J[0][1] = -p_.l2 * s12_;
-    J[1][0] = p_.l1 * c1_ + p_.l2 * c12_;
-    J[1][1] = p_.l2 * c12_;
-}
+void PlanarArm::jacobian_now(double J[2][2]) const { jacobian_from(s1_, c1_, s12_, c12_, J); }
 
-Vec2 PlanarArm::endpoint() const {
-    return p_.base + Vec2{p_.l1 * c1_ + p_.l2 * c12_, p_.l1 * s1_ + p_.l2 * s12_};
-}
+Vec2 PlanarArm::endpoint() const { return endpoint_from(s1_, c1_, s12_, c12_); }
 
 Vec2 PlanarArm::endpoint_of(double q1, double q2) const {
-    return p_.base + Vec2{p_.l1 * std::cos(q1) + p_.l2 * std::cos(q1 + q2),
-                          p_.l1 * std::sin(q1) + p_.l2 * std::sin(q1 + q2)};
+    return endpoint_from(std::sin(q1), std::cos(q1), std::sin(q1 + q2), std::cos(q1 + q2));
 }
 
 bool PlanarArm::place_at(Vec2 x) {
@@ -106,13 +100,14 @@ const PlanarArm::MeasuredTrig& PlanarArm::measured_trig() const {
 Vec2 PlanarArm::measured_endpoint() const {
     // endpoint_of at the quantised angles, from their kept sines.
     const MeasuredTrig& m = measured_trig();
-    return p_.base + Vec2{p_.l1 * m.c1 + p_.l2 * m.c12, p_.l1 * m.s1 + p_.l2 * m.s12};
+    return endpoint_from(m.s1, m.c1, m.s12, m.c12);
 }
 
 void PlanarArm::command_force(Vec2 f) {
     // The controller only knows the measured angles, so J is taken there.
     const MeasuredTrig& m = measured_trig();
-    const double J[2][2] = {{-p_.l1 * m.s1 - p_.l2 * m.s12, -p_.l2 * m.s12}, {p_.l1 * m.c1 + p_.l2 * m.c12, p_.l2 * m.c12}};
+    double J[2][2];
+    jacobian_from(m.s1, m.c1, m.s12, m.c12, J);
     const double t1 = J[0][0] * f.x + J[1][0] * f.y;
     const double t2 = J[0][1] * f.x + J[1][1] * f.y;
     tau1_ = std::clamp(t1, -p_.max_torque, p_.max_torque);
@@ -185,7 +180,7 @@ double PlanarArm::min_cartesian_damping(Vec2 lo, Vec2 hi) const {
             const Vec2 x{lo.x + (hi.x - lo.x) * i / 8.0, lo.y + (hi.y - lo.y) * j / 8.0};
             if (!probe.place_at(x)) continue;
             double J[2][2];
-            probe.jacobian(probe.q1_, probe.q2_, J);
+            probe.jacobian_now(J);  // place_at took the sines at the placed angles
             // Cartesian damping D = B J^-T J^-1 = B (J J^T)^-1: smallest eigenvalue is
             // B / (largest eigenvalue of J J^T).
             const double a = J[0][0] * J[0][0] + J[0][1] * J[0][1];

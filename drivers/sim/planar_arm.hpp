@@ -56,7 +56,10 @@ public:
     const PlanarArmParams& params() const { return p_; }
 
 private:
-    void jacobian(double q1, double q2, double J[2][2]) const;
+    // J (m per rad) and the endpoint (m) from sines and cosines of q1 and q1 + q2: the one
+    // formula for the true state, the measured angles and any others.
+    void jacobian_from(double s1, double c1, double s12, double c12, double J[2][2]) const;
+    Vec2 endpoint_from(double s1, double c1, double s12, double c12) const;
     void jacobian_now(double J[2][2]) const;  // at the true state, from the stored sines
     void update_trig();                       // after q1_ or q2_ changed
     void turn_trig(double d1, double d12);    // after a substep turned q1_ by d1, q1_ + q2_ by d12 (rad)
