@@ -21,9 +21,10 @@ experiments::Condition with_contact_location(const char* name) {
     return c;
 }
 
-// Seed 002's protocol as shipped (scenes/experiments/002-bump-counting.json): R 20 mm and 1300
-// N/m where it differs from experiments::Protocol's defaults (L 20 mm, 1.5 N, bumps 3 and 18 mm
-// over 18.4 cm, pressed 3 mm), with contact location.
+// Seed 002's protocol on the text's 20 cm base (scenes/experiments/002-bump-counting-20cm.json,
+// the base whose steep flanks turn the finger most): R 20 mm and 1300 N/m where it differs from
+// experiments::Protocol's defaults (L 20 mm, 1.5 N, bumps 3 and 18 mm over 18.4 cm, pressed 3 mm,
+// base span 20 cm), with contact location.
 experiments::Protocol seed_002(double speed) {
     experiments::Protocol p;
     p.task = experiments::Task::bump_counting;

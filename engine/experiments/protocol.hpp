@@ -163,8 +163,9 @@ struct Protocol {
     // The hand: speed along the surface (m/s), press depth below it (m).
     double hand_speed = 0.05, hand_press = 0.003;
     // Seed 002's stimuli: bump heights (m) and the traced length (m); the base shape's vertical
-    // span over that length (m; the seed's 20 cm: its turns are then as sharp as a small bump's
-    // top, docs/experiments.md).
+    // span over that length (m). The default is the seed's text, 20 cm: its turns are then as
+    // sharp as a small bump's top. The shipped 002-bump-counting.json sets 20 mm, a slowly-varying
+    // base under the bumps (docs/experiments.md says why).
     double small_bump = 0.003, large_bump = 0.018, traced_length = 0.184, base_span = 0.20;
     double chord = 0.30;           // seed 003: the arc's chord (m)
     double finish_depth = 0.06;    // seed 000: the finish line below the block's top (m)
