@@ -4,6 +4,7 @@
 #include "engine/experiments/results_table.hpp"
 #include "engine/experiments/sha256.hpp"
 #include "engine/experiments/trial_plan.hpp"
+#include "haptics/parameter_limits.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -268,7 +269,7 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
         r.fail("", std::string("invalid JSON: ") + e.what());
     }
     r.only(root, "", {"format", "version", "name", "seed", "task", "conditions", "stimuli", "repetitions", "trials", "warmup",
-                      "repeat_invalid", "answers", "hand", "finger", "force", "bumps", "arc", "block", "edge", "procedure", "participant",
+                      "repeat_invalid", "answers", "hand", "finger", "force", "curves", "bumps", "arc", "block", "edge", "procedure", "participant",
                       "device"});
     if (r.text(r.need(root, "", "format"), "format") != "contactlab experiment protocol")
         r.fail("format", "expected \"contactlab experiment protocol\"");
@@ -373,6 +374,19 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
         r.only(root["force"], "force", {"stiffness", "max_force"});
         p.stiffness = r.number(root["force"], "force", "stiffness", 10.0, 1e5, "N/m", p.stiffness);
         p.max_force = r.number(root["force"], "force", "max_force", 0.01, 100.0, "N", p.max_force);
+    }
+    if (root.contains("curves")) {
+        r.only(root["curves"], "curves", {"mode", "tolerance"});
+        const nlohmann::json& c = root["curves"];
+        const std::string mode = r.text(r.need(c, "curves", "mode"), "curves.mode");
+        if (mode == "exact") {
+            p.curves.mode = CurveMode::exact;
+        } else if (mode == "flatten") {
+            p.curves.mode = CurveMode::flatten;
+        } else {
+            r.fail("curves.mode", "unknown curve mode \"" + mode + "\" (expected \"exact\" or \"flatten\")");
+        }
+        p.curves.tolerance = r.number(c, "curves", "tolerance", limits::kMinCurveTolerance, limits::kMaxCurveTolerance, "m", p.curves.tolerance);
     }
     auto only_for = [&](const char* key, Task t) {
         if (root.contains(key) && p.task != t) r.fail(key, std::string("only for the ") + to_string(t) + " task");

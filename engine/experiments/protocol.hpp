@@ -6,6 +6,7 @@
 #pragma once
 
 #include "engine/experiments/psychometric.hpp"
+#include "haptics/scene.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -172,6 +173,10 @@ struct Protocol {
     double finger_radius = 0.026, pad_length = 0.020;  // m
     double stiffness = 1000.0;     // N/m (seeds 000, 002, 003)
     double max_force = 1.5;        // N
+    // How the stimuli's curves (seed 002's quadratic Beziers) are rendered: exact by default; a
+    // protocol may ask for flattened chords within a tolerance (m), a faster approximation whose
+    // error and speed docs/experiments.md gives. Lines and arcs are exact either way.
+    CurveDef curves;
     // Edge sharpness: the reference edge's radius (m) and the slope of the faces either side of
     // the edge (deg from horizontal); the stimulus is the comparison's radius less the
     // reference's, in mm.

@@ -73,7 +73,9 @@ drivers::HandPath slide_path(const SurfaceProfile& pts, double x0, double x1, do
     return drivers::HandPath(std::move(out));
 }
 
-void set_finger_and_force(Scene& s, const Protocol& p) {
+// What the protocol sets of how a stimulus is rendered: the pad, the force, and the curves' mode.
+void set_rendering(Scene& s, const Protocol& p) {
+    s.curves = p.curves;  // exact unless the protocol asks for flattened curves
     s.finger.radius = p.finger_radius;
     s.finger.length = p.pad_length;
     s.force.stiffness = p.stiffness;
@@ -101,7 +103,7 @@ Stimulus make_edge_stimulus(const Protocol& p, double radius) {
     const StageTimer timer(&TrialProfile::stimulus);
     Stimulus st;
     st.scene = generate_edge(radius, p.edge_slope_deg * kPi / 180.0, 0.05);
-    set_finger_and_force(st.scene, p);
+    set_rendering(st.scene, p);
     const SurfaceProfile pts = profile_of(surface_points(st.scene));
     st.path = slide_path(pts, -0.03, 0.03, p.finger_radius, p.hand_speed, p.hand_press, st.slide_start, st.slide_end);
     return st;
@@ -128,7 +130,7 @@ Stimulus make_stimulus(const Protocol& p, const Condition& c, const PlannedTrial
     switch (p.task) {
         case Task::contour_following: {
             st.scene = generate_block(t.stimulus);
-            set_finger_and_force(st.scene, p);
+            set_rendering(st.scene, p);
             drivers::BlockTaskParams bp;
             bp.finger_radius = p.finger_radius;
             bp.d = t.stimulus;
@@ -152,7 +154,7 @@ Stimulus make_stimulus(const Protocol& p, const Condition& c, const PlannedTrial
             def.length = p.traced_length;
             def.base_span = p.base_span;
             st.scene = generate_bumps(def).scene;
-            set_finger_and_force(st.scene, p);
+            set_rendering(st.scene, p);
             const SurfaceProfile pts = profile_of(surface_points(st.scene));
             st.path = slide_path(pts, 0.01, p.traced_length - 0.01, p.finger_radius, p.hand_speed, p.hand_press,
                                  st.slide_start, st.slide_end);
@@ -160,7 +162,7 @@ Stimulus make_stimulus(const Protocol& p, const Condition& c, const PlannedTrial
         }
         case Task::curvature: {
             st.scene = generate_arc(p.chord, t.stimulus);
-            set_finger_and_force(st.scene, p);
+            set_rendering(st.scene, p);
             const SurfaceProfile pts = profile_of(surface_points(st.scene));
             const double x0 = curvature_slide_start(p, c);
             st.path = slide_path(pts, x0, -x0, p.finger_radius, p.hand_speed, p.hand_press, st.slide_start, st.slide_end);
@@ -171,7 +173,7 @@ Stimulus make_stimulus(const Protocol& p, const Condition& c, const PlannedTrial
             Contour floor;
             floor.segments.push_back(LineSegment{{-0.05, 0.0}, {0.05, 0.0}});
             s.contours.push_back(floor);
-            set_finger_and_force(s, p);
+            set_rendering(s, p);
             ForceLaw& law = s.force.law;
             law.model = ForceModel::ellipsoid;
             law.k_tangential = tangential_stiffness_from(c.total_stiffness, c.eccentricity);
