@@ -29,6 +29,23 @@ SurfaceProfile profile_of(std::vector<Vec2> pts) {
 // over without a square root: sqrt(r * r - d * d) <= sqrt(r * r) = `reach_max` for every point's
 // d, by the same monotonicity. On seed 002's steep base shape most blocks within r lie on the
 // lower side and go this way (the square roots had been most of a hand path's time).
+namespace {
+
+// True when a point at height y (m), whose reach is sqrt(t) with t = r^2 - dx^2 (m^2, as the
+// caller computed it), certainly rises no higher than `best` (m): y + sqrt(t) would not exceed it.
+// With D = best - y > 0 (d is its rounding), t < d^2 (1 - 1e-9) gives sqrt(t) < D (1 - 0.5e-9 +
+// 4 ulp) even after every rounding of d, d^2, the product and the square root itself, so
+// y + sqrt(t) < best exactly, and the rounded sum, rounding monotonically toward a double no
+// larger than best, is no larger than best either. One multiply instead of a square root: most
+// points under a resting pad lie well below the circle through the one it rests on. (d above a
+// picometre keeps d^2 clear of subnormals, where the relative bound would fail.)
+bool certainly_below(double y, double t, double best) {
+    const double d = best - y;  // m
+    return d > 1e-12 && t < d * d * (1.0 - 1e-9);
+}
+
+}  // namespace
+
 double resting_height(const SurfaceProfile& s, double x, double r, std::size_t& hint) {
     constexpr std::size_t B = SurfaceProfile::kBlock;
     const double margin = 1e-9;  // m
@@ -38,11 +55,14 @@ double resting_height(const SurfaceProfile& s, double x, double r, std::size_t& 
                            s.pts.begin();  // one past the last point with q.x <= x + r + margin
     double best = -1e9;
     std::size_t best_at = hint;
+    const double reach_max = std::sqrt(r * r);  // m, no smaller than any point's reach
     auto scan = [&](std::size_t a, std::size_t b) {
         for (std::size_t i = a; i < b; ++i) {
             const double dx = s.pts[i].x - x;
             if (std::abs(dx) <= r) {
-                const double h = s.pts[i].y + std::sqrt(r * r - dx * dx);
+                const double t = r * r - dx * dx;  // m^2
+                if (certainly_below(s.pts[i].y, t, best)) continue;
+                const double h = s.pts[i].y + std::sqrt(t);
                 if (h > best) best = h, best_at = i;
             }
         }
@@ -54,7 +74,6 @@ double resting_height(const SurfaceProfile& s, double x, double r, std::size_t& 
     scan(std::max(lo, first * B), std::min(hi, (first + 1) * B));
     // Every point of a block is at least `gap` from x (the same rounded subtraction as its dx), so
     // none rises above the block's top + sqrt(r^2 - gap^2).
-    const double reach_max = std::sqrt(r * r);  // m, no smaller than any point's reach
     for (std::size_t k = lo / B; k * B < hi; ++k) {
         if (k % SurfaceProfile::kRun == 0 && s.run_top[k / SurfaceProfile::kRun] + reach_max <= best) {
             k += SurfaceProfile::kRun - 1;  // the whole run is too low (the hint's block included: it was scanned)
@@ -63,8 +82,10 @@ double resting_height(const SurfaceProfile& s, double x, double r, std::size_t& 
         if (k == first || s.block_top[k] + reach_max <= best) continue;
         const std::size_t a = std::max(lo, k * B), b = std::min(hi, (k + 1) * B);
         const double gap = s.pts[b - 1].x < x ? x - s.pts[b - 1].x : s.pts[a].x > x ? s.pts[a].x - x : 0.0;  // m
-        const double reach = gap >= r ? 0.0 : std::sqrt(r * r - gap * gap);  // m
-        if (s.block_top[k] + reach > best) scan(a, b);
+        if (gap > r) continue;  // every point of the block fails the scan's |dx| <= r
+        const double t = r * r - gap * gap;  // m^2
+        if (certainly_below(s.block_top[k], t, best) || s.block_top[k] + std::sqrt(t) <= best) continue;
+        scan(a, b);
     }
     hint = best_at;
     return best;
