@@ -4,6 +4,15 @@
 #include "haptics/bezier.hpp"
 
 namespace contactlab {
+
+const char* curve_mode_name(CurveMode mode) { return mode == CurveMode::exact ? "exact" : "flatten"; }
+
+std::optional<CurveMode> curve_mode_named(std::string_view name) {
+    if (name == "exact") return CurveMode::exact;
+    if (name == "flatten") return CurveMode::flatten;
+    return std::nullopt;
+}
+
 namespace {
 // +1 for a counter-clockwise arc, -1 for a clockwise one.
 double arc_direction(const ArcSegment& a) { return a.end_angle >= a.start_angle ? 1.0 : -1.0; }

@@ -10,7 +10,9 @@
 #include "haptics/vec2.hpp"
 
 #include <array>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -98,6 +100,11 @@ struct CurveDef {
     CurveMode mode = CurveMode::exact;
     double tolerance = 1e-4;  // m, used by flatten only
 };
+
+// The names scene files, protocols and command lines give the curve modes: "exact", "flatten".
+const char* curve_mode_name(CurveMode mode);
+// The mode a name stands for; nullopt for any other name.
+std::optional<CurveMode> curve_mode_named(std::string_view name);
 
 // Which contact location l_d a tick with several contacts reports (proxy.hpp).
 enum class ContactRule {

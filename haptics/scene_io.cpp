@@ -275,13 +275,9 @@ Scene read_scene(const json& root) {
         expect_object(*it, "curves");
         reject_unknown_keys(*it, "curves", {"mode", "tolerance"});
         const std::string mode = read_string(*it, "curves", "mode");
-        if (mode == "exact") {
-            s.curves.mode = CurveMode::exact;
-        } else if (mode == "flatten") {
-            s.curves.mode = CurveMode::flatten;
-        } else {
-            fail("curves.mode", "unknown curve mode \"" + mode + "\" (expected \"exact\" or \"flatten\")");
-        }
+        const std::optional<CurveMode> named = curve_mode_named(mode);
+        if (!named) fail("curves.mode", "unknown curve mode \"" + mode + "\" (expected \"exact\" or \"flatten\")");
+        s.curves.mode = *named;
         if (it->contains("tolerance")) s.curves.tolerance = read_number(*it, "curves", "tolerance");
     }
 
@@ -611,7 +607,7 @@ std::string scene_to_json_text(const Scene& s) {
         root["force"]["friction"] = {{"static", law.mu_static}, {"dynamic", law.mu_dynamic}};
     root["contact_location"] = {
         {"rule", s.contact_location.rule == ContactRule::centroid ? "centroid" : "least_displacement"}};
-    root["curves"] = {{"mode", s.curves.mode == CurveMode::exact ? "exact" : "flatten"},
+    root["curves"] = {{"mode", curve_mode_name(s.curves.mode)},
                       {"tolerance", s.curves.tolerance}};
     if (s.wearable.has_finger_stiffness) {
         json rows = json::array();

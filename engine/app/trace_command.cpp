@@ -24,13 +24,9 @@ void apply_overrides(Scene& scene, const SceneOverrides& o) {
     note("--tolerance", o.tolerance);
     if (o.curve_mode) {
         given += std::string(given.empty() ? "" : ", ") + "--curve-mode " + *o.curve_mode;
-        if (*o.curve_mode == "exact") {
-            scene.curves.mode = CurveMode::exact;
-        } else if (*o.curve_mode == "flatten") {
-            scene.curves.mode = CurveMode::flatten;
-        } else {
-            throw SceneError("command-line options (" + given + "): expected exact or flatten");
-        }
+        const std::optional<CurveMode> named = curve_mode_named(*o.curve_mode);
+        if (!named) throw SceneError("command-line options (" + given + "): expected exact or flatten");
+        scene.curves.mode = *named;
     }
     if (o.tolerance) scene.curves.tolerance = *o.tolerance;
     note("--k-tangential", o.k_tangential);

@@ -203,7 +203,7 @@ void pareto(const BenchOptions& o, BenchResults& r) {
         if (mode == CurveMode::flatten) scene.curves = {CurveMode::flatten, tol};
         const Environment env = build_environment(scene);
         ParetoRow row;
-        row.mode = mode == CurveMode::exact ? "exact" : "flatten";
+        row.mode = curve_mode_name(mode);
         row.tolerance = tol;
         row.env_segments = static_cast<int>(env.segments.size());
         Proxy p(env, proxy_def_of(scene));

@@ -182,8 +182,9 @@ bool Script::run(EditorState& s, const Line& line, double now) {
             s.snap_grid = s.grid_mm > 0.0;
             return true;
         } else if (n == "curves") {
-            if (w[2] != "exact" && w[2] != "flatten") throw ScriptError("curves: exact or flatten");
-            sc.curves.mode = w[2] == "exact" ? CurveMode::exact : CurveMode::flatten;
+            const std::optional<CurveMode> named = curve_mode_named(w[2]);
+            if (!named) throw ScriptError("curves: exact or flatten");
+            sc.curves.mode = *named;
         } else if (is_tunable_parameter(n)) {
             // The Tuning panel's path (parameter_edit.hpp): a refused value changes nothing and
             // is said in the status line; check the outcome with `expect error 0|1`.

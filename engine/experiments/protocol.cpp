@@ -379,13 +379,9 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
         r.only(root["curves"], "curves", {"mode", "tolerance"});
         const nlohmann::json& c = root["curves"];
         const std::string mode = r.text(r.need(c, "curves", "mode"), "curves.mode");
-        if (mode == "exact") {
-            p.curves.mode = CurveMode::exact;
-        } else if (mode == "flatten") {
-            p.curves.mode = CurveMode::flatten;
-        } else {
-            r.fail("curves.mode", "unknown curve mode \"" + mode + "\" (expected \"exact\" or \"flatten\")");
-        }
+        const std::optional<CurveMode> named = curve_mode_named(mode);  // the scene format's names
+        if (!named) r.fail("curves.mode", "unknown curve mode \"" + mode + "\" (expected \"exact\" or \"flatten\")");
+        p.curves.mode = *named;
         p.curves.tolerance = r.number(c, "curves", "tolerance", limits::kMinCurveTolerance, limits::kMaxCurveTolerance, "m", p.curves.tolerance);
     }
     auto only_for = [&](const char* key, Task t) {
