@@ -59,6 +59,10 @@ constexpr double kWarmStartFloor = 2e-5;
 // ...and the path must stay this far (m) inside it: far above every tolerance a piece is judged
 // with (kOnTolerance, kBoxSlack), far below the distances the proxy moves.
 constexpr double kWarmStartMargin = 1e-6;
+// The warm gather is kept for reuse over a disc at most this much wider (m) and a range of angles
+// at most this much wider each way (rad; the pad's end moves R times it): Proxy::gather_warm.
+constexpr double kMaxKeptReach = 1e-3;
+constexpr double kMaxKeptTurn = 1e-2;
 // The walk rejects pieces far from a step by box, first by the box of each run of this many
 // consecutive pieces: pieces come in segment order, so a run lies along a few neighbouring
 // segments and its box is tight. Sliding over a dense contour a tick takes ~30 steps, each of which
@@ -164,6 +168,7 @@ ProxyDef proxy_def_of(const Scene& scene) {
 
 Proxy::Proxy(const Environment& env, const ProxyDef& def) : env_(&env), def_(def) {
     segment_ids_.reserve(1024);
+    kept_.ids.reserve(1024);
     pieces_.reserve(4096);
     piece_boxes_.reserve(4096);
     group_boxes_.reserve(4096 / 8 + 1);
@@ -215,6 +220,7 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
     const double reach = glm::length(proxy_ - finger) + max_push;
     const Vec2 start = proxy_;
     clock_.start(def_.profile);
+    work_.kept_gather = false;
     work_.built_segments = 0;  // (with validation on, its reference run's builds count too)
     // Validation: the tick the slow way first (every segment within reach, every scan over all
     // pieces), the reference the shortcuts below must match bit for bit.
@@ -244,12 +250,13 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
     const bool local_allowed = def_.use_index && def_.law.contacts != ContactForce::sum && !gathers_all(phi_, phi);
     const WarmDisc warm = local_allowed ? warm_start_disc(finger, max_push) : WarmDisc{start, reach};
     if (warm.radius < reach) {
-        gather_near(warm.center, phi_, phi, warm.radius);
+        const WarmDisc disc = gather_warm(warm, phi, turn);
         clock_.lap(stages_.gather);
-        move_proxy(finger, phi, turn, max_push, start, warm.center);
-        work_.warm_start = path_extent_ + 2.0 * max_push + kWarmStartMargin <= warm.radius;
+        move_proxy(finger, phi, turn, max_push, start, disc.center);
+        work_.warm_start = path_extent_ + 2.0 * max_push + kWarmStartMargin <= disc.radius;
         if (!work_.warm_start) proxy_ = start;
     }
+    if (turn != 0.0) recent_turn_ = dphi;
     if (!work_.warm_start) {
         gather_for_motion(finger, phi, reach + kOnTolerance);
         clock_.lap(stages_.gather);
@@ -317,6 +324,40 @@ Proxy::WarmDisc Proxy::warm_start_disc(Vec2 finger, double max_push) const {
                          glm::length(finger_motion - last_finger_motion_);
     return {proxy_ + 0.5 * last_motion_,
             0.5 * predicted + slack + kWarmStartFloor + 2.0 * max_push + kWarmStartMargin};
+}
+
+// segment_ids_ for a warm start within `warm` while the pad turns from phi_ by `turn` (rad), and
+// the disc they cover. The gather is made for a slightly wider disc and range of angles than asked
+// and kept: while later ticks' discs and turns lie inside them, their segments are the kept ones,
+// a superset of the segments their own gather would find. Same pieces near the path, so the same
+// walk, bit for bit (validation's reference walk checks it). Why: the tree's query was a tenth of
+// a seed 002 participant's time, for segments 2 mm long under a finger moving 50 um a tick.
+Proxy::WarmDisc Proxy::gather_warm(const WarmDisc& warm, double phi, double turn) {
+    // rad: the turn covers [from, from + |turn|]; without one, the tick's own angle (phi may be
+    // phi_ plus whole turns: the pieces are built at phi).
+    const double from = turn == 0.0 ? phi : phi_ + std::min(turn, 0.0);
+    const double width = std::abs(turn);
+    if (kept_.valid && glm::length(warm.center - kept_.disc.center) + warm.radius <= kept_.disc.radius) {
+        const double offset = wrap_pi(from - kept_.from);  // rad
+        if (offset >= 0.0 && offset + width <= kept_.width) {
+            segment_ids_.assign(kept_.ids.begin(), kept_.ids.end());
+            work_.kept_gather = true;
+            return kept_.disc;
+        }
+    }
+    // How much wider: at most the scene's shortest segment (so at most a segment more at each
+    // side of each strand of contour crossing the disc: a dense contour's walk pays for every
+    // piece more), a few times the warm disc (a handful of ticks of motion), kMaxKeptReach; and
+    // twice the last turn each way (a wrist turning steadily), at most kMaxKeptTurn.
+    const double extra = std::min({env_->min_feature, 4.0 * warm.radius, kMaxKeptReach});  // m
+    const double margin = std::min(2.0 * recent_turn_, kMaxKeptTurn);                          // rad
+    kept_.disc = WarmDisc{warm.center, warm.radius + extra};
+    kept_.from = from - margin;
+    kept_.width = width + 2.0 * margin;
+    gather_near(kept_.disc.center, kept_.from, kept_.from + kept_.width, kept_.disc.radius);
+    kept_.ids.assign(segment_ids_.begin(), segment_ids_.end());
+    kept_.valid = true;
+    return kept_.disc;
 }
 
 // Turns the pad from phi_ to phi (re-projecting) and walks the proxy from `start` toward the

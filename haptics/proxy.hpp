@@ -69,6 +69,8 @@ struct ProxyWork {
     // The warm-start gather about the last proxy sufficed (Proxy::update); false when the full
     // gather about the finger was used (the proxy went further than guessed, or summed forces).
     bool warm_start = false;
+    // The warm start's segments were those a recent tick gathered (Proxy::gather_warm), no query.
+    bool kept_gather = false;
 };
 
 // Where one update's time went, ns (ProxyDef::profile; all 0 when off). Each stage is the wall
@@ -134,7 +136,7 @@ public:
     // law keeps them. (The servo passes its slewed Ke and clamp every tick; dropping the pieces
     // each time made a 10-segment servo tick cost 3x the proxy's own.)
     void set_def(const ProxyDef& def) {
-        if (def.finger != def_.finger) built_valid_ = false;
+        if (def.finger != def_.finger) built_valid_ = kept_.valid = false;
         def_ = def;
     }
 
@@ -162,6 +164,9 @@ private:
         double radius = 0.0; // m
     };
     WarmDisc warm_start_disc(Vec2 finger, double max_push) const;
+    // segment_ids_ for a warm start within `warm` as the pad turns by `turn` (rad) to phi: a kept
+    // gather when one covers it, else a slightly wider one, kept (kept_).
+    WarmDisc gather_warm(const WarmDisc& warm, double phi, double turn);
     void move_proxy(Vec2 finger, double phi, double turn, double max_push, Vec2 start, Vec2 center);
     void note_path(Vec2 p);               // the motion visited p: widen path_extent_
     void note_path_box(const Aabb& box);  // ... every point of box
@@ -230,6 +235,16 @@ private:
     ProxyWork work_;              // this tick's, copied into out_
     StageClock clock_;            // ProxyDef::profile
     ProxyStages stages_;          // this tick's, copied into out_
+    // The last warm gather, kept for reuse (gather_warm): the segments whose pieces come within
+    // disc at any angle in [from, from + width] (rad).
+    struct KeptGather {
+        std::vector<int> ids;
+        WarmDisc disc;
+        double from = 0.0, width = 0.0;
+        bool valid = false;
+    };
+    KeptGather kept_;
+    double recent_turn_ = 0.0;  // rad, the size of the last tick's turn that was not 0
     // Warm start (Proxy::update): the centre of the gathered disc, and how far from it the path went (m).
     Vec2 path_center_{0.0};
     double path_extent_ = 0.0;

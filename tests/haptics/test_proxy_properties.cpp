@@ -306,6 +306,56 @@ TEST_CASE("in contact the index gathers every piece that matters: the same proxy
     }
 }
 
+TEST_CASE("a kept gather (slow slides, the angle stepping by encoder counts) moves the proxy as a search of every segment") {
+    // Proxy::gather_warm keeps a gather a little wider than asked, in space and in angle, and
+    // reuses it while later ticks' discs and turns fit inside. Slides at 1-5 cm/s pressed 0.5-3 mm
+    // in, the finger angle following a slow rocking quantised to 4,096 counts a turn (as the
+    // simulated rig's encoder), so many ticks reuse a gather, some of them while turning: the
+    // proxy, force and l_d must be bit for bit those of a proxy that builds every segment's pieces.
+    std::mt19937_64 rng(29);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const double count = kTwoPi / 4096.0;  // rad
+    const std::vector<Scene> scenes = index_test_scenes();
+    for (std::size_t scene_index = 0; scene_index < scenes.size(); ++scene_index) {
+        IndexedAndBrute pair(scenes[scene_index]);
+        Proxy& indexed = pair.indexed;
+        Proxy& brute = pair.brute;
+        const Vec2 start{-0.17, 0.06};
+        indexed.reset(start, 0.0);
+        brute.reset(start, 0.0);
+        double x = start.x, y = start.y, depth = 0.001, speed = 0.03;  // m, m, m, m/s
+        int contacts = 0, kept = 0, kept_turning = 0;
+        double last_phi = 0.0;
+        for (int k = 0; k < 6000; ++k) {
+            if (k % 500 == 0) speed = (u(rng) < 0.5 ? -1.0 : 1.0) * (0.01 + 0.04 * u(rng));
+            if (k % 300 == 0) depth = 0.0005 + 0.0025 * u(rng);
+            x = std::clamp(x + speed * 1e-3, -0.18, 0.18);
+            const double phi = std::floor(0.3 * std::sin(2.0 * kPi * k / 3000.0) / count + 0.5) * count;
+            // Pressed `depth` into the contour under the pad: below the last proxy, or lowered
+            // 0.5 mm a tick until it touches.
+            const ProxyOutput& last = brute.output();
+            y = last.contact ? last.proxy.y - depth : y - 0.0005;
+            const ProxyOutput a = indexed.update({x, y}, phi);
+            const ProxyOutput& b = brute.update({x, y}, phi);
+            REQUIRE(a.contact == b.contact);
+            contacts += a.contact ? 1 : 0;
+            kept += a.work.kept_gather ? 1 : 0;
+            kept_turning += a.work.kept_gather && phi != last_phi ? 1 : 0;
+            last_phi = phi;
+            CHECK(a.proxy == b.proxy);
+            CHECK(a.force == b.force);
+            CHECK(a.l_d == b.l_d);
+        }
+        CAPTURE(scene_index);
+        CAPTURE(contacts);
+        CAPTURE(kept);
+        CAPTURE(kept_turning);
+        CHECK(contacts > 4000);
+        CHECK(kept > contacts / 10);
+        CHECK(kept_turning > 20);
+    }
+}
+
 TEST_CASE("point finger: the proxy is the god-object on the contour itself with l = 0") {
     FingerShape point{FingerKind::point, 0.0, 0.0};
     ProxyRig rig(block_scene(), point);
