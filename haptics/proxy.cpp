@@ -63,6 +63,9 @@ constexpr double kWarmStartMargin = 1e-6;
 // at most this much wider each way (rad; the pad's end moves R times it): Proxy::gather_warm.
 constexpr double kMaxKeptReach = 1e-3;
 constexpr double kMaxKeptTurn = 1e-2;
+// ... and a turn larger than this (rad) keeps nothing: a kept range stays far below a half-turn,
+// where the gather's "shortest way between the two angles" would go round the other way.
+constexpr double kMaxKeptTurnSpan = 1.0;
 // The walk rejects pieces far from a step by box, first by the box of each run of this many
 // consecutive pieces: pieces come in segment order, so a run lies along a few neighbouring
 // segments and its box is tight. Sliding over a dense contour a tick takes ~30 steps, each of which
@@ -337,6 +340,11 @@ Proxy::WarmDisc Proxy::gather_warm(const WarmDisc& warm, double phi, double turn
     // phi_ plus whole turns: the pieces are built at phi).
     const double from = turn == 0.0 ? phi : phi_ + std::min(turn, 0.0);
     const double width = std::abs(turn);
+    if (width > kMaxKeptTurnSpan) {  // a large turn: gathered as asked, nothing kept
+        kept_.valid = false;
+        gather_near(warm.center, phi_, phi, warm.radius);
+        return warm;
+    }
     if (kept_.valid && glm::length(warm.center - kept_.disc.center) + warm.radius <= kept_.disc.radius) {
         const double offset = wrap_pi(from - kept_.from);  // rad
         if (offset >= 0.0 && offset + width <= kept_.width) {

@@ -310,8 +310,9 @@ TEST_CASE("a kept gather (slow slides, the angle stepping by encoder counts) mov
     // Proxy::gather_warm keeps a gather a little wider than asked, in space and in angle, and
     // reuses it while later ticks' discs and turns fit inside. Slides at 1-5 cm/s pressed 0.5-3 mm
     // in, the finger angle following a slow rocking quantised to 4,096 counts a turn (as the
-    // simulated rig's encoder), so many ticks reuse a gather, some of them while turning: the
-    // proxy, force and l_d must be bit for bit those of a proxy that builds every segment's pieces.
+    // simulated rig's encoder), now and then a 3.135 rad turn and back, so many ticks reuse a
+    // gather, some of them while turning: the proxy, force and l_d must be bit for bit those of a
+    // proxy that builds every segment's pieces.
     std::mt19937_64 rng(29);
     std::uniform_real_distribution<double> u(0.0, 1.0);
     const double count = kTwoPi / 4096.0;  // rad
@@ -330,7 +331,10 @@ TEST_CASE("a kept gather (slow slides, the angle stepping by encoder counts) mov
             if (k % 500 == 0) speed = (u(rng) < 0.5 ? -1.0 : 1.0) * (0.01 + 0.04 * u(rng));
             if (k % 300 == 0) depth = 0.0005 + 0.0025 * u(rng);
             x = std::clamp(x + speed * 1e-3, -0.18, 0.18);
-            const double phi = std::floor(0.3 * std::sin(2.0 * kPi * k / 3000.0) / count + 0.5) * count;
+            double phi = std::floor(0.3 * std::sin(2.0 * kPi * k / 3000.0) / count + 0.5) * count;
+            // Now and then a near half-turn for a tick, and back: the gather kept from before it
+            // must still serve (or not) as if nothing had happened.
+            if (k % 997 == 996) phi += 3.135;
             // Pressed `depth` into the contour under the pad: below the last proxy, or lowered
             // 0.5 mm a tick until it touches.
             const ProxyOutput& last = brute.output();
