@@ -9,13 +9,17 @@ HandPath::HandPath(std::vector<PathSample> samples) : samples_(std::move(samples
     if (samples_.empty()) throw HandPathError("hand path: no samples");
     for (std::size_t i = 1; i < samples_.size(); ++i)
         if (!(samples_[i].t > samples_[i - 1].t)) throw HandPathError("hand path: times must strictly increase");
+    slopes_.reserve(samples_.size() - 1);
+    for (std::size_t i = 1; i < samples_.size(); ++i) {
+        const PathSample& a = samples_[i - 1];
+        const PathSample& b = samples_[i];
+        slopes_.push_back((b.x - a.x) / (b.t - a.t));
+    }
 }
 
-PathPoint HandPath::at(double t) const noexcept {
+bool HandPath::interval(double t, double& u) const noexcept {
     const std::size_t n = samples_.size();
-    if (n == 0) return {};
-    if (!(t > samples_.front().t)) return {samples_.front().x, Vec2{0.0}, samples_.front().phi};
-    if (t >= samples_.back().t) return {samples_.back().x, Vec2{0.0}, samples_.back().phi};
+    if (n == 0 || !(t > samples_.front().t) || t >= samples_.back().t) return false;
     // The interval is the last sample at or before t (and before the last sample): found from the
     // cursor, stepping back or on, so a call a little behind the last one (a simulated device's
     // substeps ask for the hand at t and at t + h) costs a step, not a scan from sample 0.
@@ -24,9 +28,29 @@ PathPoint HandPath::at(double t) const noexcept {
     while (cursor_ + 1 < n - 1 && samples_[cursor_ + 1].t <= t) ++cursor_;
     const PathSample& a = samples_[cursor_];
     const PathSample& b = samples_[cursor_ + 1];
-    const double dt = b.t - a.t;
-    const double u = (t - a.t) / dt;
-    return {a.x + (b.x - a.x) * u, (b.x - a.x) / dt, a.phi + (b.phi - a.phi) * u};
+    u = (t - a.t) / (b.t - a.t);
+    return true;
+}
+
+PathPoint HandPath::at(double t) const noexcept {
+    if (samples_.empty()) return {};
+    double u = 0.0;
+    if (!interval(t, u)) {
+        const PathSample& end = t > samples_.front().t ? samples_.back() : samples_.front();
+        return {end.x, Vec2{0.0}, end.phi};
+    }
+    const PathSample& a = samples_[cursor_];
+    const PathSample& b = samples_[cursor_ + 1];
+    return {a.x + (b.x - a.x) * u, slopes_[cursor_], a.phi + (b.phi - a.phi) * u};
+}
+
+double HandPath::phi_at(double t) const noexcept {
+    if (samples_.empty()) return 0.0;
+    double u = 0.0;
+    if (!interval(t, u)) return (t > samples_.front().t ? samples_.back() : samples_.front()).phi;
+    const PathSample& a = samples_[cursor_];
+    const PathSample& b = samples_[cursor_ + 1];
+    return a.phi + (b.phi - a.phi) * u;
 }
 
 // The file is the finger-path CSV `contactlab trace` reads (haptics/finger_samples_csv.hpp): one

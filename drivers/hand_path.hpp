@@ -36,12 +36,21 @@ public:
     // Linear interpolation; before the first sample holds the first, after the last holds the
     // last (with zero velocity). Amortised O(1) for increasing t (a cursor), no allocation.
     PathPoint at(double t) const noexcept;
+    // at(t).phi alone, the same bits (a simulated finger's angle asks for it every substep).
+    double phi_at(double t) const noexcept;
     double start() const { return samples_.front().t; }
     double end() const { return samples_.back().t; }
     const std::vector<PathSample>& samples() const { return samples_; }
 
 private:
+    // The interval [t0, t1) at or before t and its fraction u = (t - t0) / (t1 - t0), from the
+    // cursor; false (and u untouched) outside the path, which at() and phi_at() hold.
+    bool interval(double t, double& u) const noexcept;
+
     std::vector<PathSample> samples_;
+    // Each interval's slope (m/s), (x1 - x0) / (t1 - t0) as at() returns it, divided once here: a
+    // simulated hand asks for the path every 0.1 ms substep, and the divisions were most of it.
+    std::vector<Vec2> slopes_;
     mutable std::size_t cursor_ = 0;
 };
 

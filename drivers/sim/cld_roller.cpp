@@ -6,10 +6,6 @@
 
 namespace contactlab::drivers::sim {
 
-namespace {
-constexpr double kTwoPi = 6.283185307179586;
-}
-
 void CldRoller::place_at(double l) {
     x_ = xe_ = std::clamp(l, -half_travel(), half_travel());
     v_ = ve_ = 0.0;
@@ -26,8 +22,8 @@ double CldRoller::measured() const {
 }
 
 void CldRoller::step(double h) {
-    const double n = kTwoPi / p_.lead;  // rad of motor per m of nut travel
-    const double mass = p_.rotor_inertia * n * n + p_.nut_mass;
+    const double n = n_;  // rad of motor per m of nut travel
+    const double mass = mass_;
     const double current = (volts_ - p_.torque_constant * n * v_) / p_.resistance;
     const double drive = p_.torque_constant * n * current - p_.viscous * v_;  // N
     // Stiction: a resting nut stays put until the drive exceeds the break-away force.

@@ -10,6 +10,8 @@
 // The motor encoder measures the nut (seed 000: "as measured by the motor's encoder").
 #pragma once
 
+#include "haptics/vec2.hpp"
+
 namespace contactlab::drivers::sim {
 
 // Identification (the seeds give the rig's figures, not its parts; each choice says what fixes it):
@@ -41,7 +43,8 @@ struct RollerParams {
 
 class CldRoller {
 public:
-    explicit CldRoller(const RollerParams& p) : p_(p) {}
+    explicit CldRoller(const RollerParams& p)
+        : p_(p), n_(kTwoPi / p.lead), mass_(p.rotor_inertia * n_ * n_ + p.nut_mass) {}
     void place_at(double l);                 // nut and element at l (m), at rest
     void set_voltage(double v);              // V, clamped to the rail
     void step(double h);                     // integrate h seconds
@@ -54,6 +57,9 @@ public:
 
 private:
     RollerParams p_;
+    // Fixed by the parameters, so made once (a division each 0.1 ms substep, otherwise):
+    double n_;     // rad of motor per m of nut travel
+    double mass_;  // kg, the rotor's inertia reflected through the screw, plus the nut
     double x_ = 0.0, v_ = 0.0;    // nut, m and m/s
     double xe_ = 0.0, ve_ = 0.0;  // element
     double volts_ = 0.0;

@@ -26,14 +26,14 @@ public:
     }
     // Advances the finger angle over h (s) toward the path's angle at time t (s).
     void step_phi(double t, double h) noexcept {
-        const double goal = path_.at(t).phi;
+        const double goal = path_.phi_at(t);
         if (h != gain_h_) {  // the substep is nearly always the last one: keep its gain (same bits)
             gain_h_ = h;
             gain_ = 1.0 - std::exp(-h / p_.phi_lag);
         }
         phi_ += (goal - phi_) * gain_;
     }
-    void reset(double t) noexcept { phi_ = path_.at(t).phi; }
+    void reset(double t) noexcept { phi_ = path_.phi_at(t); }
     double phi() const noexcept { return phi_; }
     const HandPath& path() const noexcept { return path_; }
     const HandParams& params() const noexcept { return p_; }
