@@ -35,10 +35,7 @@ bool HandPath::interval(double t, double& u) const noexcept {
 PathPoint HandPath::at(double t) const noexcept {
     if (samples_.empty()) return {};
     double u = 0.0;
-    if (!interval(t, u)) {
-        const PathSample& end = t > samples_.front().t ? samples_.back() : samples_.front();
-        return {end.x, Vec2{0.0}, end.phi};
-    }
+    if (!interval(t, u)) return {held(t).x, Vec2{0.0}, held(t).phi};
     const PathSample& a = samples_[cursor_];
     const PathSample& b = samples_[cursor_ + 1];
     return {a.x + (b.x - a.x) * u, slopes_[cursor_], a.phi + (b.phi - a.phi) * u};
@@ -47,7 +44,7 @@ PathPoint HandPath::at(double t) const noexcept {
 double HandPath::phi_at(double t) const noexcept {
     if (samples_.empty()) return 0.0;
     double u = 0.0;
-    if (!interval(t, u)) return (t > samples_.front().t ? samples_.back() : samples_.front()).phi;
+    if (!interval(t, u)) return held(t).phi;
     const PathSample& a = samples_[cursor_];
     const PathSample& b = samples_[cursor_ + 1];
     return a.phi + (b.phi - a.phi) * u;

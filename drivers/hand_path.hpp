@@ -46,6 +46,9 @@ private:
     // The interval [t0, t1) at or before t and its fraction u = (t - t0) / (t1 - t0), from the
     // cursor; false (and u untouched) outside the path, which at() and phi_at() hold.
     bool interval(double t, double& u) const noexcept;
+    // The sample held outside the path (samples_ not empty): the first before it (and for a NaN
+    // time), the last after it.
+    const PathSample& held(double t) const noexcept { return t > samples_.front().t ? samples_.back() : samples_.front(); }
 
     std::vector<PathSample> samples_;
     // Each interval's slope (m/s), (x1 - x0) / (t1 - t0) as at() returns it, divided once here: a

@@ -19,16 +19,6 @@ SurfaceProfile profile_of(std::vector<Vec2> pts) {
     return p;
 }
 
-// The maximum is taken without scanning every point (that scan, O(points) a sample, was half of
-// a simulated trial's time), and it is the same maximum: only points within r of x (+ 1 nm; the
-// |dx| <= r test decides) are looked at, the block of the last answer (`hint`) first, and a block
-// is skipped when its highest point plus its nearest reach cannot beat the best so far. Rounding
-// cannot break that bound: each step of it is a monotone rounded operation on inputs no smaller
-// than a point's own. A maximum does not depend on the order it is taken in. Before that, a run
-// of blocks (and then a block) whose top plus the whole radius cannot beat the best is passed
-// over without a square root: sqrt(r * r - d * d) <= sqrt(r * r) = `reach_max` for every point's
-// d, by the same monotonicity. On seed 002's steep base shape most blocks within r lie on the
-// lower side and go this way (the square roots had been most of a hand path's time).
 namespace {
 
 // True when a point at height y (m), whose reach is sqrt(t) with t = r^2 - dx^2 (m^2, as the
@@ -46,6 +36,16 @@ bool certainly_below(double y, double t, double best) {
 
 }  // namespace
 
+// The maximum is taken without scanning every point (that scan, O(points) a sample, was half of
+// a simulated trial's time), and it is the same maximum: only points within r of x (+ 1 nm; the
+// |dx| <= r test decides) are looked at, the block of the last answer (`hint`) first, and a block
+// is skipped when its highest point plus its nearest reach cannot beat the best so far. Rounding
+// cannot break that bound: each step of it is a monotone rounded operation on inputs no smaller
+// than a point's own. A maximum does not depend on the order it is taken in. Before that, a run
+// of blocks (and then a block) whose top plus the whole radius cannot beat the best is passed
+// over without a square root: sqrt(r * r - d * d) <= sqrt(r * r) = `reach_max` for every point's
+// d, by the same monotonicity. On seed 002's steep base shape most blocks within r lie on the
+// lower side and go this way (the square roots had been most of a hand path's time).
 double resting_height(const SurfaceProfile& s, double x, double r, std::size_t& hint) {
     constexpr std::size_t B = SurfaceProfile::kBlock;
     const double margin = 1e-9;  // m
