@@ -191,6 +191,7 @@ void Proxy::reset(Vec2 finger, double phi) {
     proxy_ = finger;
     phi_ = phi;
     initialised_ = true;
+    resting_ = false;
     active_count_ = 0;
     last_finger_ = finger;
     last_finger_motion_ = Vec2{0.0};
@@ -291,7 +292,8 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
     out_.proxy = proxy_;
     out_.start = start;
     out_.turned = turned_;
-    if (proxy_ != finger) {
+    resting_ = proxy_ != finger;
+    if (resting_) {
         collect_contacts(finger);
         refine_on_curves(finger);  // may move out_.proxy onto the exact curve
         out_.contact = true;
@@ -720,6 +722,7 @@ bool Proxy::local_near(Vec2 at, double within) const {
 Vec2 Proxy::walk(Vec2 p, Vec2 goal) {
     active_count_ = 0;
     local_valid_ = false;  // pieces_ may have been rebuilt since the last scan
+    work_.near_start = false;
     int excluded = -1;     // the piece just slid off the end of (not re-entered at its end)
     int idle_steps = 0;    // consecutive steps that did not move the proxy
     proxy_ = p;
@@ -735,8 +738,16 @@ Vec2 Proxy::walk(Vec2 p, Vec2 goal) {
             // the pieces the last scan kept near here, and of all only if none is entered there.
             Hit hit;
             if (excluded >= 0 && local_scans_allowed() && local_near(proxy_, kLocalAcceptRadius)) {
-                hit = first_entry_line(proxy_, goal, excluded, -1, excluded, /*among_local=*/true);
+                hit = first_entry_line(proxy_, goal, excluded, -1, excluded, Scan::among_local);
                 if (!(hit.found && glm::length(hit.point - proxy_) <= kLocalAcceptRadius)) hit = Hit{};
+            } else if (it == 0 && resting_ && local_scans_allowed()) {
+                // The walk's first move, from a proxy resting on a piece: it enters that piece (or
+                // a neighbour through the same point) at once, so the pieces near the proxy
+                // answer it, by the same rule. Why: the move toward a finger pressed 1 mm in
+                // spans a box that held ~70 pieces of a dense contour, each asked, every tick.
+                hit = first_entry_line(proxy_, goal, -1, -1, -1, Scan::near_start);
+                work_.near_start = hit.found && glm::length(hit.point - proxy_) <= kLocalAcceptRadius;
+                if (!work_.near_start) hit = Hit{};
             }
             if (!hit.found) hit = first_entry_line(proxy_, goal, excluded, -1, excluded);
             const int ended = excluded;
@@ -870,7 +881,7 @@ bool Proxy::try_release_corner(Vec2 goal) {
 }
 
 // ---- first_entry_line / first_entry_arc --------------------------------------------------------
-Proxy::Hit Proxy::first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b, int ended, bool among_local) {
+Proxy::Hit Proxy::first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b, int ended, Scan scan_kind) {
     Hit best;
     const Vec2 v = q - p;
     const double len = glm::length(v);
@@ -927,8 +938,24 @@ Proxy::Hit Proxy::first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b,
             }
         }
     };
-    if (among_local) {  // the last scan's pieces near the start (walk: off a piece's end)
+    if (scan_kind == Scan::among_local) {  // the last scan's pieces near the start (walk: off a piece's end)
         for (const int i : local_) consider(i);
+        return best;
+    }
+    if (scan_kind == Scan::near_start) {  // the pieces near p, kept as local_ for local_near(p, ...)
+        local_valid_ = false;
+        local_.clear();
+        Aabb near;
+        near.grow(p);
+        near = near.grown(kBoxSlack + kNearMargin + kLocalAcceptRadius);
+        for_pieces([&](const Aabb& box) { return !box.overlaps(near); },
+                   [&](int i) {
+                       local_.push_back(i);
+                       consider(i);
+                       return false;
+                   });
+        local_box_ = near;
+        local_valid_ = true;
         return best;
     }
     // A full scan: it also keeps, as local_, the pieces whose boxes overlap this motion's grown

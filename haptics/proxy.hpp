@@ -71,6 +71,9 @@ struct ProxyWork {
     bool warm_start = false;
     // The warm start's segments were those a recent tick gathered (Proxy::gather_warm), no query.
     bool kept_gather = false;
+    // The walk's first move entered the piece under the resting proxy, found among the pieces
+    // near it alone (Proxy::walk), not by a scan along the whole move toward the finger.
+    bool near_start = false;
 };
 
 // Where one update's time went, ns (ProxyDef::profile; all 0 when off). Each stage is the wall
@@ -174,9 +177,12 @@ private:
     bool handed_over(int i, Vec2 at, Vec2 t, int ended = -1) const;
     bool inside_or_past_concave_end(const CPiece& piece, double param, double reach) const;
     Vec2 walk(Vec2 from, Vec2 goal);
-    // Where the straight move p -> q first enters a piece. A full scan keeps local_; among_local
-    // asks only local_ (the caller judges whether that answer is the full one).
-    Hit first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b, int ended = -1, bool among_local = false);
+    // Which pieces first_entry_line asks: all (keeping as local_ those near the motion), only
+    // local_, or those near p (kept as local_). The narrower answers are the full one only when
+    // the hit lies within kLocalAcceptRadius of p: the caller judges.
+    enum class Scan { full, among_local, near_start };
+    // Where the straight move p -> q first enters a piece.
+    Hit first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b, int ended = -1, Scan scan = Scan::full);
     // ... along the circle `on` from parameter s0 to s1 (rad); arc_slide_box_ is then that arc's box.
     Hit first_entry_arc(const CPiece& on, double s0, double s1, int exclude);
     Aabb arc_slide_box_;
@@ -202,6 +208,9 @@ private:
     Vec2 turned_{0.0};  // m: the proxy after the last move_proxy's re-projection (ProxyOutput::turned)
     double phi_ = 0.0;
     bool initialised_ = false;
+    // The last tick ended in contact: the proxy lies on a piece, which the next walk's first move
+    // enters at once (walk: asked first of the pieces near the proxy).
+    bool resting_ = false;
     int active_[2] = {-1, -1};
     int active_count_ = 0;
     ProxyOutput out_;

@@ -120,12 +120,13 @@ void BM_ProxyTickDense(benchmark::State& state) {
     const std::vector<Vec2> path = dense_stroke(stroke_ticks);
     proxy.reset(path[0] + Vec2{0.0, 0.05}, 0.0);
     std::size_t k = 0;
-    double kept = 0.0, warm = 0.0, gathered = 0.0, pieces = 0.0, steps = 0.0, ticks = 0.0;
+    double kept = 0.0, near = 0.0, warm = 0.0, gathered = 0.0, pieces = 0.0, steps = 0.0, ticks = 0.0;
     for (auto _ : state) {
         const ProxyOutput& out = proxy.update(path[k], 0.0);
         benchmark::DoNotOptimize(out.force);
         warm += out.work.warm_start;
         kept += out.work.kept_gather;
+        near += out.work.near_start;
         gathered += out.work.segments;
         pieces += out.work.pieces;
         steps += out.work.walk_steps;
@@ -138,6 +139,7 @@ void BM_ProxyTickDense(benchmark::State& state) {
     // The work behind the time: how often the warm-start gather sufficed, and what a tick built.
     state.counters["warm"] = warm / ticks;
     state.counters["kept"] = kept / ticks;
+    state.counters["near"] = near / ticks;
     state.counters["segs"] = gathered / ticks;
     state.counters["pieces"] = pieces / ticks;
     state.counters["steps"] = steps / ticks;

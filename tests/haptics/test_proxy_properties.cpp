@@ -336,7 +336,7 @@ TEST_CASE("a kept gather (slow slides, the angle stepping by encoder counts) mov
         indexed.reset(start, 0.0);
         brute.reset(start, 0.0);
         double x = start.x, y = start.y, depth = 0.001, speed = 0.03;  // m, m, m, m/s
-        int contacts = 0, kept = 0, kept_turning = 0;
+        int contacts = 0, kept = 0, kept_turning = 0, near_start = 0;
         double last_phi = 0.0;
         for (int k = 0; k < 6000; ++k) {
             if (k % 500 == 0) speed = (u(rng) < 0.5 ? -1.0 : 1.0) * (0.01 + 0.04 * u(rng));
@@ -355,6 +355,7 @@ TEST_CASE("a kept gather (slow slides, the angle stepping by encoder counts) mov
             REQUIRE(a.contact == b.contact);
             contacts += a.contact ? 1 : 0;
             kept += a.work.kept_gather ? 1 : 0;
+            near_start += a.work.near_start ? 1 : 0;
             kept_turning += a.work.kept_gather && phi != last_phi ? 1 : 0;
             last_phi = phi;
             CHECK(a.proxy == b.proxy);
@@ -365,7 +366,9 @@ TEST_CASE("a kept gather (slow slides, the angle stepping by encoder counts) mov
         CAPTURE(contacts);
         CAPTURE(kept);
         CAPTURE(kept_turning);
+        CAPTURE(near_start);
         CHECK(contacts > 4000);
+        CHECK(near_start > contacts / 2);
         CHECK(kept > contacts / 10);
         CHECK(kept_turning > 20);
     }
