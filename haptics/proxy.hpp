@@ -74,6 +74,10 @@ struct ProxyWork {
     // The walk's first move entered the piece under the resting proxy, found among the pieces
     // near it alone (Proxy::walk), not by a scan along the whole move toward the finger.
     bool near_start = false;
+    // Entry scans of the walk answered from the neighbourhood an earlier scan kept (local_), and
+    // those that asked every piece's box: sliding along a chain, most of the first.
+    int chain_scans = 0;
+    int full_scans = 0;
 };
 
 // Where one update's time went, ns (ProxyDef::profile; all 0 when off). Each stage is the wall
@@ -189,6 +193,10 @@ private:
     // Whether local_ holds every piece whose box comes within kNearMargin of any point `within`
     // (m) of `at`.
     bool local_near(Vec2 at, double within) const;
+    // Whether local_ holds every piece whose box overlaps `box` (m): box lies inside local_box_.
+    bool local_holds(const Aabb& box) const;
+    // How much wider (m) than its motion a scan keeps local_ (chain walk).
+    double chain_reach() const;
     // Calls visit(i) in order for every piece whose box is not far(box), skipping whole runs and
     // groups whose boxes are; stops when visit returns true.
     template <typename Far, typename Visit>

@@ -120,13 +120,15 @@ void BM_ProxyTickDense(benchmark::State& state) {
     const std::vector<Vec2> path = dense_stroke(stroke_ticks);
     proxy.reset(path[0] + Vec2{0.0, 0.05}, 0.0);
     std::size_t k = 0;
-    double kept = 0.0, near = 0.0, warm = 0.0, gathered = 0.0, pieces = 0.0, steps = 0.0, ticks = 0.0;
+    double kept = 0.0, near = 0.0, chain = 0.0, full = 0.0, warm = 0.0, gathered = 0.0, pieces = 0.0, steps = 0.0, ticks = 0.0;
     for (auto _ : state) {
         const ProxyOutput& out = proxy.update(path[k], 0.0);
         benchmark::DoNotOptimize(out.force);
         warm += out.work.warm_start;
         kept += out.work.kept_gather;
         near += out.work.near_start;
+        chain += out.work.chain_scans;
+        full += out.work.full_scans;
         gathered += out.work.segments;
         pieces += out.work.pieces;
         steps += out.work.walk_steps;
@@ -140,6 +142,8 @@ void BM_ProxyTickDense(benchmark::State& state) {
     state.counters["warm"] = warm / ticks;
     state.counters["kept"] = kept / ticks;
     state.counters["near"] = near / ticks;
+    state.counters["chain"] = chain / ticks;  // the walk's scans answered from a kept neighbourhood
+    state.counters["full"] = full / ticks;    // ... and those that asked every piece's box
     state.counters["segs"] = gathered / ticks;
     state.counters["pieces"] = pieces / ticks;
     state.counters["steps"] = steps / ticks;

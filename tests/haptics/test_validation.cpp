@@ -64,8 +64,8 @@ TEST_CASE("validation: a failed check reaches the handler when the switch is on,
 TEST_CASE("validation: a stroke over a dense contour checks the proxy's shortcuts every tick, and none fail") {
     // 2,000 chords of 0.2 mm on 0.4 m (few enough for anticipation's every-segment check): hover
     // 5 mm above for 200 ticks (anticipation), press 1 mm in, and slide 10 cm in 2,000 ticks
-    // (5 cm/s at 1 kHz: the warm start and the walk's local scans, its first move's among them, on
-    // nearly every tick).
+    // (5 cm/s at 1 kHz: the warm start and the walk's local scans, its first move's and the chain
+    // walk's among them, on nearly every tick).
     RecordingHandler handler;
     const long long before_scene = validation_checks();
     const Scene scene = scene_of({sinusoid_contour(2000, 0.01, 4.0)});
@@ -76,7 +76,7 @@ TEST_CASE("validation: a stroke over a dense contour checks the proxy's shortcut
     const double R = scene.finger.radius;  // m
     auto surface_y = [](double x) { return 0.01 * std::sin(2.0 * kPi * 4.0 * (x + 0.2) / 0.4); };
     const long long before = validation_checks();
-    int anticipating = 0, warm = 0, contact = 0, near_start = 0;
+    int anticipating = 0, warm = 0, contact = 0, near_start = 0, chain_scans = 0, full_scans = 0;
     for (int k = 0; k < 200; ++k) {
         const double x = -0.05 + 1e-5 * k;  // m
         anticipating += proxy.update({x, surface_y(x) + R + 0.005}, 0.0).anticipating ? 1 : 0;
@@ -87,12 +87,17 @@ TEST_CASE("validation: a stroke over a dense contour checks the proxy's shortcut
         contact += out.contact ? 1 : 0;
         warm += out.work.warm_start ? 1 : 0;
         near_start += out.work.near_start ? 1 : 0;
+        chain_scans += out.work.chain_scans;
+        full_scans += out.work.full_scans;
     }
     const long long checks = validation_checks() - before;
     CHECK(anticipating == 200);
     CHECK(contact > 1900);
     CHECK(warm > 1500);  // the warm start was taken, so it was checked
     CHECK(near_start > 1500);  // ... and the walk's first move answered near the proxy
+    CAPTURE(chain_scans);
+    CAPTURE(full_scans);
+    CHECK(chain_scans > full_scans);  // ... and most of its scans from a neighbourhood kept
     CHECK(g_failures == 0);
     CAPTURE(g_what);
     if constexpr (kValidation) {
