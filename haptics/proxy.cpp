@@ -722,7 +722,10 @@ bool Proxy::local_holds(const Aabb& box) const {
            box.lo.y >= local_box_.lo.y && box.hi.y <= local_box_.hi.y;
 }
 
-double Proxy::chain_reach() const { return std::min(env_->min_feature, kMaxChainReach); }
+double Proxy::chain_reach() const {
+    const double shortest = env_->min_feature;  // m (infinite for an empty scene)
+    return shortest < kMaxChainReach ? std::max(shortest, 0.0) : kMaxChainReach;
+}
 
 bool Proxy::local_near(Vec2 at, double within) const {
     // Boxes that come within kNearMargin of a point `within` of `at` overlap local_box_ if that
@@ -955,10 +958,13 @@ Proxy::Hit Proxy::first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b,
     };
     // The pieces asked: those whose boxes overlap `scan`, in order. Near the start, only the
     // pieces that can be entered within kLocalAcceptRadius of p (the caller judges the answer).
-    Aabb near;
-    near.grow(p);
-    near = near.grown(kBoxSlack + kNearMargin + kLocalAcceptRadius);
-    const Aabb scan = scan_kind == Scan::full ? motion.grown(kNearMargin + kLocalAcceptRadius) : near;
+    Aabb scan;
+    if (scan_kind == Scan::full) {
+        scan = motion.grown(kNearMargin + kLocalAcceptRadius);
+    } else {
+        scan.grow(p);
+        scan = scan.grown(kBoxSlack + kNearMargin + kLocalAcceptRadius);
+    }
     if (scan_kind == Scan::among_local || local_holds(scan)) {  // local_ holds every such piece
         ++work_.chain_scans;
         for (const int i : local_)

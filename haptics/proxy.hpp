@@ -181,9 +181,10 @@ private:
     bool handed_over(int i, Vec2 at, Vec2 t, int ended = -1) const;
     bool inside_or_past_concave_end(const CPiece& piece, double param, double reach) const;
     Vec2 walk(Vec2 from, Vec2 goal);
-    // Which pieces first_entry_line asks: all (keeping as local_ those near the motion), only
-    // local_, or those near p (kept as local_). The narrower answers are the full one only when
-    // the hit lies within kLocalAcceptRadius of p: the caller judges.
+    // Which pieces first_entry_line asks: those near the motion (from local_ when it holds them
+    // all, else from every piece, keeping as local_ those within chain_reach() more), or only
+    // those near p (from local_ with among_local, else as full does). The answers near p are the
+    // full one only when the hit lies within kLocalAcceptRadius of p: the caller judges.
     enum class Scan { full, among_local, near_start };
     // Where the straight move p -> q first enters a piece.
     Hit first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b, int ended = -1, Scan scan = Scan::full);
