@@ -718,8 +718,7 @@ void Proxy::for_pieces(Far&& far, Visit&& visit) const {
 }
 
 bool Proxy::local_holds(const Aabb& box) const {
-    return local_valid_ && local_scans_allowed() && box.lo.x >= local_box_.lo.x && box.hi.x <= local_box_.hi.x &&
-           box.lo.y >= local_box_.lo.y && box.hi.y <= local_box_.hi.y;
+    return local_valid_ && local_scans_allowed() && local_box_.contains(box);
 }
 
 double Proxy::chain_reach() const {
