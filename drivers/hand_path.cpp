@@ -35,7 +35,10 @@ bool HandPath::interval(double t, double& u) const noexcept {
 PathPoint HandPath::at(double t) const noexcept {
     if (samples_.empty()) return {};
     double u = 0.0;
-    if (!interval(t, u)) return {held(t).x, Vec2{0.0}, held(t).phi};
+    if (!interval(t, u)) {
+        const PathSample& s = held(t);
+        return {s.x, Vec2{0.0}, s.phi};
+    }
     const PathSample& a = samples_[cursor_];
     const PathSample& b = samples_[cursor_ + 1];
     return {a.x + (b.x - a.x) * u, slopes_[cursor_], a.phi + (b.phi - a.phi) * u};

@@ -726,6 +726,32 @@ double Proxy::chain_reach() const {
     return shortest < kMaxChainReach ? std::max(shortest, 0.0) : kMaxChainReach;
 }
 
+// Calls ask(i) in order for every piece whose box overlaps `scan`: from local_ when it holds them
+// all (or from_local, when the caller has judged so), else from every piece, keeping as local_
+// those within chain_reach() of `scan` (more pieces kept, the same ones asked: the box test only
+// rejects pieces that cannot be entered). Either way the same pieces in the same order.
+template <typename Ask>
+void Proxy::scan_pieces(const Aabb& scan, bool from_local, Ask&& ask) {
+    if (from_local || local_holds(scan)) {
+        ++work_.chain_scans;
+        for (const int i : local_)
+            if (piece_boxes_[static_cast<std::size_t>(i)].overlaps(scan)) ask(i);
+        return;
+    }
+    ++work_.full_scans;
+    local_valid_ = false;  // handed_over must not read the list while it is being filled
+    local_.clear();
+    const Aabb kept = scan.grown(chain_reach());
+    for_pieces([&](const Aabb& box) { return !box.overlaps(kept); },
+               [&](int i) {
+                   local_.push_back(i);
+                   if (piece_boxes_[static_cast<std::size_t>(i)].overlaps(scan)) ask(i);
+                   return false;
+               });
+    local_box_ = kept;
+    local_valid_ = true;
+}
+
 bool Proxy::local_near(Vec2 at, double within) const {
     // Boxes that come within kNearMargin of a point `within` of `at` overlap local_box_ if that
     // point's margin box lies inside it.
@@ -964,27 +990,7 @@ Proxy::Hit Proxy::first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b,
         scan.grow(p);
         scan = scan.grown(kBoxSlack + kNearMargin + kLocalAcceptRadius);
     }
-    if (scan_kind == Scan::among_local || local_holds(scan)) {  // local_ holds every such piece
-        ++work_.chain_scans;
-        for (const int i : local_)
-            if (piece_boxes_[static_cast<std::size_t>(i)].overlaps(scan)) consider(i);
-        return best;
-    }
-    // A scan of all pieces: it also keeps, as local_, those whose boxes overlap `scan` grown by
-    // chain_reach() (more pieces kept, the same ones asked: the box test only rejects pieces that
-    // cannot be entered).
-    ++work_.full_scans;
-    local_valid_ = false;  // handed_over must not read the list while it is being filled
-    local_.clear();
-    const Aabb kept = scan.grown(chain_reach());
-    for_pieces([&](const Aabb& box) { return !box.overlaps(kept); },
-               [&](int i) {
-                   local_.push_back(i);
-                   if (piece_boxes_[static_cast<std::size_t>(i)].overlaps(scan)) consider(i);
-                   return false;
-               });
-    local_box_ = kept;
-    local_valid_ = true;
+    scan_pieces(scan, scan_kind == Scan::among_local, consider);
     return best;
 }
 
@@ -1023,25 +1029,7 @@ Proxy::Hit Proxy::first_entry_arc(const CPiece& on, double s0, double s1, int ex
             for (int k = 0; k < n; ++k) consider(i, pts[k]);
         }
     };
-    if (local_holds(motion)) {  // as first_entry_line: the last scan kept every piece near
-        ++work_.chain_scans;
-        for (const int i : local_)
-            if (piece_boxes_[static_cast<std::size_t>(i)].overlaps(motion)) ask(i);
-        return best;
-    }
-    // Like first_entry_line's scan of all pieces, this keeps those near the slide as local_.
-    ++work_.full_scans;
-    local_valid_ = false;
-    local_.clear();
-    const Aabb kept = motion.grown(chain_reach());
-    for_pieces([&](const Aabb& box) { return !box.overlaps(kept); },
-               [&](int i) {
-                   local_.push_back(i);
-                   if (piece_boxes_[static_cast<std::size_t>(i)].overlaps(motion)) ask(i);
-                   return false;
-               });
-    local_box_ = kept;
-    local_valid_ = true;
+    scan_pieces(motion, /*from_local=*/false, ask);
     return best;
 }
 

@@ -198,6 +198,10 @@ private:
     bool local_holds(const Aabb& box) const;
     // How much wider (m) than its motion a scan keeps local_ (chain walk).
     double chain_reach() const;
+    // The entry scans' one loop (first_entry_line, first_entry_arc): ask(i) for the pieces whose
+    // boxes overlap `scan` (m), from local_ when it holds them, else from all (keeping local_).
+    template <typename Ask>
+    void scan_pieces(const Aabb& scan, bool from_local, Ask&& ask);
     // Calls visit(i) in order for every piece whose box is not far(box), skipping whole runs and
     // groups whose boxes are; stops when visit returns true.
     template <typename Far, typename Visit>
