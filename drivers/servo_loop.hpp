@@ -22,7 +22,7 @@ ServoConfig servo_config_for(const Device& dev, double rate);
 
 // Wall time (ns) of a step's parts, summed over the steps while set (ServoLoop::set_profile):
 // where a simulated study's time goes between the device and the tick
-// (engine/experiments/trial_profile.hpp). Unset, a step reads no clock.
+// (engine/experiments/base/trial_profile.hpp). Unset, a step reads no clock.
 struct ServoLoopStages {
     double device = 0.0;   // read, write, engage and advance (a simulated device's dynamics)
     double tick = 0.0;     // ServoTick::tick

@@ -5,7 +5,7 @@
 #include "haptics/parameter_limits.hpp"
 #include "engine/editor/editor.hpp"
 #include "engine/editor/script.hpp"
-#include "engine/experiments/results_table.hpp"
+#include "engine/experiments/base/results_table.hpp"
 #include "engine/render/vk_check.hpp"
 
 namespace contactlab::app {

@@ -1,15 +1,15 @@
 // experiment_calibrate_cli.cpp — `contactlab experiment calibrate PROTOCOL... --target TARGETS.json
 // --param NAME=LO:HI [--param ...] --fit NAME[,NAME...]|all [--participants N] [--seed S]
 // [--jobs J] [--evaluations E] --json OUT`: the simulated participant's parameters fitted to
-// published figures (engine/experiments/calibration.hpp). The same parameters go to every
+// published figures (engine/experiments/calibration/calibration.hpp). The same parameters go to every
 // protocol; targets not in --fit are held out and reported as they come out. Each evaluation's
 // results files are kept in OUT's stem + ".runs/" (rewritten by the next).
 #include "engine/app/command_line.hpp"
 #include "engine/app/progress_bar.hpp"
 #include "engine/app/subcommands.hpp"
-#include "engine/experiments/calibration.hpp"
-#include "engine/experiments/results_table.hpp"
-#include "engine/experiments/protocol.hpp"
+#include "engine/experiments/calibration/calibration.hpp"
+#include "engine/experiments/base/results_table.hpp"
+#include "engine/experiments/protocol/protocol.hpp"
 #include "haptics/atomic_file.hpp"
 
 #include <nlohmann/json.hpp>

@@ -7,14 +7,14 @@
 // condition, the tests' rule and any warnings, and writes them as JSON (schema:
 // scenes/README.md) with each file's provenance, and as a Markdown page with plots.
 #include "engine/app/command_line.hpp"
-#include "engine/app/experiment_report.hpp"
+#include "engine/reports/experiment_report.hpp"
 #include "engine/app/progress_bar.hpp"
 #include "engine/app/subcommands.hpp"
-#include "engine/experiments/analysis.hpp"
-#include "engine/experiments/experiment_run.hpp"
-#include "engine/experiments/pooling.hpp"
-#include "engine/experiments/protocol.hpp"
-#include "engine/experiments/threshold_analysis.hpp"
+#include "engine/experiments/analysis/analysis.hpp"
+#include "engine/experiments/runs/experiment_run.hpp"
+#include "engine/experiments/analysis/pooling.hpp"
+#include "engine/experiments/protocol/protocol.hpp"
+#include "engine/experiments/analysis/threshold_analysis.hpp"
 #include "haptics/atomic_file.hpp"
 
 #include <nlohmann/json.hpp>
@@ -217,7 +217,7 @@ int run_analyze(const AnalyzeArgs& a) {
     if (!a.json.empty()) write_file_atomically(a.json, result.dump(2) + "\n");
     if (!a.report.empty()) {
         try {
-            std::printf("report: %s\n", write_experiment_report(table, result, a.report).c_str());
+            std::printf("report: %s\n", reports::write_experiment_report(table, result, a.report).c_str());
         } catch (const experiments::ExperimentError& e) {
             throw BadInput(e.what());
         }

@@ -1,23 +1,22 @@
 // experiment_power_cli.cpp — `contactlab experiment power PROTOCOL --measure NAME --participants
 // A-B --pool N --resamples M [--alpha 0.05] [--seed S] [--jobs J] --json OUT [--report DIR]
 // [--conditions A,B] [--overwrite]`: how many participants a protocol needs
-// (engine/experiments/power_analysis.hpp). The pool of N simulated participants runs once through
+// (engine/experiments/analysis/power_analysis.hpp). The pool of N simulated participants runs once through
 // the servo into OUT's stem + ".pool.csv" (an `experiment run` results file with its meta: kept,
 // resumable, and reused when the same command runs again), then groups of A..B participants are
 // resampled from it. The JSON carries the pool file's provenance (version, protocol and its hash,
-// seed, device, rate) and its own hash; --report draws power against group size.
+// seed, device, rate) and its own hash; --report draws power against group size
+// (engine/reports/power_report.hpp).
 #include "engine/app/command_line.hpp"
-#include "engine/app/experiment_figures.hpp"
 #include "engine/app/progress_bar.hpp"
 #include "engine/app/subcommands.hpp"
-#include "engine/experiments/analysis.hpp"
-#include "engine/experiments/experiment_run.hpp"
-#include "engine/experiments/pooling.hpp"
-#include "engine/experiments/power_analysis.hpp"
-#include "engine/experiments/protocol.hpp"
-#include "engine/experiments/sha256.hpp"
-#include "engine/render/chart_image.hpp"
-#include "engine/render/context.hpp"
+#include "engine/reports/power_report.hpp"
+#include "engine/experiments/analysis/analysis.hpp"
+#include "engine/experiments/runs/experiment_run.hpp"
+#include "engine/experiments/analysis/pooling.hpp"
+#include "engine/experiments/analysis/power_analysis.hpp"
+#include "engine/experiments/protocol/protocol.hpp"
+#include "engine/experiments/base/sha256.hpp"
 #include "haptics/atomic_file.hpp"
 
 #include <nlohmann/json.hpp>
@@ -62,55 +61,6 @@ std::string file_text(const std::string& path) {
     std::ostringstream s;
     s << in.rdbuf();
     return s.str();
-}
-
-// Power against group size with the Wilson intervals, alpha and 0.8 (the usual target) marked.
-render::Chart power_chart(const json& r) {
-    render::Chart c = report_chart("Power of the paired t test on " + r["measure"].get<std::string>() + " (" +
-                                       r["conditions"][0].get<std::string>() + " vs " + r["conditions"][1].get<std::string>() + ")",
-                                   "participants per group", "power (share of groups with p < alpha)");
-    c.y.min = 0.0;
-    c.y.max = 1.0;
-    render::ChartSeries s = marker_series("power, 95 % Wilson", 0);
-    // Group sizes are counts: one category each, no fractional ticks between them.
-    for (const auto& p : r["points"]) {
-        c.x.categories.push_back(std::to_string(p["participants"].get<int>()));
-        s.x.push_back(static_cast<double>(s.x.size()));
-        s.y.push_back(p["power"].get<double>());
-        s.y_low.push_back(p["power_ci"][0].get<double>());
-        s.y_high.push_back(p["power_ci"][1].get<double>());
-    }
-    c.series.push_back(s);
-    c.references.push_back({"0.8 (a usual target)", false, 0.8});
-    c.references.push_back({"alpha " + render::tick_label(r["alpha"].get<double>()), false, r["alpha"].get<double>()});
-    return c;
-}
-
-void write_report(const json& r, const std::string& dir) {
-    fs::create_directories(dir);
-    std::ostringstream md;
-    md << "# Power: " << r["measure"].get<std::string>() << "\n\n"
-       << "- test: " << r["test"].get<std::string>() << "\n- sampling: " << r["sampling"].get<std::string>()
-       << "\n- pool: " << r["pool"] << " participants; effect in the pool: mean difference "
-       << report_number(r["pool_effect"]["mean_difference"], "%.4g") << ", sd " << report_number(r["pool_effect"]["sd_difference"], "%.4g") << ", d_z "
-       << report_number(r["pool_effect"]["dz"], "%.4g") << "\n- alpha " << r["alpha"] << ", seed " << r["seed"] << "\n\n"
-       << "| participants | power | 95 % interval | undefined tests | median p |\n| ---: | ---: | --- | ---: | ---: |\n";
-    for (const auto& p : r["points"]) {
-        char line[160];
-        std::snprintf(line, sizeof line, "| %d | %.3f | %.3f .. %.3f | %ld | %s |\n", p["participants"].get<int>(), p["power"].get<double>(),
-                      p["power_ci"][0].get<double>(), p["power_ci"][1].get<double>(), p["undefined"].get<long>(),
-                      report_number(p["median_p"], "%.4g").c_str());
-        md << line;
-    }
-    try {
-        const render::VulkanContext ctx(render::ContextOptions{});
-        render::write_chart_png(ctx, power_chart(r), (fs::path(dir) / "power.png").string());
-        md << "\n![power](power.png)\n\nEach point: the share of resampled groups of that size whose paired t test had p < alpha, "
-              "with its 95 % Wilson interval over the groups (Monte Carlo error only).\n";
-    } catch (const std::exception& e) {
-        md << "\n(no plot: " << e.what() << ")\n";
-    }
-    write_file_atomically((fs::path(dir) / "report.md").string(), md.str());
 }
 
 int run_power(const PowerArgs& a) {
@@ -172,7 +122,7 @@ int run_power(const PowerArgs& a) {
                      l["reason"].get<std::string>().c_str());
     write_file_atomically(a.json, result.dump(2) + "\n");
     if (!a.report.empty()) {
-        write_report(result, a.report);
+        reports::write_power_report(result, a.report);
         std::printf("report: %s\n", (fs::path(a.report) / "report.md").string().c_str());
     }
     return 0;

@@ -2,6 +2,7 @@
 // held by a scripted hand, or a replayed recording), in virtual or real time.
 #pragma once
 
+#include "engine/app/scene_overrides.hpp"
 #include "engine/app/trace_command.hpp"
 
 #include <limits>

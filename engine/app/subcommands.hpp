@@ -7,6 +7,7 @@
 #pragma once
 
 #include "engine/app/data_path.hpp"
+#include "engine/app/scene_overrides.hpp"
 #include "engine/app/trace_command.hpp"
 
 #include <CLI/CLI.hpp>
@@ -21,9 +22,6 @@ inline constexpr int kExitBadInput = 2;
 struct BadInput : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
-
-// --stiffness --radius --length --max-force, replacing the scene's values (trace_command.hpp).
-void add_override_options(CLI::App* cmd, SceneOverrides& o);
 
 void register_trace_commands(CLI::App& app, int& rc);  // trace, demo (trace_cli.cpp)
 void register_generate_command(CLI::App& app, int& rc);  // generate (generate_cli.cpp)

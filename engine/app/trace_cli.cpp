@@ -1,4 +1,5 @@
 // trace_cli.cpp — the `trace` and `demo` subcommands on the command line.
+#include "engine/app/scene_overrides.hpp"
 #include "engine/app/start_inside_warning.hpp"
 #include "engine/app/subcommands.hpp"
 #include "engine/app/trace_command.hpp"
@@ -13,26 +14,6 @@
 
 namespace contactlab::app {
 namespace {
-
-void add_override_options_impl(CLI::App* cmd, SceneOverrides& o) {
-    cmd->add_option("--stiffness", o.stiffness, "Contact stiffness Ke (N/m); replaces the scene's force.stiffness");
-    cmd->add_option("--radius", o.radius, "Finger pad radius R (m); replaces finger.radius");
-    cmd->add_option("--length", o.length, "Finger pad arc length L (m); replaces finger.length");
-    cmd->add_option("--max-force", o.max_force, "Force magnitude clamp (N); replaces force.max_force");
-    cmd->add_option("--curve-mode", o.curve_mode,
-                    "Curves: exact (arc spline within 1e-7 m, contacts refined on the true curve) or flatten (chords)");
-    cmd->add_option("--tolerance", o.tolerance, "Chord tolerance (m) of --curve-mode flatten; replaces curves.tolerance");
-    cmd->add_option("--force-model", o.force_model, "spring (F = Ke d) or ellipsoid (seed 004's pseudo-ellipsoidal field)");
-    cmd->add_option("--k-tangential", o.k_tangential, "Ellipsoid: tangential stiffness k1 (N/m)");
-    cmd->add_option("--k-normal", o.k_normal, "Ellipsoid: normal stiffness k2 (N/m)");
-    cmd->add_option("--eccentricity", o.eccentricity, "Ellipsoid: e = k2 / k1 (with --total-stiffness)");
-    cmd->add_option("--total-stiffness", o.total_stiffness, "Ellipsoid: k = sqrt((k1^2 + 2 k2^2) / 3) (N/m), seed 004 eq. 3");
-    cmd->add_option("--friction", o.friction, "Friction cone: static coefficient (the dynamic one defaults to it)");
-    cmd->add_option("--friction-dynamic", o.friction_dynamic, "Friction cone: dynamic coefficient (<= static)");
-    cmd->add_option("--damping", o.damping, "Normal damping B (N s/m)");
-    cmd->add_option("--contact-force", o.contact_force,
-                    "Two contacts: proxy (one spring to the proxy) or sum (each contact's own spring, seed 002)");
-}
 
 int trace_main(const std::string& scene_path, const std::string& input, const std::string& output,
                const SceneOverrides& overrides) {
@@ -100,8 +81,6 @@ struct TraceArgs {
 };
 
 }  // namespace
-
-void add_override_options(CLI::App* cmd, SceneOverrides& o) { add_override_options_impl(cmd, o); }
 
 void register_trace_commands(CLI::App& app, int& rc) {
     static TraceArgs trace_args, demo_args;  // outlive parsing; one process, one parse

@@ -1,10 +1,11 @@
 // energy_table.cpp — the energy terms on the seeds' trials (see energy_table.hpp).
 #include "engine/bench/energy_table.hpp"
 
-#include "engine/experiments/protocol.hpp"
-#include "engine/experiments/servo_trial.hpp"
-#include "engine/experiments/stimulus.hpp"
-#include "engine/experiments/trial_plan.hpp"
+#include "engine/experiments/protocol/protocol.hpp"
+#include "engine/experiments/participants/servo_trial.hpp"
+#include "engine/experiments/protocol/stimulus.hpp"
+#include "engine/experiments/protocol/trial_plan.hpp"
+#include "engine/experiments/base/random_stream.hpp"
 #include "haptics/servo_tick.hpp"
 
 #include <algorithm>

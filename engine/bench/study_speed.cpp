@@ -1,8 +1,8 @@
 // study_speed.cpp — a simulated participant of a shipped protocol, timed by stage (study_speed.hpp).
 #include "engine/bench/study_speed.hpp"
 
-#include "engine/experiments/experiment_run.hpp"
-#include "engine/experiments/protocol.hpp"
+#include "engine/experiments/runs/experiment_run.hpp"
+#include "engine/experiments/protocol/protocol.hpp"
 
 #include <cstdlib>
 #include <filesystem>

@@ -1,6 +1,6 @@
 // study_speed.hpp — how fast a simulated study runs: one simulated participant of a shipped
 // protocol through `contactlab experiment run`'s own code (run_experiment, one job, no traces,
-// files in a temporary folder), with the stages timed (engine/experiments/trial_profile.hpp).
+// files in a temporary folder), with the stages timed (engine/experiments/base/trial_profile.hpp).
 // The figure is x real time per core (virtual seconds of trials over wall seconds); the stages say
 // where the wall time went. `contactlab bench` runs two: seed 002 on the CLD rig, against the
 // goal of 500x, and seed 003 on the wearable platform (its plant's equilibrium every 0.1 ms, the
@@ -8,7 +8,7 @@
 // warm-up), and one presentation of each stimulus instead of seed 003's 4.
 #pragma once
 
-#include "engine/experiments/trial_profile.hpp"
+#include "engine/experiments/base/trial_profile.hpp"
 
 #include <string>
 

@@ -14,7 +14,7 @@
 #include "engine/editor/panel_parts.hpp"
 #include "engine/editor/redraw_policy.hpp"
 #include "engine/editor/experiment_mode.hpp"
-#include "engine/experiments/run_meta.hpp"
+#include "engine/experiments/runs/run_meta.hpp"
 #include "engine/editor/recovery.hpp"
 #include "engine/editor/rulers.hpp"
 #include "engine/editor/scene_layer_key.hpp"

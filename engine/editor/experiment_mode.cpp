@@ -5,7 +5,7 @@
 #include "engine/editor/editor_state.hpp"
 #include "engine/editor/haptics_host.hpp"
 #include "drivers/device.hpp"
-#include "engine/experiments/run_meta.hpp"
+#include "engine/experiments/runs/run_meta.hpp"
 
 #include <imgui.h>
 

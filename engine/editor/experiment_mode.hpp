@@ -1,6 +1,6 @@
 // experiment_mode.hpp — `contactlab edit --experiment PROTOCOL --participant ID`: live trials
 // with a person at the device (issue 16). The editor stays thin: the session
-// (engine/experiments/live_session.hpp) holds the order and writes the results; this file puts
+// (engine/experiments/runs/live_session.hpp) holds the order and writes the results; this file puts
 // the trial's stimulus on the servo (felt, never drawn: the canvas shows only the finger), holds
 // the contact element at the pad's centre in force-only conditions, counts contact breaks, peak
 // force and servo faults during the trial, and takes the answer from the Experiment panel's
@@ -14,7 +14,7 @@
 #pragma once
 
 #include "drivers/tick_record.hpp"
-#include "engine/experiments/live_session.hpp"
+#include "engine/experiments/runs/live_session.hpp"
 
 #include <memory>
 #include <string>

@@ -5,7 +5,7 @@
 #include "process.hpp"
 #include "xvfb_editor.hpp"
 
-#include "engine/experiments/results_table.hpp"
+#include "engine/experiments/base/results_table.hpp"
 
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>

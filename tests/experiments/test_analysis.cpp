@@ -1,7 +1,7 @@
 // test_analysis.cpp — `experiment analyze` on results tables whose figures are known by hand:
 // seed 004's Table I written out as 100 trials, exclusions of warm-up and invalid rows, per
 // participant figures and their means, and the t tests between two conditions.
-#include "engine/experiments/analysis.hpp"
+#include "engine/experiments/analysis/analysis.hpp"
 
 #include <nlohmann/json.hpp>
 

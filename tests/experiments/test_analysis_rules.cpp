@@ -3,9 +3,9 @@
 // (the stray participant named); identical times give no p value; seed 002's figures by number
 // of small bumps (eq. 7) and for small-only and large-only stimuli (Fig. 6) on hand-computed
 // tables; label sets are bounded; 1e999 and bad UTF-8 are refused with the line.
-#include "engine/experiments/analysis.hpp"
-#include "engine/experiments/sha256.hpp"
-#include "engine/experiments/statistics.hpp"
+#include "engine/experiments/analysis/analysis.hpp"
+#include "engine/experiments/base/sha256.hpp"
+#include "engine/experiments/analysis/statistics.hpp"
 
 #include <nlohmann/json.hpp>
 

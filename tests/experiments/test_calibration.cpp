@@ -1,11 +1,11 @@
-// test_calibration.cpp — `experiment calibrate`'s parts (engine/experiments/calibration.hpp): the
+// test_calibration.cpp — `experiment calibrate`'s parts (engine/experiments/calibration/calibration.hpp): the
 // shipped targets file (the seeds' figures), strict parsing, reading a figure from an analysis,
 // and a calibration end to end through the servo that recovers a figure made with a known
 // parameter, with a held-out target reported beside it.
-#include "engine/experiments/analysis.hpp"
-#include "engine/experiments/calibration.hpp"
-#include "engine/experiments/experiment_run.hpp"
-#include "engine/experiments/results_table.hpp"
+#include "engine/experiments/analysis/analysis.hpp"
+#include "engine/experiments/calibration/calibration.hpp"
+#include "engine/experiments/runs/experiment_run.hpp"
+#include "engine/experiments/base/results_table.hpp"
 #include "process.hpp"
 
 #include <doctest/doctest.h>

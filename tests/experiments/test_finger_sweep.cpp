@@ -3,8 +3,8 @@
 // (experiments::resting_height, written without the sweep's geometry); the pass's ends and
 // timing; and each live trial's sweep from the protocol (LiveSession::sweep()).
 #include "drivers/finger_sweep.hpp"
-#include "engine/experiments/live_session.hpp"
-#include "engine/experiments/surface_profile.hpp"
+#include "engine/experiments/runs/live_session.hpp"
+#include "engine/experiments/protocol/surface_profile.hpp"
 #include "haptics/stimuli.hpp"
 #include "process.hpp"
 

@@ -1,7 +1,7 @@
-// test_intervals.cpp — the report's intervals (engine/experiments/intervals.hpp) against published
+// test_intervals.cpp — the report's intervals (engine/experiments/analysis/intervals.hpp) against published
 // values: Wilson's score interval from Newcombe (1998), Stat. Med. 17:857, Table I (method 3), and
 // a t interval worked by hand.
-#include "engine/experiments/intervals.hpp"
+#include "engine/experiments/analysis/intervals.hpp"
 
 #include <doctest/doctest.h>
 

@@ -1,8 +1,8 @@
 // test_live_session.cpp — live trials with a person (the editor's experiment mode, without the
 // editor): rows written one by one, resuming after a crash without repeating or losing a trial,
 // invalid trials presented again at the end of their block, answers outside the set refused.
-#include "engine/experiments/live_session.hpp"
-#include "engine/experiments/results_table.hpp"
+#include "engine/experiments/runs/live_session.hpp"
+#include "engine/experiments/base/results_table.hpp"
 #include "process.hpp"
 
 #include <doctest/doctest.h>

@@ -1,10 +1,10 @@
-// test_power_analysis.cpp — `experiment power`'s resampling (engine/experiments/power_analysis.hpp)
+// test_power_analysis.cpp — `experiment power`'s resampling (engine/experiments/analysis/power_analysis.hpp)
 // against the paired t test's power computed in closed form, written here without the code under
 // test: for differences ~ N(delta, 1), the test statistic follows a noncentral t with n - 1 degrees
 // of freedom and noncentrality delta sqrt(n), so power = P(|T'| > t_crit) (Boost.Math's
 // non_central_t). A pool of 4,000 participants stands for that population.
-#include "engine/experiments/power_analysis.hpp"
-#include "engine/experiments/results_table.hpp"
+#include "engine/experiments/analysis/power_analysis.hpp"
+#include "engine/experiments/base/results_table.hpp"
 
 #include <boost/math/distributions/non_central_t.hpp>
 #include <boost/math/distributions/students_t.hpp>

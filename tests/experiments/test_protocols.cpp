@@ -1,14 +1,14 @@
 // test_protocols.cpp — the shipped protocols load; bad protocols are refused naming the file,
 // path and why; trial plans are reproducible, balanced and complete; runs do not depend on the
 // number of jobs; the simulated participant shows what the seeds' cues predict.
-#include "engine/experiments/analysis.hpp"
-#include "engine/experiments/experiment_run.hpp"
-#include "engine/experiments/protocol.hpp"
-#include "engine/experiments/results_table.hpp"
-#include "engine/experiments/sim_participant.hpp"
-#include "engine/experiments/statistics.hpp"
-#include "engine/experiments/stimulus.hpp"
-#include "engine/experiments/trial_plan.hpp"
+#include "engine/experiments/analysis/analysis.hpp"
+#include "engine/experiments/runs/experiment_run.hpp"
+#include "engine/experiments/protocol/protocol.hpp"
+#include "engine/experiments/base/results_table.hpp"
+#include "engine/experiments/participants/sim_participant.hpp"
+#include "engine/experiments/analysis/statistics.hpp"
+#include "engine/experiments/protocol/stimulus.hpp"
+#include "engine/experiments/protocol/trial_plan.hpp"
 #include "process.hpp"
 
 #include <nlohmann/json.hpp>

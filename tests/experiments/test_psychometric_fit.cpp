@@ -1,8 +1,9 @@
 // test_psychometric_fit.cpp — the maximum-likelihood fit recovers a known psychometric function
 // and its bootstrap intervals cover the truth about as often as they claim.
-#include "engine/experiments/psychometric.hpp"
-#include "engine/experiments/psychometric_fit.hpp"
-#include "engine/experiments/trial_plan.hpp"
+#include "engine/experiments/protocol/psychometric.hpp"
+#include "engine/experiments/analysis/psychometric_fit.hpp"
+#include "engine/experiments/protocol/trial_plan.hpp"
+#include "engine/experiments/base/random_stream.hpp"
 
 #include <doctest/doctest.h>
 

@@ -1,10 +1,10 @@
 // test_servo_trial.cpp — one trial through the servo and the simulated rig (servo_trial.hpp):
 // a trial run after others on the same thread, which reuses their tick buffer, records exactly
 // what the same trial records on a thread of its own.
-#include "engine/experiments/protocol.hpp"
-#include "engine/experiments/servo_trial.hpp"
-#include "engine/experiments/stimulus.hpp"
-#include "engine/experiments/trial_plan.hpp"
+#include "engine/experiments/protocol/protocol.hpp"
+#include "engine/experiments/participants/servo_trial.hpp"
+#include "engine/experiments/protocol/stimulus.hpp"
+#include "engine/experiments/protocol/trial_plan.hpp"
 #include "process.hpp"
 
 #include <doctest/doctest.h>

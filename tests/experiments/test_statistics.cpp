@@ -1,7 +1,7 @@
 // test_statistics.cpp — the seeds' statistics against values computed by hand (and, for the t
 // distribution's tails, by numerically integrating its density in an independent script):
 // seed 004's Table I, information transfer of known matrices, t tests of small samples.
-#include "engine/experiments/statistics.hpp"
+#include "engine/experiments/analysis/statistics.hpp"
 
 #include <doctest/doctest.h>
 

@@ -1,8 +1,8 @@
 // test_surface_profile.cpp — the resting height of the simulated hand's pad on a sampled contour
-// (engine/experiments/surface_profile.hpp) against a brute-force scan of every point written here
+// (engine/experiments/protocol/surface_profile.hpp) against a brute-force scan of every point written here
 // without the code under test: bit for bit (the hand paths, and so every simulated trial's rows,
 // must not change with the speed-up), over seeded random contours, radii, positions and hints.
-#include "engine/experiments/surface_profile.hpp"
+#include "engine/experiments/protocol/surface_profile.hpp"
 
 #include <doctest/doctest.h>
 

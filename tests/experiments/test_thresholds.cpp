@@ -1,17 +1,18 @@
 // test_thresholds.cpp — procedures in protocol files (constant, staircase, QUEST+), the model
 // observer through the batch runner, adaptive estimates in the analysis, and the shipped
 // edge-sharpness protocol.
-#include "engine/experiments/adaptive_plan.hpp"
-#include "engine/experiments/analysis.hpp"
-#include "engine/experiments/experiment_run.hpp"
-#include "engine/experiments/live_session.hpp"
-#include "engine/experiments/quest_plus.hpp"
-#include "engine/experiments/model_observer.hpp"
-#include "engine/experiments/protocol.hpp"
-#include "engine/experiments/results_table.hpp"
-#include "engine/experiments/staircase.hpp"
-#include "engine/experiments/stimulus.hpp"
-#include "engine/experiments/threshold_analysis.hpp"
+#include "engine/experiments/procedures/adaptive_plan.hpp"
+#include "engine/experiments/analysis/analysis.hpp"
+#include "engine/experiments/runs/experiment_run.hpp"
+#include "engine/experiments/runs/live_session.hpp"
+#include "engine/experiments/procedures/quest_plus.hpp"
+#include "engine/experiments/participants/model_observer.hpp"
+#include "engine/experiments/protocol/protocol.hpp"
+#include "engine/experiments/base/results_table.hpp"
+#include "engine/experiments/procedures/staircase.hpp"
+#include "engine/experiments/protocol/stimulus.hpp"
+#include "engine/experiments/analysis/threshold_analysis.hpp"
+#include "engine/experiments/base/random_stream.hpp"
 #include "process.hpp"
 
 #include <nlohmann/json.hpp>

@@ -1,9 +1,9 @@
 // test_trial_profile.cpp — `experiment run --profile` (trial_profile.hpp): profiling changes no
 // result, the virtual time it divides by is the trials' own (from their hand paths), and the
 // stages add up to no more than the wall time they were taken from.
-#include "engine/experiments/experiment_run.hpp"
-#include "engine/experiments/protocol.hpp"
-#include "engine/experiments/trial_profile.hpp"
+#include "engine/experiments/runs/experiment_run.hpp"
+#include "engine/experiments/protocol/protocol.hpp"
+#include "engine/experiments/base/trial_profile.hpp"
 #include "process.hpp"
 
 #include <doctest/doctest.h>

@@ -1,13 +1,13 @@
 // test_wearable_protocol.cpp — seed 003's protocol on seed 003's device, the simulated wearable
-// platform (engine/experiments/wearable_trial.hpp): rows say sim-wearable, traces hold the
+// platform (engine/experiments/participants/wearable_trial.hpp): rows say sim-wearable, traces hold the
 // platform's tilt, press force and cable tensions, the tilt follows the arc's slope, and a
 // participant without noise answers every height right.
-#include "engine/experiments/experiment_run.hpp"
-#include "engine/experiments/protocol.hpp"
-#include "engine/experiments/results_table.hpp"
-#include "engine/experiments/run_meta.hpp"
-#include "engine/experiments/stimulus.hpp"
-#include "engine/experiments/wearable_trial.hpp"
+#include "engine/experiments/runs/experiment_run.hpp"
+#include "engine/experiments/protocol/protocol.hpp"
+#include "engine/experiments/base/results_table.hpp"
+#include "engine/experiments/runs/run_meta.hpp"
+#include "engine/experiments/protocol/stimulus.hpp"
+#include "engine/experiments/participants/wearable_trial.hpp"
 #include "process.hpp"
 
 #include <doctest/doctest.h>

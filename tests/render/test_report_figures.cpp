@@ -1,12 +1,12 @@
 // test_report_figures.cpp — the seeds' figures in `experiment analyze --report`
-// (engine/app/experiment_figures.hpp): small results tables with counts chosen by hand, the points
+// (engine/reports/experiment_figures.hpp): small results tables with counts chosen by hand, the points
 // and intervals each figure must show (Wilson bounds worked independently, to 1e-4), the rules
 // (categorical axes, no lines, n on every point, proportions in [0, 1], distinct colours), and
 // golden images of each chart drawn by lavapipe.
 #include "render_fixture.hpp"
 #include "snapshot.hpp"
 
-#include "engine/app/experiment_figures.hpp"
+#include "engine/reports/experiment_figures.hpp"
 #include "engine/render/chart_image.hpp"
 
 #include <doctest/doctest.h>
@@ -15,9 +15,9 @@
 #include <set>
 
 using namespace render_test;
-using contactlab::app::ReportFigure;
-using contactlab::app::seed_figures;
-using contactlab::app::seed_of;
+using contactlab::reports::ReportFigure;
+using contactlab::reports::seed_figures;
+using contactlab::reports::seed_of;
 using contactlab::experiments::ResultsTable;
 
 namespace {

@@ -1,0 +1,83 @@
+// servo_trial.cpp — a trial through the servo and the simulated rig (servo_trial.hpp).
+#include "engine/experiments/participants/servo_trial.hpp"
+
+#include "engine/experiments/base/trial_profile.hpp"
+
+#include "drivers/servo_loop.hpp"
+#include "drivers/sim/sim_cld_device.hpp"
+#include "haptics/servo_scene.hpp"
+#include "haptics/servo_tick.hpp"
+#include "haptics/spsc_ring.hpp"
+
+#include <cmath>
+#include <memory>
+#include <optional>
+
+namespace contactlab::experiments {
+
+namespace {
+// The largest tick buffer this thread's finished traces left behind (TrialTrace::~TrialTrace).
+std::vector<drivers::TickRecord>& spare_ticks() {
+    thread_local std::vector<drivers::TickRecord> spare;
+    return spare;
+}
+}  // namespace
+
+TrialTrace::~TrialTrace() {
+    std::vector<drivers::TickRecord>& spare = spare_ticks();
+    if (ticks.capacity() > spare.capacity()) spare.swap(ticks);
+}
+
+TrialTrace run_servo_trial(const Scene& scene, const drivers::HandPath& path, bool contact_location) {
+    TrialProfile* const profile = thread_profile();  // null unless `experiment run --profile`
+    auto setup = std::make_optional<StageTimer>(&TrialProfile::servo_scene);
+    drivers::sim::SimCldParams sp;
+    sp.max_force = scene.force.max_force;
+    drivers::sim::SimCldDevice dev(sp, path);
+    ServoParams params;
+    params.stiffness = scene.force.stiffness;
+    params.max_force = scene.force.max_force;
+    params.passivity = scene.force.passivity;
+    if (!contact_location) params.roller_travel = 1e-9;  // m: the element held at the pad's centre
+    const ServoConfig config = drivers::servo_config_for(dev, kTrialRate);
+    ServoTick tick(config, params);
+    tick.scenes().publish(std::make_unique<ServoScene>(scene));
+    // One record a step, taken off after every step: a few slots suffice (4,096 were 1.2 MB
+    // allocated and page-faulted in every trial).
+    SpscRing<drivers::TickRecord> ring(16);
+    drivers::ServoLoop loop(dev, tick, 1.0 / kTrialRate, &ring);
+    TrialTrace trace;
+    trace.ticks.swap(spare_ticks());  // a finished trial's memory, if this thread has one
+    trace.ticks.clear();
+    if (!loop.start()) {
+        trace.faulted = true;
+        return trace;
+    }
+    const auto ticks = static_cast<std::uint64_t>(std::llround((path.end() - path.start()) * kTrialRate));
+    trace.ticks.reserve(ticks);
+    setup.reset();
+    // Profiled, the loop's own stages (device, tick, ring) are timed by the loop; the rest of
+    // this loop (taking the records off the ring into the trace) counts as records.
+    drivers::ServoLoopStages stages;
+    if (profile) loop.set_profile(&stages);
+    StageClock clock;  // the whole loop, ns (read only when profiling)
+    clock.start(profile != nullptr);
+    for (std::uint64_t k = 0; k < ticks; ++k) {
+        loop.step(1.0 / kTrialRate, true);
+        for (drivers::TickRecord r; ring.try_pop(r);) {
+            trace.faulted |= r.fault != ServoFault::none;
+            trace.ticks.push_back(r);
+        }
+    }
+    if (profile) {
+        double all = 0.0;  // ns
+        clock.lap(all);
+        profile->device += stages.device * 1e-9;
+        profile->tick += stages.tick * 1e-9;
+        profile->records += (all - stages.device - stages.tick) * 1e-9;
+        profile->virtual_s += static_cast<double>(ticks) / kTrialRate;
+    }
+    return trace;
+}
+
+}  // namespace contactlab::experiments

@@ -1,0 +1,397 @@
+// sim_participant.cpp — the simulated participant's perception and answers (sim_participant.hpp).
+#include "engine/experiments/participants/sim_participant.hpp"
+
+#include "engine/experiments/protocol/grading.hpp"
+#include "engine/experiments/base/random_stream.hpp"
+#include "engine/experiments/participants/servo_trial.hpp"
+#include "engine/experiments/protocol/stimulus.hpp"
+#include "engine/experiments/participants/wearable_trial.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace contactlab::experiments {
+namespace {
+
+using drivers::TickRecord;
+
+constexpr double kDeg = 180.0 / kPi;
+
+// The force's direction from the vertical (deg), positive when it pushes back (-x) as on a
+// rising slope under a finger moving +x.
+double force_angle_deg(const TickRecord& r) { return std::atan2(-r.force.x, r.force.y) * kDeg; }
+
+// A threshold with perceptual noise, never below a tenth of itself.
+double noisy(double threshold, double noise, std::uint64_t& rng) {
+    return std::max(0.1 * threshold, threshold + noise * normal01(rng));
+}
+
+// Attention lapses over [t0, t1] s (ParticipantModel::lapse_rate_hz): start times of a Poisson
+// process, each lapse `lapse_duration_s` long. Draws nothing when the rate is 0, so a model
+// without lapses keeps its random stream as before.
+struct Lapses {
+    std::vector<double> starts;  // s
+    double duration = 0.0;       // s
+    bool at(double t) const {
+        for (double s : starts)
+            if (t >= s && t < s + duration) return true;
+        return false;
+    }
+};
+
+Lapses draw_lapses(const ParticipantModel& m, double t0, double t1, std::uint64_t& rng) {
+    Lapses l;
+    l.duration = m.lapse_duration_s;
+    if (m.lapse_rate_hz <= 0.0 || m.lapse_duration_s <= 0.0) return l;
+    for (double t = t0 - m.lapse_duration_s;;) {
+        t += -std::log(1.0 - uniform01(rng)) / m.lapse_rate_hz;  // exponential gaps
+        if (t >= t1) break;
+        l.starts.push_back(t);
+    }
+    return l;
+}
+
+// The speed (m/s) along seed 000's top: what lets the person stop within the pad after their
+// first cue (ParticipantModel::stop_time_s), from their usual thresholds, not this trial's draw.
+double exploration_speed(const Protocol& p, const Condition& c) {
+    const ParticipantModel& m = p.participant;
+    if (m.stop_time_s <= 0.0) return p.hand_speed;
+    double cue = p.finger_radius * std::sin(std::min(90.0, m.force_angle_threshold_deg) / kDeg);  // m past the edge
+    if (c.contact_location) cue = std::min(cue, m.location_threshold_mm * 1e-3);
+    const double left = std::max(0.0, 0.5 * p.pad_length - cue);  // m of pad beyond the cue
+    return std::clamp(left / m.stop_time_s, 0.002, p.hand_speed);  // never slower than 2 mm/s
+}
+
+void common_measures(const TrialTrace& tr, TrialOutcome& o, double t_end = 1e300) {
+    bool touched = false, prev = false;
+    for (const TickRecord& r : tr.ticks) {
+        if (r.t > t_end) break;
+        o.peak_force = std::max(o.peak_force, std::hypot(r.force.x, r.force.y));
+        if (touched && prev && !r.contact) ++o.contact_breaks;
+        touched |= r.contact;
+        prev = r.contact;
+    }
+    o.valid = !tr.faulted;
+    // Over the whole trial, not up to t_end: a finger that first touches after the finish line
+    // still touched the stimulus.
+    o.touched = std::any_of(tr.ticks.begin(), tr.ticks.end(), [](const TickRecord& r) { return r.contact; });
+    for (std::size_t i = 0; i < tr.ticks.size(); i += 10) o.shown.push_back(tr.ticks[i]);
+}
+
+// Where rise-and-fall excursions of `s` beyond +-h complete (sample indices), counted either way
+// round (a bump is + then - for one cue and may be - then + for another): the family with more.
+// `felt(i)` says whether the person attended at sample i: an excursion completed during a lapse
+// is not perceived.
+template <class Felt>
+std::vector<std::size_t> excursion_ends(const std::vector<double>& s, double h, Felt felt) {
+    std::vector<std::size_t> pm, mp;
+    int state = 0;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        const double v = s[i];
+        if (v > h && state != 1) {
+            if (state == -1 && felt(i)) mp.push_back(i);
+            state = 1;
+        } else if (v < -h && state != -1) {
+            if (state == 1 && felt(i)) pm.push_back(i);
+            state = -1;
+        }
+    }
+    return pm.size() >= mp.size() ? pm : mp;
+}
+
+// Protrusions of the finger's path: the spans [first, last] (sample indices) where `s` (its
+// height less its running mean, m) stays above 0 and peaks above h, where the path turns over
+// its peak (`turns_over(peak)`: a top, not the flank of a valley, which the running mean also
+// lifts above 0) and the person attended there (`felt(peak)`).
+template <class TurnsOver, class Felt>
+std::vector<std::pair<std::size_t, std::size_t>> protrusions(const std::vector<double>& s, double h, TurnsOver turns_over,
+                                                             Felt felt) {
+    std::vector<std::pair<std::size_t, std::size_t>> out;
+    for (std::size_t i = 0; i < s.size();) {
+        if (!(s[i] > 0.0)) {
+            ++i;
+            continue;
+        }
+        std::size_t j = i, peak = i;
+        for (; j < s.size() && s[j] > 0.0; ++j)
+            if (s[j] > s[peak]) peak = j;
+        if (s[peak] > h && turns_over(peak) && felt(peak)) out.emplace_back(i, j - 1);
+        i = j;
+    }
+    return out;
+}
+
+// Curvature (1/m, negative where the path turns downward) of the path (x[i], y[i]) at sample i,
+// from the samples `half` either side: the second difference over the slope's (1 + y'^2)^1.5.
+double path_curvature(const std::vector<double>& x, const std::vector<double>& y, std::size_t i, std::size_t half) {
+    const std::size_t a = i > half ? i - half : 0, b = std::min(x.size() - 1, i + half), m = (a + b) / 2;
+    const double run = x[b] - x[a];  // m
+    if (!(run > 0.0) || m == a || m == b) return 0.0;
+    const double slope = (y[b] - y[a]) / run;
+    const double second = ((y[b] - y[m]) / (x[b] - x[m]) - (y[m] - y[a]) / (x[m] - x[a])) / (0.5 * run);  // 1/m
+    return second / std::pow(1.0 + slope * slope, 1.5);
+}
+
+// A band of `s`: its running mean over `narrow` samples each side less that over `wide`: what
+// changes over a bump's width stays, the base shape's slow turn (and its slope) goes.
+std::vector<double> band(const std::vector<double>& s, std::size_t narrow, std::size_t wide) {
+    std::vector<double> prefix(s.size() + 1, 0.0), out(s.size());
+    for (std::size_t i = 0; i < s.size(); ++i) prefix[i + 1] = prefix[i] + s[i];
+    auto mean = [&](std::size_t i, std::size_t half) {
+        const std::size_t a = i > half ? i - half : 0, b = std::min(s.size(), i + half + 1);
+        return (prefix[b] - prefix[a]) / static_cast<double>(b - a);
+    };
+    for (std::size_t i = 0; i < s.size(); ++i) out[i] = mean(i, narrow) - mean(i, wide);
+    return out;
+}
+
+TrialOutcome contour_following(const Protocol& p, const Condition& c, const PlannedTrial& t, std::uint64_t& rng) {
+    const ParticipantModel& m = p.participant;
+    const double loc_threshold = noisy(m.location_threshold_mm, m.location_noise_mm, rng) * 1e-3;  // m
+    const double angle_threshold = noisy(m.force_angle_threshold_deg, m.force_angle_noise_deg, rng);  // deg
+    const double speed = exploration_speed(p, c);  // m/s along the top
+    // This trial's reaction time (s); drawn only when it varies, as the lapses below.
+    const double reaction = m.reaction_time_sd_s > 0.0 ? std::max(0.03, m.reaction_time_s + m.reaction_time_sd_s * normal01(rng))
+                                                       : m.reaction_time_s;
+    // Run 1: slide on past the edge; when is the edge noticed?
+    const double far = 0.03;  // m past the edge: the pad is off the top by then
+    const Stimulus first = make_stimulus(p, c, t, far, speed);
+    const TrialTrace probe = run_servo_trial(first.scene, first.path, c.contact_location);
+    const Lapses lapses = draw_lapses(m, 0.0, first.path.end(), rng);
+    double overshoot = far;
+    bool touched = false;
+    for (const TickRecord& r : probe.ticks) {
+        touched |= r.contact;
+        if (!touched || r.finger.x < -t.stimulus) continue;  // before the start line
+        if (lapses.at(r.t)) continue;                          // attending elsewhere
+        const bool cue = (c.contact_location && std::abs(r.roller_l) >= loc_threshold) ||
+                         (r.contact && std::abs(force_angle_deg(r)) >= angle_threshold) || !r.contact;
+        if (cue) {
+            overshoot = std::clamp(r.finger.x + speed * reaction, -0.005, far);
+            break;
+        }
+    }
+    // Run 2: the trial as performed, tipping round the edge `overshoot` past it.
+    const Stimulus st = make_stimulus(p, c, t, overshoot, speed);
+    const TrialTrace tr = run_servo_trial(st.scene, st.path, c.contact_location);
+    TrialOutcome o;
+    double t_start = -1.0, t_finish = -1.0;
+    touched = false;
+    for (const TickRecord& r : tr.ticks) {
+        touched |= r.contact;
+        if (t_start < 0.0 && touched && r.finger.x >= -t.stimulus) t_start = r.t;
+        if (t_start >= 0.0 && r.finger.y <= -p.finish_depth) {
+            t_finish = r.t;
+            break;
+        }
+    }
+    common_measures(tr, o, t_finish >= 0.0 ? t_finish : 1e300);
+    o.time_s = t_start >= 0.0 && t_finish >= 0.0 ? t_finish - t_start : std::nan("");
+    o.failed = o.contact_breaks > 0 || t_finish < 0.0;
+    return o;
+}
+
+TrialOutcome bump_counting(const Protocol& p, const Condition& c, const PlannedTrial& t, std::uint64_t& rng) {
+    const ParticipantModel& m = p.participant;
+    const Stimulus st = make_stimulus(p, c, t);
+    const TrialTrace tr = run_servo_trial(st.scene, st.path, c.contact_location);
+    std::vector<double> angle, location, height, travel, when;
+    double last_angle = 0.0, last_loc = 0.0;
+    const Lapses lapses = draw_lapses(m, st.slide_start, st.slide_end, rng);
+    for (const TickRecord& r : tr.ticks) {
+        if (r.t < st.slide_start || r.t > st.slide_end) continue;
+        when.push_back(r.t);
+        if (r.contact) {  // out of contact the finger feels nothing new: the last cue stays
+            last_angle = force_angle_deg(r);
+            last_loc = r.roller_l * 1e3;
+        }
+        angle.push_back(last_angle);
+        location.push_back(last_loc);
+        height.push_back(r.finger.y);  // the arm feels where the finger is, in contact or not
+        travel.push_back(r.finger.x);
+    }
+    // Cues over a bump's width (15-30 mm): means over 4 mm less means over 16 mm of travel; the
+    // finger's height less its mean over 24 mm (a bump lifts the finger over 30-50 mm of travel
+    // once the 20 mm pad rolls over it).
+    const double per_m = kTrialRate / p.hand_speed;  // samples per m of travel
+    const auto narrow = static_cast<std::size_t>(0.002 * per_m), wide = static_cast<std::size_t>(0.008 * per_m),
+               path_wide = static_cast<std::size_t>(0.012 * per_m);
+    // A cue that completes during a lapse passes unfelt.
+    const auto felt = [&](std::size_t i) { return !lapses.at(when[i]); };
+    // Bumps as objects (docs/experiments.md, "The simulated person"): each rise of the finger's
+    // path over a top is one bump, and so is every swing felt while the pad is still on it
+    // (within a pad length of its span). Swings of the force's direction (and of the contact
+    // element) felt elsewhere are bumps the arm did not notice; those within a pad length of each
+    // other are the same one (the element swings both ways over one bump, the force turns at its
+    // foot and at its top). A top: the path turns over it more sharply than a 50 mm radius, over
+    // +-8 mm of travel (a bump's top, rounded by the 20 mm pad, turns the finger at 24-35 mm).
+    const auto top_half = static_cast<std::size_t>(0.008 * per_m);
+    const auto turns_over = [&](std::size_t i) { return path_curvature(travel, height, i, top_half) < -1.0 / 0.05; };
+    const auto bumps = protrusions(band(height, narrow, path_wide), noisy(m.path_threshold_mm, m.path_noise_mm, rng) * 1e-3,
+                                   turns_over, felt);
+    std::vector<std::size_t> swings =
+        excursion_ends(band(angle, narrow, wide), noisy(m.force_angle_threshold_deg, m.force_angle_noise_deg, rng), felt);
+    if (c.contact_location) {
+        const auto element =
+            excursion_ends(band(location, narrow, wide), noisy(m.location_threshold_mm, m.location_noise_mm, rng), felt);
+        swings.insert(swings.end(), element.begin(), element.end());
+    }
+    std::vector<double> elsewhere;  // m of travel
+    for (const std::size_t i : swings) {
+        const double x = travel[i];
+        const bool on_a_bump = std::any_of(bumps.begin(), bumps.end(), [&](const auto& b) {
+            return x >= travel[b.first] - p.pad_length && x <= travel[b.second] + p.pad_length;
+        });
+        if (!on_a_bump) elsewhere.push_back(x);
+    }
+    std::sort(elsewhere.begin(), elsewhere.end());
+    int count = static_cast<int>(bumps.size());
+    for (std::size_t k = 0; k < elsewhere.size(); ++k)
+        if (k == 0 || elsewhere[k] - elsewhere[k - 1] > p.pad_length) ++count;
+    TrialOutcome o;
+    common_measures(tr, o);
+    o.small_bumps = st.small_bumps;
+    o.large_bumps = st.large_bumps;
+    // The answers are the counts 0..N (parse_protocol checks it): a larger count is answered N.
+    o.response = std::to_string(std::clamp(count, 0, static_cast<int>(p.answers.size()) - 1));
+    o.time_s = st.slide_end - st.slide_start;
+    return o;
+}
+
+TrialOutcome curvature(const Protocol& p, const Condition& c, const PlannedTrial& t, std::uint64_t& rng) {
+    const ParticipantModel& m = p.participant;
+    const Stimulus st = make_stimulus(p, c, t);
+    const TrialTrace tr = run_servo_trial(st.scene, st.path, c.contact_location);
+    double lo = 1e9, hi = -1e9;
+    for (const TickRecord& r : tr.ticks)
+        if (r.t >= st.slide_start && r.t <= st.slide_end && r.contact) {
+            lo = std::min(lo, force_angle_deg(r));
+            hi = std::max(hi, force_angle_deg(r));
+        }
+    const double felt = (hi > lo ? hi - lo : 0.0) + m.force_angle_noise_deg * normal01(rng);
+    double best = 1e300, answer = p.stimuli.front();
+    for (double h : p.stimuli)
+        if (const double d = std::abs(felt - arc_slope_range_deg(p.chord, h)); d < best) {
+            best = d;
+            answer = h;
+        }
+    TrialOutcome o;
+    common_measures(tr, o);
+    o.response = stimulus_label(p, answer);
+    o.time_s = st.slide_end - st.slide_start;
+    return o;
+}
+
+// Force magnitude (N) and finger position at the last tick at or before time `at`.
+const TickRecord* at_time(const TrialTrace& tr, double at) {
+    const TickRecord* best = nullptr;
+    for (const TickRecord& r : tr.ticks)
+        if (r.t <= at) best = &r;
+    return best;
+}
+
+TrialOutcome surface_orientation(const Protocol& p, const Condition& c, const PlannedTrial& t, std::uint64_t& rng) {
+    const ParticipantModel& m = p.participant;
+    const Stimulus st = make_stimulus(p, c, t);
+    const TrialTrace tr = run_servo_trial(st.scene, st.path, c.contact_location);
+    // Stiffness felt along a diagonal: force growth over the finger's displacement (N/m).
+    auto felt = [&](double from, double to) {
+        const TickRecord* a = at_time(tr, from);
+        const TickRecord* b = at_time(tr, to);
+        if (!a || !b) return 0.0;
+        const double dx = glm::length(b->finger - a->finger);
+        const double df = std::hypot(b->force.x, b->force.y) - std::hypot(a->force.x, a->force.y);
+        return (dx > 0.0 ? df / dx : 0.0) * (1.0 + m.stiffness_noise * normal01(rng));
+    };
+    const double down_left = felt(st.probe[0], st.probe[1]), down_right = felt(st.probe[2], st.probe[3]);
+    TrialOutcome o;
+    common_measures(tr, o);
+    // a1 at 45 deg runs up-right/down-left: pressing down-left is the soft way (template A).
+    o.response = down_left < down_right ? p.answers.front() : p.answers.back();
+    o.time_s = st.path.end() - st.path.start();
+    return o;
+}
+
+// Peak rate of change per mm of travel of a cue sampled every tick at constant hand speed,
+// after a running mean over +-2 mm (the skin and the hand do not resolve finer).
+double peak_rate_per_mm(const std::vector<double>& s, double samples_per_mm) {
+    if (s.size() < 3) return 0.0;
+    const std::size_t half = static_cast<std::size_t>(2.0 * samples_per_mm);
+    // band(s, half, 0) is the running mean over +-half less the sample itself: add it back.
+    std::vector<double> m = band(s, half, 0);
+    for (std::size_t i = 0; i < s.size(); ++i) m[i] += s[i];
+    double peak = 0.0;
+    const std::size_t lag = std::max<std::size_t>(1, static_cast<std::size_t>(samples_per_mm));
+    for (std::size_t i = lag; i < m.size(); ++i) peak = std::max(peak, std::abs(m[i] - m[i - lag]));
+    return peak;  // per lag samples = per mm
+}
+
+struct EdgeFelt {
+    double angle_rate = 0.0, location_rate = 0.0;  // deg/mm, mm/mm
+    TrialTrace trace;
+    Stimulus st;
+};
+
+EdgeFelt feel_edge(const Protocol& p, const Condition& c, double radius) {
+    EdgeFelt f;
+    f.st = make_edge_stimulus(p, radius);
+    f.trace = run_servo_trial(f.st.scene, f.st.path, c.contact_location);
+    std::vector<double> angle, location;
+    double last_angle = 0.0, last_loc = 0.0;
+    for (const TickRecord& r : f.trace.ticks) {
+        if (r.t < f.st.slide_start || r.t > f.st.slide_end) continue;
+        if (r.contact) last_angle = force_angle_deg(r), last_loc = r.roller_l * 1e3;
+        angle.push_back(last_angle);
+        location.push_back(last_loc);
+    }
+    const double per_mm = kTrialRate / (p.hand_speed * 1e3);
+    f.angle_rate = peak_rate_per_mm(angle, per_mm);
+    f.location_rate = peak_rate_per_mm(location, per_mm);
+    return f;
+}
+
+TrialOutcome edge_sharpness(const Protocol& p, const Condition& c, const PlannedTrial& t, std::uint64_t& rng) {
+    const double noise = p.participant.edge_rate_noise;
+    const EdgeFelt first = feel_edge(p, c, edge_radius(p, t, 1)), second = feel_edge(p, c, edge_radius(p, t, 2));
+    // A felt rate: the displayed one with relative noise, kept positive.
+    auto felt = [&](double rate) { return std::max(1e-9, rate * std::max(0.05, 1.0 + noise * normal01(rng))); };
+    double d = std::log(felt(first.angle_rate) / felt(second.angle_rate));
+    if (c.contact_location) d = 0.5 * (d + std::log(felt(first.location_rate) / felt(second.location_rate)));
+    TrialOutcome o;
+    // Both intervals count: a fault or no contact in either spoils the comparison.
+    TrialTrace both = first.trace;
+    const double offset = first.st.path.end();
+    for (drivers::TickRecord r : second.trace.ticks) {
+        r.t += offset;
+        both.ticks.push_back(r);
+    }
+    both.faulted = first.trace.faulted || second.trace.faulted;
+    common_measures(both, o);
+    o.touched = std::any_of(first.trace.ticks.begin(), first.trace.ticks.end(), [](const TickRecord& r) { return r.contact; }) &&
+                std::any_of(second.trace.ticks.begin(), second.trace.ticks.end(), [](const TickRecord& r) { return r.contact; });
+    o.response = d > 0.0 ? p.answers[0] : p.answers[1];
+    o.time_s = (first.st.slide_end - first.st.slide_start) + (second.st.slide_end - second.st.slide_start);
+    return o;
+}
+
+}  // namespace
+
+TrialOutcome perform_sim_trial(const Protocol& p, const PlannedTrial& t) {
+    const Condition& c = p.conditions.at(static_cast<std::size_t>(t.condition));
+    std::uint64_t rng = mix64(t.seed ^ 0x5EEDull);
+    TrialOutcome o;
+    switch (p.task) {
+        case Task::contour_following: o = contour_following(p, c, t, rng); break;
+        case Task::bump_counting: o = bump_counting(p, c, t, rng); break;
+        case Task::curvature:
+            o = p.device == "sim-wearable" ? wearable_curvature_trial(p, c, t, rng) : curvature(p, c, t, rng);
+            break;
+        case Task::surface_orientation: o = surface_orientation(p, c, t, rng); break;
+        case Task::edge_sharpness: o = edge_sharpness(p, c, t, rng); break;
+    }
+    o.correct = graded_correct(p, t, o.response);
+    return o;
+}
+
+}  // namespace contactlab::experiments

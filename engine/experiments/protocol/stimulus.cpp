@@ -1,0 +1,222 @@
+// stimulus.cpp — scenes and hand paths for each task (stimulus.hpp).
+#include "engine/experiments/protocol/stimulus.hpp"
+
+#include "engine/experiments/protocol/surface_profile.hpp"
+#include "engine/experiments/base/trial_profile.hpp"
+#include "engine/experiments/base/random_stream.hpp"
+
+#include "drivers/tasks.hpp"
+#include "haptics/bezier.hpp"
+#include "haptics/force_law.hpp"
+#include "haptics/stimuli.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <variant>
+
+namespace contactlab::experiments {
+namespace {
+
+constexpr double kSample = 1e-3;  // s between hand path samples
+
+// Points along every segment of the scene, about every 0.25 mm.
+std::vector<Vec2> surface_points(const Scene& s) {
+    std::vector<Vec2> out;
+    for (const Contour& c : s.contours)
+        for (const Segment& seg : c.segments) {
+            const int n = std::max(2, static_cast<int>(std::ceil(segment_length(seg) / 2.5e-4)));
+            for (int i = 0; i <= n; ++i) {
+                const double u = static_cast<double>(i) / n;
+                if (const auto* l = std::get_if<LineSegment>(&seg)) {
+                    out.push_back(l->from + (l->to - l->from) * u);
+                } else if (const auto* a = std::get_if<ArcSegment>(&seg)) {
+                    const double ang = a->start_angle + (a->end_angle - a->start_angle) * u;
+                    out.push_back(a->center + a->radius * Vec2{std::cos(ang), std::sin(ang)});
+                } else {
+                    out.push_back(bezier_point(segment_bezier(seg), u));
+                }
+            }
+        }
+    return out;
+}
+
+// Descend onto x0, settle, slide to x1 at `speed` (along x) keeping `press` below the resting
+// height, hold. The finger turns with the surface's slope over +-15 mm (a person keeps the pad on
+// the contour, seed 002's gimbal measures it): the pad reaches slopes only within L / 2R of its
+// axis, and seed 002's base shape is steeper than that.
+drivers::HandPath slide_path(const SurfaceProfile& pts, double x0, double x1, double r, double speed, double press,
+                             double& slide_start, double& slide_end) {
+    std::size_t at = 0, ahead = 0, behind = 0;  // where each of the three heights was last found
+    auto height = [&](double x, std::size_t& hint) { return resting_height(pts, x, r, hint) - press; };
+    auto slope = [&](double x) {
+        constexpr double h = 0.015;  // m
+        return std::clamp(std::atan2(height(x + h, ahead) - height(x - h, behind), 2.0 * h), -1.4, 1.4);  // rad
+    };
+    std::vector<drivers::PathSample> out;
+    double t = 0.0;
+    const double y0 = height(x0, at), phi0 = slope(x0);
+    const Vec2 above{x0, y0 + 0.015};
+    auto push = [&](Vec2 x, double phi) {
+        out.push_back({t, x, phi});
+        t += kSample;
+    };
+    for (int i = 0; i < 300; ++i) push(above + (Vec2{x0, y0} - above) * (i / 300.0), phi0);  // 0.3 s down
+    for (int i = 0; i < 300; ++i) push({x0, y0}, phi0);                                      // 0.3 s settle
+    slide_start = t;
+    const int n = static_cast<int>(std::ceil(std::abs(x1 - x0) / (speed * kSample)));
+    for (int i = 0; i <= n; ++i) {
+        const double x = x0 + (x1 - x0) * i / n;
+        push({x, height(x, at)}, slope(x));
+    }
+    slide_end = t;
+    const drivers::PathSample last = out.back();
+    for (int i = 0; i < 200; ++i) push(last.x, last.phi);  // 0.2 s hold
+    return drivers::HandPath(std::move(out));
+}
+
+// What the protocol sets of how a stimulus is rendered: the pad, the force, and the curves' mode.
+void set_rendering(Scene& s, const Protocol& p) {
+    s.curves = p.curves;  // exact unless the protocol asks for flattened curves
+    s.finger.radius = p.finger_radius;
+    s.finger.length = p.pad_length;
+    s.force.stiffness = p.stiffness;
+    s.force.max_force = p.max_force;
+}
+
+}  // namespace
+
+Scene generate_edge(double radius, double slope, double half_width) {
+    // The faces meet at the apex (0, 0); the arc's centre lies below it at radius / cos(slope),
+    // where it is `radius` from both faces, and the arc runs clockwise over the top (convex).
+    const Vec2 center{0.0, -radius / std::cos(slope)};
+    const double a0 = 0.5 * kPi + slope, a1 = 0.5 * kPi - slope;
+    const Vec2 left = center + radius * Vec2{std::cos(a0), std::sin(a0)}, right = center + radius * Vec2{std::cos(a1), std::sin(a1)};
+    Scene s;
+    Contour c;
+    c.segments.push_back(LineSegment{{-half_width, -half_width * std::tan(slope)}, left});
+    c.segments.push_back(ArcSegment{center, radius, a0, a1});
+    c.segments.push_back(LineSegment{right, {half_width, -half_width * std::tan(slope)}});
+    s.contours.push_back(c);
+    return s;
+}
+
+Stimulus make_edge_stimulus(const Protocol& p, double radius) {
+    const StageTimer timer(&TrialProfile::stimulus);
+    Stimulus st;
+    st.scene = generate_edge(radius, p.edge_slope_deg * kPi / 180.0, 0.05);
+    set_rendering(st.scene, p);
+    const SurfaceProfile pts = profile_of(surface_points(st.scene));
+    st.path = slide_path(pts, -0.03, 0.03, p.finger_radius, p.hand_speed, p.hand_press, st.slide_start, st.slide_end);
+    return st;
+}
+
+double edge_radius(const Protocol& p, const PlannedTrial& t, int interval) {
+    return p.reference_radius + (interval == comparison_interval(t.seed) ? t.stimulus * 1e-3 : 0.0);
+}
+
+double curvature_slide_start(const Protocol& p, const Condition& c) {
+    const double half = 0.5 * p.chord + 0.02;  // m: from before the arc to after it
+    return c.motion == "B" ? half : -half;
+}
+
+double arc_slope_range_deg(double chord, double height) {
+    const double ra = arc_cap_radius(chord, height);
+    return 2.0 * std::asin(std::min(1.0, chord / (2.0 * ra))) * 180.0 / kPi;
+}
+
+Stimulus make_stimulus(const Protocol& p, const Condition& c, const PlannedTrial& t, double overshoot, double top_speed) {
+    const StageTimer timer(&TrialProfile::stimulus);
+    Stimulus st;
+    std::uint64_t rng = t.seed;
+    switch (p.task) {
+        case Task::contour_following: {
+            st.scene = generate_block(t.stimulus);
+            set_rendering(st.scene, p);
+            drivers::BlockTaskParams bp;
+            bp.finger_radius = p.finger_radius;
+            bp.d = t.stimulus;
+            bp.speed = top_speed > 0.0 ? top_speed : p.hand_speed;
+            bp.descent_speed = p.hand_speed;
+            bp.press = p.hand_press;
+            bp.overshoot = overshoot;
+            bp.descent = p.finish_depth + 0.01;  // a centimetre past the finish line
+            st.path = drivers::contour_block_task(bp);
+            break;
+        }
+        case Task::bump_counting: {
+            BumpsDef def;
+            def.seed = mix64(rng);
+            const int k = static_cast<int>(t.stimulus);
+            for (int i = 0; i < k; ++i) (uniform01(rng) < 0.5 ? st.small_bumps : st.large_bumps) += 1;
+            def.small_bumps = st.small_bumps;
+            def.large_bumps = st.large_bumps;
+            def.small_height = p.small_bump;
+            def.large_height = p.large_bump;
+            def.length = p.traced_length;
+            def.base_span = p.base_span;
+            st.scene = generate_bumps(def).scene;
+            set_rendering(st.scene, p);
+            const SurfaceProfile pts = profile_of(surface_points(st.scene));
+            st.path = slide_path(pts, 0.01, p.traced_length - 0.01, p.finger_radius, p.hand_speed, p.hand_press,
+                                 st.slide_start, st.slide_end);
+            break;
+        }
+        case Task::curvature: {
+            st.scene = generate_arc(p.chord, t.stimulus);
+            set_rendering(st.scene, p);
+            const SurfaceProfile pts = profile_of(surface_points(st.scene));
+            const double x0 = curvature_slide_start(p, c);
+            st.path = slide_path(pts, x0, -x0, p.finger_radius, p.hand_speed, p.hand_press, st.slide_start, st.slide_end);
+            break;
+        }
+        case Task::surface_orientation: {
+            Scene s;
+            Contour floor;
+            floor.segments.push_back(LineSegment{{-0.05, 0.0}, {0.05, 0.0}});
+            s.contours.push_back(floor);
+            set_rendering(s, p);
+            ForceLaw& law = s.force.law;
+            law.model = ForceModel::ellipsoid;
+            law.k_tangential = tangential_stiffness_from(c.total_stiffness, c.eccentricity);
+            law.k_normal = c.eccentricity * law.k_tangential;
+            law.field_angle = (t.stimulus - 90.0) * kPi / 180.0;  // alpha = 90 deg + field_angle
+            law.mu_static = law.mu_dynamic = 1.0;  // the stiction point holds while the finger probes
+            s.force.stiffness = law.k_normal;
+            st.scene = s;
+            // Press 1 mm in, then 1 mm along each downward diagonal and back.
+            const double r = p.finger_radius, depth = 0.001, probe = 0.001;
+            const Vec2 above{0.0, r + 0.01}, in{0.0, r - depth};
+            const Vec2 dl = in + probe * Vec2{-1.0, -1.0} / std::sqrt(2.0), dr = in + probe * Vec2{1.0, -1.0} / std::sqrt(2.0);
+            std::vector<drivers::PathSample> out;
+            double time = 0.0;
+            auto move = [&](Vec2 a, Vec2 b, double seconds) {
+                const int n = static_cast<int>(std::lround(seconds / kSample));
+                for (int i = 0; i < n; ++i) {
+                    out.push_back({time, a + (b - a) * (static_cast<double>(i) / n), 0.0});
+                    time += kSample;
+                }
+            };
+            move(above, in, 0.4);
+            move(in, in, 0.4);
+            st.probe[0] = time;
+            move(in, dl, 0.3);
+            move(dl, dl, 0.1);
+            st.probe[1] = time;
+            move(dl, in, 0.3);
+            move(in, in, 0.2);
+            st.probe[2] = time;
+            move(in, dr, 0.3);
+            move(dr, dr, 0.1);
+            st.probe[3] = time;
+            move(dr, in, 0.3);
+            move(in, above, 0.3);
+            out.push_back({time, above, 0.0});
+            st.path = drivers::HandPath(std::move(out));
+            break;
+        }
+        case Task::edge_sharpness: st = make_edge_stimulus(p, edge_radius(p, t, 1)); break;
+    }
+    return st;
+}
+
+}  // namespace contactlab::experiments
