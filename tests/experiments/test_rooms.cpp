@@ -137,7 +137,8 @@ TEST_CASE("rooms: the checker finds an include that runs back up, a sibling's, a
     CHECK(room_violations(t).empty());
 
     SourceTree up = t;
-    up["engine/experiments/protocol/p.cpp"] = "#include \"engine/experiments/runs/r.hpp\"\n";
+    up["engine/experiments/runs/q.hpp"] = "";
+    up["engine/experiments/protocol/p.cpp"] = "#include \"engine/experiments/runs/q.hpp\"\n";
     const auto up_bad = room_violations(up);
     REQUIRE(up_bad.size() == 1);
     CHECK(up_bad[0].find("room runs is not below room protocol") != std::string::npos);
