@@ -4,7 +4,7 @@
 // Without a Vulkan device the tables are still written and the page says why the plots are not.
 //
 //   contactlab bench [--quick] [--json OUT.json] [--report DIR]
-//   contactlab bench --scene SCENE.json --input IN.csv [--passes N] [--json OUT.json]
+//   contactlab bench --scene SCENE.json --input IN.csv [--passes N] [--json OUT.json] [--ticks OUT.csv]
 #include "engine/app/data_path.hpp"
 #include "engine/app/subcommands.hpp"
 #include "engine/bench/report.hpp"
@@ -24,6 +24,7 @@ struct BenchArgs {
     std::string report;
     std::string scene;
     std::string input;
+    std::string ticks;  // --ticks: one CSV row per tick
     int passes = 20;
 };
 
@@ -42,16 +43,22 @@ int run_trace_timing(const BenchArgs& a) {
     const Scene scene = load_scene_file(a.scene);
     const auto samples = read_finger_samples_file(a.input);
     if (samples.empty()) throw BadInput("bench: " + a.input + ": no samples");
-    const bench::TraceTiming t = bench::time_trace(scene, samples, a.passes);
+    const bench::TraceTiming t = bench::time_trace(scene, samples, a.passes, !a.ticks.empty());
     std::printf("%s over %s: %zu samples x %d passes, %.0f %% in contact\n", a.scene.c_str(), a.input.c_str(),
                 t.samples, t.passes, 100.0 * t.contact_fraction);
-    std::printf("ns per tick: median %.0f, p99 %.0f, max %.0f  (a 1 kHz servo has 1,000,000)\n", t.stats.median_ns,
-                t.stats.p99_ns, t.stats.max_ns);
+    std::printf("ns per tick: median %.0f, p99 %.0f, p99.9 %.0f, max %.0f  (a 1 kHz servo has 1,000,000; 10 kHz 100,000)\n",
+                t.stats.median_ns, t.stats.p99_ns, t.stats.p999_ns, t.stats.max_ns);
+    std::printf("ticks over 100 us: %zu, over 1 ms: %zu, of %zu\n", t.stats.over_100us, t.stats.over_1ms, t.stats.ticks);
     const ProxyStages& s = t.stages;
     std::printf("stages, mean ns per tick (a second pass, timed by stage; its median %.0f ns): gather %.0f, "
                 "pieces %.0f, walk %.0f, contact %.0f, anticipate %.0f\n",
                 t.profiled.median_ns, s.gather, s.pieces, s.walk, s.contact, s.anticipate);
+    const ProxyStages& w = t.tail.stages;
+    std::printf("the slowest %zu tick(s) of that pass, mean %.0f ns: gather %.0f, pieces %.0f, walk %.0f, contact %.0f, "
+                "anticipate %.0f\n",
+                t.tail.ticks, t.tail.mean_ns, w.gather, w.pieces, w.walk, w.contact, w.anticipate);
     if (!a.json.empty()) write(a.json, bench::trace_json(t).dump(2) + "\n", "JSON");
+    if (!a.ticks.empty()) write(a.ticks, bench::ticks_csv(t), "ticks CSV");
     return 0;
 }
 
@@ -92,7 +99,12 @@ void register_bench_command(CLI::App& app, int& rc) {
     cmd->add_option("--scene", a.scene, "Time your own scene over --input instead of the suites");
     cmd->add_option("--input", a.input, "Finger samples for --scene (the trace input: t,x,y,phi)");
     cmd->add_option("--passes", a.passes, "With --scene: how many times to replay the input")->default_val(20);
-    cmd->callback([&rc] { rc = a.scene.empty() ? run_suites(a) : run_trace_timing(a); });
+    cmd->add_option("--ticks", a.ticks,
+                    "With --scene: write one CSV row per tick (pass,sample,ns,contact and each stage's ns)");
+    cmd->callback([&rc] {
+        if (!a.ticks.empty() && a.scene.empty()) throw BadInput("bench: --ticks needs --scene SCENE --input IN.csv");
+        rc = a.scene.empty() ? run_suites(a) : run_trace_timing(a);
+    });
 }
 
 }  // namespace contactlab::app

@@ -242,6 +242,32 @@ Chart render_chart(const BenchResults& r) {
     return c;
 }
 
+// The tail against N on the dense contours: p99.9 in contact (solid, discs) and hovering (dashed,
+// squares), one colour per kind, against the 10 kHz and 1 kHz periods (unlabelled lines: the data
+// rise toward the right, where a line's label would sit; the axis title names them). The maxima
+// are in the table beside it.
+Chart tail_chart(const BenchResults& r) {
+    Chart c = base_chart("The slowest ticks by density (one 0.4 m sinusoid, cut finer)", "segments N", AxisScale::log10,
+                         "ns per tick, p99.9 (grey line 100 us: 10 kHz period; red 1 ms: 1 kHz)", AxisScale::log10);
+    int colour = 0;
+    for (const SegmentKind kind : {SegmentKind::lines, SegmentKind::arcs, SegmentKind::curves}) {
+        ChartSeries contact = series(std::string(kind_name(kind)) + ", in contact", colour, Marker::disc);
+        ChartSeries hover = series(std::string(kind_name(kind)) + ", hovering", colour, Marker::square, true);
+        for (const CostRow& row : r.cost) {
+            if (row.scene.kind != kind || row.scene.growth != Growth::dense) continue;
+            const double n = row.scene.segments;
+            contact.x.push_back(n), contact.y.push_back(row.proxy.p999_ns);
+            hover.x.push_back(n), hover.y.push_back(row.hover.p999_ns);
+        }
+        for (ChartSeries* s : {&contact, &hover})
+            if (!s->x.empty()) c.series.push_back(std::move(*s));
+        ++colour;
+    }
+    c.references.push_back({"", false, kTenKilohertzPeriodNs, render::Color{90, 90, 90, 255}});
+    c.references.push_back({"", false, kOneKilohertzPeriodNs, render::Color{170, 40, 40, 255}});
+    return c;
+}
+
 }  // namespace
 
 std::vector<ReportChart> report_charts(const BenchResults& r) {
@@ -249,6 +275,7 @@ std::vector<ReportChart> report_charts(const BenchResults& r) {
     if (!r.cost.empty()) {
         charts.push_back({"cost_extent.png", cost_chart(r, Growth::extent)});
         charts.push_back({"cost_dense.png", cost_chart(r, Growth::dense)});
+        charts.push_back({"tail_dense.png", tail_chart(r)});
     }
     if (!r.pareto.empty()) charts.push_back({"pareto.png", pareto_chart(r)});
     if (!r.stability.empty()) charts.push_back({"stability.png", stability_chart(r)});

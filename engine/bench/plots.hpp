@@ -2,6 +2,8 @@
 // (engine/render/chart.hpp) from the same results as the tables:
 //   cost_extent.png, cost_dense.png  log-log ns per tick against segments, lines/arcs/curves, with
 //                                    the brute-force and point-finger baselines
+//   tail_dense.png                   log-log p99.9 and max per tick against segments on the dense
+//                                    contours, in contact and hovering, against 100 us and 1 ms
 //   pareto.png                       error against ns per tick for the curve modes
 //   stability.png                    largest stable Ke against servo rate, next to 2b/T
 //   zwidth.png                       largest stable K against virtual damping B (Z-width), pressed

@@ -10,7 +10,31 @@ namespace contactlab::bench {
 namespace {
 
 nlohmann::json stats_json(const TickStats& s) {
-    return {{"median", s.median_ns}, {"p99", s.p99_ns}, {"max", s.max_ns}, {"ticks", s.ticks}};
+    return {{"median", s.median_ns}, {"p99", s.p99_ns},       {"p999", s.p999_ns},       {"max", s.max_ns},
+            {"ticks", s.ticks},      {"over_100us", s.over_100us}, {"over_1ms", s.over_1ms}};
+}
+
+nlohmann::json stages_json(const ProxyStages& st) {
+    return {{"gather", st.gather}, {"pieces", st.pieces}, {"walk", st.walk}, {"contact", st.contact}, {"anticipate", st.anticipate}};
+}
+
+nlohmann::json tail_json(const TailSplit& t) {
+    return {{"ticks", t.ticks}, {"mean_ns", t.mean_ns}, {"stages_ns", stages_json(t.stages)}};
+}
+
+// The stage that took most of a set of ticks' time, and its share: "walk 71 %".
+std::string main_stage(const ProxyStages& st) {
+    const std::pair<const char*, double> all[] = {{"gather", st.gather},   {"pieces", st.pieces},
+                                                  {"walk", st.walk},       {"contact", st.contact},
+                                                  {"anticipate", st.anticipate}};
+    const auto* best = &all[0];
+    for (const auto& a : all)
+        if (a.second > best->second) best = &a;
+    const double total = st.total();
+    if (!(total > 0.0)) return "-";
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%s %.0f %%", best->first, 100.0 * best->second / total);
+    return buf;
 }
 
 const char* cause_name(InstabilityCause c) {
@@ -103,13 +127,14 @@ std::string study_section(const std::string& title, const StudySpeed& st, const 
 nlohmann::json results_json(const BenchResults& r) {
     nlohmann::json j;
     j["quick"] = r.quick;
-    j["units"] = "tick_ns: ns per proxy tick (median, p99, max); errors in m";
+    j["units"] = "tick_ns: ns per proxy tick (median, p99, p999, max; over_100us and over_1ms count ticks); errors in m";
     for (const CostRow& row : r.cost) {
         const std::string n = std::to_string(row.scene.segments);
         j["tick_ns"][row.key][n] = stats_json(row.proxy);
         j["contact_fraction"][row.key][n] = row.contact_fraction;
         j["env_segments"][row.key][n] = row.env_segments;
         j["hover_ns"][row.key][n] = stats_json(row.hover);
+        if (row.tail_contact.ticks) j["slowest_ticks"][row.key][n] = {{"contact", tail_json(row.tail_contact)}, {"hover", tail_json(row.tail_hover)}};
         j["baseline_ns"]["point_finger"][row.key][n] = stats_json(row.point_finger);
         j["ratio_to_baseline"]["point_finger"][row.key][n] = row.proxy.median_ns / row.point_finger.median_ns;
         if (row.brute_force) {
@@ -230,10 +255,21 @@ nlohmann::json results_json(const BenchResults& r) {
 nlohmann::json trace_json(const TraceTiming& t) {
     return {{"samples", t.samples}, {"passes", t.passes}, {"contact_fraction", t.contact_fraction},
             {"tick_ns", stats_json(t.stats)},
-            {"stages_ns",
-             {{"gather", t.stages.gather}, {"pieces", t.stages.pieces}, {"walk", t.stages.walk},
-              {"contact", t.stages.contact}, {"anticipate", t.stages.anticipate}}},
-            {"profiled_tick_ns", stats_json(t.profiled)}};
+            {"stages_ns", stages_json(t.stages)},
+            {"profiled_tick_ns", stats_json(t.profiled)},
+            {"slowest_ticks", tail_json(t.tail)}};
+}
+
+std::string ticks_csv(const TraceTiming& t) {
+    std::string csv = "pass,sample,ns,contact,gather_ns,pieces_ns,walk_ns,contact_ns,anticipate_ns,profiled_ns\n";
+    csv.reserve(csv.size() + t.rows.size() * 64);
+    char line[256];
+    for (const TickRow& r : t.rows) {
+        std::snprintf(line, sizeof line, "%d,%zu,%.0f,%d,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f\n", r.pass, r.sample, r.ns, r.contact ? 1 : 0,
+                      r.stages.gather, r.stages.pieces, r.stages.walk, r.stages.contact, r.stages.anticipate, r.profiled_ns);
+        csv += line;
+    }
+    return csv;
 }
 
 std::string results_markdown(const BenchResults& r, const ReportPlots* plots) {
@@ -261,6 +297,22 @@ std::string results_markdown(const BenchResults& r, const ReportPlots* plots) {
               " | " + duration(row.hover.median_ns) + " / " + duration(row.hover.p99_ns) + " |\n";
     }
     md += figure(plots, "cost_extent.png") + figure(plots, "cost_dense.png");
+    md += "\n## The tail: the slowest ticks\n\n"
+          "A servo is judged by its slowest tick: a late tick holds the last force. p99.9 and max of the same "
+          "runs, and the ticks that would miss a 10 kHz period (over 100 us) or a 1 kHz one (over 1 ms). "
+          "At the largest size the strokes run again with the proxy's stages timed: `slowest in` is the "
+          "stage that took most of the slowest 0.1 % of those ticks.\n\n"
+          "| scene | N | contact p99.9 / max | over 100 us / 1 ms | slowest in | hover p99.9 / max | over 100 us / 1 ms | slowest in |\n"
+          "| --- | ---: | ---: | ---: | --- | ---: | ---: | --- |\n";
+    for (const CostRow& row : r.cost) {
+        md += "| " + row.key + " | " + std::to_string(row.scene.segments) + " | " + duration(row.proxy.p999_ns) + " / " +
+              duration(row.proxy.max_ns) + " | " + std::to_string(row.proxy.over_100us) + " / " + std::to_string(row.proxy.over_1ms) +
+              " of " + std::to_string(row.proxy.ticks) + " | " + (row.tail_contact.ticks ? main_stage(row.tail_contact.stages) : "") +
+              " | " + duration(row.hover.p999_ns) + " / " + duration(row.hover.max_ns) + " | " + std::to_string(row.hover.over_100us) +
+              " / " + std::to_string(row.hover.over_1ms) + " of " + std::to_string(row.hover.ticks) + " | " +
+              (row.tail_hover.ticks ? main_stage(row.tail_hover.stages) : "") + " |\n";
+    }
+    md += figure(plots, "tail_dense.png");
     md += "\n## What each feature costs (lines, 1000 segments)\n\n"
           "| feature | stroke | median | p99 |\n| --- | --- | ---: | ---: |\n";
     for (const FeatureRow& f : r.features)

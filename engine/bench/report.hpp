@@ -14,6 +14,12 @@ namespace contactlab::bench {
 nlohmann::json results_json(const BenchResults& r);
 nlohmann::json trace_json(const TraceTiming& t);
 
+// `bench --scene --input --ticks OUT.csv`: one row per tick (needs time_trace's rows):
+// pass,sample,ns,contact,gather_ns,pieces_ns,walk_ns,contact_ns,anticipate_ns,profiled_ns. `ns` is
+// the plain pass's time of the tick; the stages and `profiled_ns` come from the profiled replay of
+// the same sample (docs/benchmarks.md, "Your own scene").
+std::string ticks_csv(const TraceTiming& t);
+
 // The tables (cost growth with baselines, feature costs, Pareto, stability, roller, frame time)
 // as Markdown. With `plots` (the --report folder's PNGs), each figure is linked under its table,
 // or the page says why it is missing.

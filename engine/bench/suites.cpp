@@ -34,17 +34,45 @@ struct Measured {
     TickStats stats;
     double contact_fraction = 0.0;
     ProxyStages stages;  // mean ns per tick in each stage (def.profile; zero otherwise)
+    TailSplit tail;      // the slowest ticks and their stages (stages zero without def.profile)
+    std::vector<TickRow> rows;  // every tick, in order (when asked)
 };
 
+// The slowest 0.1 % of the ticks (at least one): their mean time and mean stage split.
+TailSplit tail_split(const std::vector<double>& ns, const std::vector<ProxyStages>& stages) {
+    TailSplit t;
+    if (ns.empty()) return t;
+    std::vector<std::size_t> order(ns.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    t.ticks = std::max<std::size_t>(1, ns.size() / 1000);
+    std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(t.ticks), order.end(),
+                      [&](std::size_t a, std::size_t b) { return ns[a] > ns[b]; });
+    for (std::size_t k = 0; k < t.ticks; ++k) {
+        t.mean_ns += ns[order[k]];
+        t.stages += stages[order[k]];
+    }
+    const double per = 1.0 / static_cast<double>(t.ticks);
+    t.mean_ns *= per;
+    t.stages = {t.stages.gather * per, t.stages.pieces * per, t.stages.walk * per, t.stages.contact * per,
+                t.stages.anticipate * per};
+    return t;
+}
+
 // One Google Benchmark run of `passes` x the stroke, one iteration per tick. Each pass starts
-// with no history at the first sample raised by `start_above` (m).
+// with no history at the first sample raised by `start_above` (m). Each tick's stages and contact
+// are kept beside its time (reserved up front: nothing allocates between the timed ticks).
 Measured measure(const std::string& name, const Environment& env, const ProxyDef& def,
-                 const std::vector<FingerSample>& path, int passes, double start_above = kStartAbove) {
+                 const std::vector<FingerSample>& path, int passes, double start_above = kStartAbove,
+                 bool keep_rows = false) {
     Measured result;
     const auto iterations = static_cast<benchmark::IterationCount>(path.size() * static_cast<std::size_t>(passes));
     benchmark::RegisterBenchmark(name.c_str(), [&](benchmark::State& state) {
         Proxy proxy(env, def);
         TickTimer timer(static_cast<std::size_t>(iterations));
+        std::vector<ProxyStages> tick_stages;
+        std::vector<char> tick_contact;
+        tick_stages.reserve(static_cast<std::size_t>(iterations));
+        tick_contact.reserve(static_cast<std::size_t>(iterations));
         std::size_t k = 0, contacts = 0, ticks = 0;
         ProxyStages sum;
         proxy.reset(path[0].x + Vec2{0.0, start_above}, path[0].phi);
@@ -56,18 +84,29 @@ Measured measure(const std::string& name, const Environment& env, const ProxyDef
             contacts += o->contact ? 1 : 0;
             ++ticks;
             sum += o->stages;
+            tick_stages.push_back(o->stages);
+            tick_contact.push_back(o->contact ? 1 : 0);
             if (++k == path.size()) {  // lift the finger back to the start
                 k = 0;
                 proxy.reset(path[0].x + Vec2{0.0, start_above}, path[0].phi);
             }
         }
         result.stats = timer.stats();
+        result.tail = tail_split(timer.samples(), tick_stages);
+        if (keep_rows) {
+            result.rows.resize(ticks);
+            for (std::size_t i = 0; i < ticks; ++i)
+                result.rows[i] = {static_cast<int>(i / path.size()), i % path.size(), timer.samples()[i], tick_contact[i] != 0,
+                                  tick_stages[i]};
+        }
         result.contact_fraction = ticks ? static_cast<double>(contacts) / static_cast<double>(ticks) : 0.0;
         const double per_tick = ticks ? 1.0 / static_cast<double>(ticks) : 0.0;
         result.stages = {sum.gather * per_tick, sum.pieces * per_tick, sum.walk * per_tick, sum.contact * per_tick,
                          sum.anticipate * per_tick};
         state.counters["median_ns"] = result.stats.median_ns;
         state.counters["p99_ns"] = result.stats.p99_ns;
+        state.counters["p999_ns"] = result.stats.p999_ns;
+        state.counters["max_ns"] = result.stats.max_ns;
         state.counters["contact"] = result.contact_fraction;
     })->Iterations(iterations)->Unit(benchmark::kNanosecond);
     run_registered();
@@ -111,6 +150,14 @@ void cost_growth(const BenchOptions& o, BenchResults& r) {
                 std::vector<FingerSample> hover_path = path;
                 for (FingerSample& s : hover_path) s.x.y += 0.011;  // m: 1 cm above the surface
                 row.hover = measure(name + "/hover", env, def, hover_path, passes).stats;
+                if (n == sizes.back()) {
+                    // Where the slowest ticks' time goes: the same strokes again with the stages
+                    // timed (their clock reads cost a little, so the plain passes stay the figures).
+                    ProxyDef profiled = def;
+                    profiled.profile = true;
+                    row.tail_contact = measure(name + "/profiled", env, profiled, path, passes).tail;
+                    row.tail_hover = measure(name + "/hover/profiled", env, profiled, hover_path, passes).tail;
+                }
                 r.cost.push_back(row);
             }
         }
@@ -249,23 +296,33 @@ BenchResults run_suites(const BenchOptions& options) {
     return r;
 }
 
-TraceTiming time_trace(const Scene& scene, const std::vector<FingerSample>& samples, int passes) {
+TraceTiming time_trace(const Scene& scene, const std::vector<FingerSample>& samples, int passes, bool keep_rows) {
     TraceTiming t;
     t.samples = samples.size();
     t.passes = passes;
     if (samples.empty()) return t;
     const Environment env = build_environment(scene);
     // Starts from the first sample with no history, as `contactlab trace` does.
-    const Measured m = measure("trace", env, proxy_def_of(scene), samples, passes, 0.0);
+    const Measured m = measure("trace", env, proxy_def_of(scene), samples, passes, 0.0, keep_rows);
     t.stats = m.stats;
     t.contact_fraction = m.contact_fraction;
     // Where the time goes: the same again with the stages timed (their clock reads cost a little,
     // so the plain pass above stays the figure to budget with).
     ProxyDef profiled = proxy_def_of(scene);
     profiled.profile = true;
-    const Measured p = measure("trace_profiled", env, profiled, samples, passes, 0.0);
+    const Measured p = measure("trace_profiled", env, profiled, samples, passes, 0.0, keep_rows);
     t.stages = p.stages;
     t.profiled = p.stats;
+    t.tail = p.tail;
+    // One row per tick: its time in the plain pass, its stages (and their sum) in the profiled one,
+    // which replays the same samples in the same order.
+    if (keep_rows) {
+        t.rows = m.rows;
+        for (std::size_t i = 0; i < t.rows.size() && i < p.rows.size(); ++i) {
+            t.rows[i].stages = p.rows[i].stages;
+            t.rows[i].profiled_ns = p.rows[i].ns;
+        }
+    }
     return t;
 }
 

@@ -30,6 +30,25 @@ struct BenchOptions {
     std::string wearable_study_protocol;
 };
 
+// The slowest ticks of a profiled run (ProxyDef::profile): the slowest 0.1 % (at least one), their
+// mean time and mean time in each of the proxy's stages: which stage made the slow ones slow.
+struct TailSplit {
+    std::size_t ticks = 0;
+    double mean_ns = 0.0;
+    ProxyStages stages;  // mean ns per slow tick in each stage
+};
+
+// One tick of `bench --scene --ticks`: which pass and sample, its time, whether it ended in
+// contact, and (from the profiled replay of the same sample) each stage's time.
+struct TickRow {
+    int pass = 0;
+    std::size_t sample = 0;
+    double ns = 0.0;           // the plain pass's time of this tick
+    bool contact = false;
+    ProxyStages stages;        // ns in each stage, profiled pass
+    double profiled_ns = 0.0;  // the profiled pass's time of this tick (stages plus their clock reads)
+};
+
 // One scene size: ContactLab's proxy, and in the same process the baselines: brute force (every
 // segment every tick, no index; run up to `kBruteForceMaxSegments`) and a point-finger
 // god-object on the same contour.
@@ -42,6 +61,8 @@ struct CostRow {
     // The same stroke 1 cm above the surface: free space, where the tick's cost is the
     // anticipation of the nearest contact (hover_ns.<key>.<segments>).
     TickStats hover;
+    // At the suite's largest size: the slowest ticks' stage split, in contact and hovering.
+    TailSplit tail_contact, tail_hover;
     double contact_fraction = 0.0;  // ticks in contact / ticks
     int env_segments = 0;           // after compiling curves to arcs
 };
@@ -90,10 +111,12 @@ struct TraceTiming {
     // own tick statistics (the stages' clock reads included).
     ProxyStages stages;
     TickStats profiled;
+    TailSplit tail;              // the profiled pass's slowest ticks, by stage
+    std::vector<TickRow> rows;   // every tick, when asked (--ticks)
     std::size_t samples = 0;
     int passes = 0;
     double contact_fraction = 0.0;
 };
-TraceTiming time_trace(const Scene& scene, const std::vector<FingerSample>& samples, int passes);
+TraceTiming time_trace(const Scene& scene, const std::vector<FingerSample>& samples, int passes, bool keep_rows = false);
 
 }  // namespace contactlab::bench

@@ -1,5 +1,7 @@
 // tick_stats.hpp — per-tick timing: each proxy update timed on its own (steady_clock, ~20 ns of
-// overhead included), summarised as median, 99th percentile and maximum (ns).
+// overhead included), summarised as median, 99th and 99.9th percentiles and maximum (ns), and the
+// ticks that would miss a 10 kHz period (over 100 us) or a 1 kHz period (over 1 ms). A haptic loop
+// is judged by its slowest tick: a late tick holds the last force and feeds energy into the device.
 #pragma once
 
 #include <chrono>
@@ -8,12 +10,21 @@
 
 namespace contactlab::bench {
 
+inline constexpr double kTenKilohertzPeriodNs = 100e3;  // ns: a tick over this misses 10 kHz
+inline constexpr double kOneKilohertzPeriodNs = 1e6;    // ns: a tick over this misses 1 kHz
+
 struct TickStats {
     double median_ns = 0.0;
     double p99_ns = 0.0;
+    double p999_ns = 0.0;  // 99.9th percentile: the nearest-rank tick 1 in 1,000 reaches
     double max_ns = 0.0;
     std::size_t ticks = 0;
+    std::size_t over_100us = 0;  // ticks longer than kTenKilohertzPeriodNs
+    std::size_t over_1ms = 0;    // ticks longer than kOneKilohertzPeriodNs
 };
+
+// The statistics of a set of tick times (ns), in any order.
+TickStats tick_stats(std::vector<double> samples_ns);
 
 class TickTimer {
 public:
@@ -26,7 +37,9 @@ public:
         const auto t1 = std::chrono::steady_clock::now();
         samples_.push_back(static_cast<double>(std::chrono::duration_cast<std::chrono::nanoseconds>(t1 - t0).count()));
     }
-    TickStats stats() const;
+    TickStats stats() const { return tick_stats(samples_); }
+    // Each tick's time (ns), in the order they ran.
+    const std::vector<double>& samples() const { return samples_; }
 
 private:
     std::vector<double> samples_;  // ns

@@ -27,11 +27,16 @@ using namespace contactlab::bench;
 
 namespace {
 
-const std::vector<std::string> kPlotFiles = {"cost_extent.png", "cost_dense.png",      "pareto.png",
-                                             "stability.png",   "zwidth.png",          "roller_tracking.png",
-                                             "render_frame.png"};
+const std::vector<std::string> kPlotFiles = {"cost_extent.png", "cost_dense.png",      "tail_dense.png",
+                                             "pareto.png",      "stability.png",       "zwidth.png",
+                                             "roller_tracking.png", "render_frame.png"};
 
-TickStats stats(double median_ns) { return {median_ns, 2.0 * median_ns, 3.0 * median_ns, 100}; }
+TickStats stats(double median_ns) {
+    TickStats t;
+    t.median_ns = median_ns, t.p99_ns = 2.0 * median_ns, t.p999_ns = 2.5 * median_ns, t.max_ns = 3.0 * median_ns;
+    t.ticks = 100;
+    return t;
+}
 
 // Results shaped like a quick run's, with plausible figures.
 BenchResults made_up_results() {
@@ -45,6 +50,7 @@ BenchResults made_up_results() {
                 row.key = case_key(k, g);
                 row.proxy = stats(1000.0 + n * 0.01);
                 row.point_finger = stats(300.0);
+                row.hover = stats(800.0 + n * 0.02);
                 if (n <= 1000) row.brute_force = stats(50.0 * n);
                 row.contact_fraction = 1.0;
                 r.cost.push_back(row);
@@ -133,6 +139,26 @@ std::string read_text(const fs::path& p) {
 }  // namespace
 
 TEST_SUITE("report") {
+TEST_CASE("tick_stats: nearest-rank percentiles, and the ticks that miss a 10 kHz or 1 kHz period") {
+    // 2,000 ticks of 1..2,000 us, shuffled: rank k of the sorted list is (k + 1) us.
+    std::vector<double> ns;
+    for (int i = 2000; i >= 1; --i) ns.push_back(i * 1000.0);
+    std::swap(ns[3], ns[1500]);
+    const TickStats s = tick_stats(ns);
+    CHECK(s.ticks == 2000);
+    CHECK(s.median_ns == 1001e3);  // rank 1,000
+    CHECK(s.p99_ns == 1981e3);     // rank 1,980
+    CHECK(s.p999_ns == 1999e3);    // rank 1,998
+    CHECK(s.max_ns == 2000e3);
+    CHECK(s.over_100us == 1900);   // 101..2,000 us: exactly 100 us is not over
+    CHECK(s.over_1ms == 1000);     // 1,001..2,000 us
+    // Fewer than 1,000 ticks: p99.9 is the slowest one.
+    const TickStats few = tick_stats({5.0, 1.0, 3.0});
+    CHECK(few.p999_ns == 5.0);
+    CHECK(few.over_100us == 0);
+    CHECK(tick_stats({}).ticks == 0);
+}
+
 TEST_CASE("bench report: one chart per figure, cost charts with ContactLab and both baselines per kind") {
     const auto charts = report_charts(made_up_results());
     REQUIRE(charts.size() == kPlotFiles.size());
@@ -150,19 +176,31 @@ TEST_CASE("bench report: one chart per figure, cost charts with ContactLab and b
     // Brute force ran up to 1000 segments here: two points.
     CHECK(extent.series[1].name == "lines, brute force");
     CHECK(extent.series[1].x.size() == 2);
+    // The tail on the dense contours: per kind p99.9, in contact and hovering (2 series x 3 kinds,
+    // 3 sizes each), against the 10 kHz and 1 kHz periods.
+    const render::Chart& tail = charts[2].chart;
+    REQUIRE(tail.series.size() == 6);
+    CHECK(tail.series[0].name == "lines, in contact");
+    CHECK(tail.series[0].y[2] == doctest::Approx(2.5 * (1000.0 + 100000 * 0.01)));
+    CHECK(tail.series[1].name == "lines, hovering");
+    CHECK(tail.series[1].y[0] == doctest::Approx(2.5 * (800.0 + 10 * 0.02)));
+    CHECK(tail.series[5].name == "curves, hovering");
+    REQUIRE(tail.references.size() == 2);
+    CHECK(tail.references[0].value == doctest::Approx(100e3));
+    CHECK(tail.references[1].value == doctest::Approx(1e6));
     // Pareto: exact mode is a vertical reference at its cost; flatten rows are points.
-    const render::Chart& pareto = charts[2].chart;
+    const render::Chart& pareto = charts[3].chart;
     REQUIRE(pareto.references.size() == 1);
     CHECK(pareto.references[0].vertical);
     CHECK(pareto.references[0].value == doctest::Approx(9500.0));
     CHECK(pareto.series[0].x.size() == 2);
     // Stability: the 2b/T bound beside the measured stiffnesses.
-    CHECK(charts[3].chart.series[0].name == "2b/T, b along the normal");
-    CHECK(charts[3].chart.series[0].y[1] == doctest::Approx(10000.0));
-    CHECK(charts[3].chart.series[1].name == "2b/T, b declared (servo's)");
+    CHECK(charts[4].chart.series[0].name == "2b/T, b along the normal");
+    CHECK(charts[4].chart.series[0].y[1] == doctest::Approx(10000.0));
+    CHECK(charts[4].chart.series[1].name == "2b/T, b declared (servo's)");
     // Z-width: per rate (one colour each) the stable press and slide, the unreported press, and
     // the three theory lines; K on a log axis against B.
-    const render::Chart& zw = charts[4].chart;
+    const render::Chart& zw = charts[5].chart;
     CHECK(zw.x.scale == render::AxisScale::linear);
     CHECK(zw.y.scale == render::AxisScale::log10);
     CHECK(zw.x.title.find("(N s/m)") != std::string::npos);
@@ -336,6 +374,19 @@ TEST_CASE("bench --quick --report: every PNG decodes at the plot size, render_ms
         CHECK(z["k_press_no_fault"].get<double>() > 0.0);
     }
     CHECK(md.find("## Z-width") != std::string::npos);
+    CHECK(md.find("## The tail: the slowest ticks") != std::string::npos);
+    // At the largest size, the slowest ticks' stages: a share of the time, for contact and hover.
+    for (const char* key : {"lines_dense", "arcs_dense", "curves_dense"}) {
+        CAPTURE(key);
+        const nlohmann::json& slow = j["slowest_ticks"][key]["100000"];
+        for (const char* stroke : {"contact", "hover"}) {
+            CHECK(slow[stroke]["ticks"].get<int>() >= 1);
+            double staged = 0.0;
+            for (const auto& [stage, ns] : slow[stroke]["stages_ns"].items()) staged += ns.get<double>();
+            CHECK(staged > 0.0);
+            CHECK(staged <= slow[stroke]["mean_ns"].get<double>());
+        }
+    }
     // The energy terms on the seeds' trials (energy_table.hpp): seed 002 at 5 and 10 cm/s, seed
     // 000's block. None faulted; the observer's sum stayed under its threshold (K T / 2 = 0.65 N s/m
     // < b: the loop dissipates), and counted, the hand's turn of the finger would have passed it
@@ -445,9 +496,16 @@ TEST_CASE("bench --quick --report: every PNG decodes at the plot size, render_ms
             for (const char* table : {"tick_ns", "hover_ns"}) {
                 CAPTURE(table);
                 REQUIRE(j[table][key].contains(n));
-                const double median = j[table][key][n]["median"].get<double>();
+                const nlohmann::json& st = j[table][key][n];
+                const double median = st["median"].get<double>();
                 CHECK(std::isfinite(median));
                 CHECK(median > 0.0);
+                // The tail, in order, and the period misses counted among the ticks.
+                CHECK(st["p99"].get<double>() >= median);
+                CHECK(st["p999"].get<double>() >= st["p99"].get<double>());
+                CHECK(st["max"].get<double>() >= st["p999"].get<double>());
+                CHECK(st["over_100us"].get<std::size_t>() <= st["ticks"].get<std::size_t>());
+                CHECK(st["over_1ms"].get<std::size_t>() <= st["over_100us"].get<std::size_t>());
             }
         }
     }

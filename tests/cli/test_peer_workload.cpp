@@ -7,7 +7,11 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <fstream>
 #include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
 
 using namespace cli_test;
 
@@ -57,6 +61,43 @@ TEST_CASE("generate peer-workload: N line segments on the sinusoid, a 4000-tick 
     // ... and where the time goes, by named stage (a second, profiled pass).
     CHECK(b.out.find("stages, mean ns per tick") != std::string::npos);
     CHECK(b.out.find(", walk ") != std::string::npos);
+    // The tail: p99.9 beside the median and the ticks that miss a period, and the slowest ticks' stages.
+    CHECK(b.out.find("p99.9 ") != std::string::npos);
+    CHECK(b.out.find("ticks over 100 us: ") != std::string::npos);
+    CHECK(b.out.find("the slowest 4 tick(s) of that pass") != std::string::npos);  // 0.1 % of 4,001
+
+    // --ticks: one row per tick, pass and sample in order, each stage's ns from the profiled replay.
+    const std::string ticks_path = dir.file("ticks.csv");
+    const auto t = run_contactlab({"bench", "--scene", scene_path, "--input", trace_path, "--passes", "2", "--ticks", ticks_path});
+    INFO("bench --ticks stderr: " << t.err);
+    REQUIRE(t.exit_code == 0);
+    std::ifstream in(ticks_path);
+    std::string line;
+    REQUIRE(std::getline(in, line));
+    CHECK(line == "pass,sample,ns,contact,gather_ns,pieces_ns,walk_ns,contact_ns,anticipate_ns,profiled_ns");
+    std::size_t rows = 0, in_contact = 0;
+    while (std::getline(in, line)) {
+        std::vector<double> v;
+        std::stringstream cells(line);
+        for (std::string c; std::getline(cells, c, ',');) v.push_back(std::stod(c));
+        REQUIRE(v.size() == 10);
+        CHECK(v[0] == static_cast<double>(rows / 4001));  // pass
+        CHECK(v[1] == static_cast<double>(rows % 4001));  // sample
+        CHECK(v[2] > 0.0);                                // ns
+        in_contact += v[3] == 1.0 ? 1 : 0;
+        // The stages are parts of the profiled tick: their sum is at most its time.
+        const double staged = v[4] + v[5] + v[6] + v[7] + v[8];
+        CHECK(staged > 0.0);
+        CHECK(staged <= v[9]);
+        ++rows;
+    }
+    CHECK(rows == 2 * 4001);
+    CHECK(in_contact == 2 * 4000);  // row 0 of each pass is the free-space start above the stroke
+
+    // --ticks without a scene is refused, naming what it needs.
+    const auto bad = run_contactlab({"bench", "--ticks", ticks_path});
+    CHECK(bad.exit_code == 2);
+    CHECK(bad.err.find("--ticks needs --scene") != std::string::npos);
 }
 
 TEST_CASE("generate peer-workload: a segment count below 1 is refused, naming the option") {
