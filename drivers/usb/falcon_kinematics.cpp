@@ -67,10 +67,15 @@ const char* to_string(KinStatus s) noexcept {
 }
 
 KinStatus inverse_kinematics(const FalconGeometry& g, const Vec3& p, std::array<double, 3>& theta) noexcept {
+    // Behind the plane of the hip axes the legs' equations still have solutions: the mirror
+    // assembly through the device's base (thighs folded back past -90 deg, e.g. -189 deg for a
+    // grip 11 cm behind it), which the Falcon cannot take. Only the device's side is reachable.
+    if (!(p.z > 0.0)) return KinStatus::unreachable;
     std::array<double, 3> t{};
     for (int i = 0; i < 3; ++i) {
         Leg l{};
         if (!leg_angles(g, i, p, l)) return KinStatus::unreachable;
+        if (!(l.t1 > kMinThighAngle)) return KinStatus::unreachable;
         t[i] = l.t1;
     }
     theta = t;

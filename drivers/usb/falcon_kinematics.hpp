@@ -82,7 +82,14 @@ using Mat3 = std::array<std::array<double, 3>, 3>;  // row-major
 inline constexpr int kForwardIterations = 50;
 inline constexpr double kForwardTolerance = 1e-13;  // rad, max over the arms
 
-// Driven angles t1 (rad) of the three legs that put the grip at p (m).
+// The device's side of its base: a thigh folded back past this (rad) from the plane of the hip
+// axes is the legs' mirror solution through the base, not a pose the Falcon can take. Over its
+// workspace (+-6 cm across, 7.5..17.5 cm out) the thighs stay within -57..124 deg.
+inline constexpr double kMinThighAngle = -90.0 * kDegree;
+
+// Driven angles t1 (rad) of the three legs that put the grip at p (m); unreachable for a point
+// no leg configuration reaches, for one on or behind the plane of the hip axes (z <= 0), and for
+// a solution with a thigh folded past kMinThighAngle (the mirror assembly through the base).
 KinStatus inverse_kinematics(const FalconGeometry& g, const Vec3& p, std::array<double, 3>& theta) noexcept;
 // M = dtheta/dp (rad/m) at p, analytic; singular when a row's denominator vanishes.
 KinStatus angle_jacobian(const FalconGeometry& g, const Vec3& p, Mat3& M) noexcept;

@@ -57,21 +57,31 @@ std::array<int, 3> parse_encoders(const std::string& s) {
     return e;
 }
 
+// A number as given, whole: std::from_chars (no locale, subnormals such as 5e-324 read as the
+// values they are), with one leading '+' allowed; anything else in the field is refused.
 fk::Vec3 parse_position(const std::string& s) {
     const auto f = three_fields(s, "--position");
     double v[3];
     for (int i = 0; i < 3; ++i) {
-        std::size_t used = 0;
-        try {
-            v[i] = std::stod(f[i], &used);
-        } catch (const std::exception&) {
-            used = 0;
-        }
-        if (used != f[i].size() || used == 0)
-            throw BadInput("--position wants three numbers in metres, got '" + f[i] + "'");
+        const char* b = f[i].data();
+        const char* end = b + f[i].size();
+        if (b != end && *b == '+' && end - b > 1 && b[1] != '-' && b[1] != '+') ++b;
+        const auto r = std::from_chars(b, end, v[i]);
+        if (r.ec == std::errc::result_out_of_range)
+            throw BadInput("--position: '" + f[i] + "' is beyond what a double holds");
+        if (r.ec != std::errc() || r.ptr != end) throw BadInput("--position wants three numbers in metres, got '" + f[i] + "'");
         if (!std::isfinite(v[i])) throw BadInput("--position: '" + f[i] + "' is not a finite number");
     }
     return {v[0], v[1], v[2]};
+}
+
+// The grip position `--encoders` prints for these counts: forward kinematics from the device's
+// axis in the middle of the workspace (no earlier pose to start from). One function for both
+// directions, so every position `--position` answers is read back by `--encoders`.
+fk::KinStatus position_of_counts(const fk::FalconKinematics& kin, const std::array<int, 3>& e, std::array<double, 3>& th,
+                                 fk::Vec3& p) {
+    for (int i = 0; i < 3; ++i) th[i] = kin.theta_of(i, e[i]);
+    return fk::forward_kinematics(kin.geometry(), th, fk::Vec3{0.0, 0.0, 0.11}, p);
 }
 
 int run(const std::string& encoders, const std::string& position) {
@@ -82,9 +92,8 @@ int run(const std::string& encoders, const std::string& position) {
     if (!encoders.empty()) {
         const auto e = parse_encoders(encoders);
         std::array<double, 3> th{};
-        for (int i = 0; i < 3; ++i) th[i] = kin.theta_of(i, e[i]);
         fk::Vec3 p;
-        const fk::KinStatus st = fk::forward_kinematics(kin.geometry(), th, fk::Vec3{0.0, 0.0, 0.11}, p);
+        const fk::KinStatus st = position_of_counts(kin, e, th, p);
         if (st != fk::KinStatus::ok)
             throw BadInput(std::string("--encoders: no grip position for these arm angles (") + fk::to_string(st) + ")");
         out["encoders"] = e;
@@ -95,13 +104,34 @@ int run(const std::string& encoders, const std::string& position) {
         std::array<double, 3> th{};
         if (fk::inverse_kinematics(kin.geometry(), p, th) != fk::KinStatus::ok)
             throw BadInput("--position: " + position + " is out of the Falcon's reach (no leg angles put the grip there)");
-        std::array<long, 3> counts{};
+        std::array<int, 3> counts{};
         for (int i = 0; i < 3; ++i) {
             const double c = std::round(kin.counts_exact(i, th[i]));
             if (!(c >= -32768.0 && c <= 32767.0))
                 throw BadInput("--position: " + position + " needs encoder counts outside the 16-bit range");
-            counts[i] = static_cast<long>(c);
+            counts[i] = static_cast<int>(c);
         }
+        // The counts must name this position again (what `--encoders` prints): near a singular
+        // pose of the arms, at the workspace's edge, the rounded counts' arm angles have no grip
+        // position the forward kinematics can find, or one far from this. Refused there.
+        std::array<double, 3> rounded{};
+        fk::Vec3 back;
+        const fk::KinStatus st = position_of_counts(kin, counts, rounded, back);
+        if (st != fk::KinStatus::ok)
+            throw BadInput("--position: " + position + " is at the edge of the Falcon's workspace: the arms are near a "
+                           "singular pose, and its encoder counts name no position (" + fk::to_string(st) + ")");
+        // One count turns an arm by 2 pi / 9880.7 rad; a position within reach moves by at most
+        // |J| times that per count. Twice the largest column of J at p bounds the round trip.
+        fk::Mat3 J{};
+        if (fk::jacobian(kin.geometry(), p, J) != fk::KinStatus::ok)
+            throw BadInput("--position: " + position + " is at a singular pose of the Falcon's arms");
+        double per_count = 0.0;  // m
+        for (int c = 0; c < 3; ++c)
+            per_count += std::hypot(J[0][c], J[1][c], J[2][c]) * (kin.theta_of(c, 1) - kin.theta_of(c, 0));
+        const double moved = std::hypot(back.x - p.x, back.y - p.y, back.z - p.z);
+        if (!(moved <= per_count))
+            throw BadInput("--position: " + position + " is at the edge of the Falcon's workspace: its encoder counts "
+                           "name a position " + std::to_string(moved * 1e3) + " mm away");
         out["position_m"] = {p.x, p.y, p.z};
         out["theta_deg"] = {th[0] / fk::kDegree, th[1] / fk::kDegree, th[2] / fk::kDegree};
         out["encoders"] = counts;

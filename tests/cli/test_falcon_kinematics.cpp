@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdio>
 
 using namespace cli_test;
 
@@ -70,6 +71,53 @@ TEST_CASE("falcon-kinematics: position to encoders and back lands within one cou
     }
 }
 
+TEST_CASE("falcon-kinematics: a subnormal or a leading '+' is a number like any other") {
+    // 5e-324 (the least subnormal) was "not three numbers" while 1e-300 was read.
+    const auto a = run_json({"falcon-kinematics", "--position", "5e-324,+0,0.12"});
+    CHECK(a["position_m"][0].get<double>() == 5e-324);
+    const auto b = run_json({"falcon-kinematics", "--position", "0,0,0.12"});
+    CHECK(a["encoders"] == b["encoders"]);
+}
+
+TEST_CASE("falcon-kinematics: every position it answers round-trips through --encoders, on a grid past the workspace") {
+    // A 3 cm grid from 12 cm either side and 15 cm behind the base to 24 cm out: each position is
+    // answered with counts that --encoders turns back into it (within the counts' resolution), or
+    // refused with exit 2; never counts that --encoders cannot read back.
+    int answered = 0, refused = 0;
+    for (double x = -0.12; x <= 0.1201; x += 0.06)
+        for (double y = -0.12; y <= 0.1201; y += 0.06)
+            for (double z = -0.15; z <= 0.2401; z += 0.03) {
+                char pos[96];
+                std::snprintf(pos, sizeof pos, "%.17g,%.17g,%.17g", x, y, z);
+                CAPTURE(pos);
+                const ProcessResult r = run_contactlab({"falcon-kinematics", "--position", pos});
+                if (r.exit_code == 2) {
+                    ++refused;
+                    if (z <= 0.0) CHECK(contains(r.err, "reach"));
+                    continue;
+                }
+                REQUIRE(r.exit_code == 0);
+                ++answered;
+                const auto inv = nlohmann::json::parse(r.out);
+                for (int i = 0; i < 3; ++i) CHECK(inv["theta_deg"][i].get<double>() > -90.0);
+                const std::string counts = std::to_string(inv["encoders"][0].get<int>()) + "," +
+                                           std::to_string(inv["encoders"][1].get<int>()) + "," +
+                                           std::to_string(inv["encoders"][2].get<int>());
+                const ProcessResult f = run_contactlab({"falcon-kinematics", "--encoders=" + counts});
+                REQUIRE(f.exit_code == 0);
+                const auto fwd = nlohmann::json::parse(f.out);
+                double err2 = 0.0;
+                for (int k = 0; k < 3; ++k) {
+                    const double d = fwd["position_m"][k].get<double>() - inv["position_m"][k].get<double>();
+                    err2 += d * d;
+                }
+                CHECK(std::sqrt(err2) < 1e-3);  // m: a few counts' worth at the very edge, well under 1 mm
+            }
+    // The grid holds both: the workspace's middle is answered, behind the base is refused.
+    CHECK(answered >= 10);
+    CHECK(refused >= 100);
+}
+
 TEST_CASE("falcon-kinematics: not three integers, non-finite numbers, or an unreachable position exit 2") {
     struct Case {
         std::vector<std::string> args;
@@ -85,6 +133,15 @@ TEST_CASE("falcon-kinematics: not three integers, non-finite numbers, or an unre
         {{"falcon-kinematics", "--position", "0,inf,0.1"}, "finite"},
         {{"falcon-kinematics", "--position", "0,0,0.5"}, "reach"},
         {{"falcon-kinematics"}, "exactly one"},
+        // Named regression cases (issue: a hostile user's inputs). Behind the base: the legs'
+        // mirror solution through it (arm angles of -189 deg) was printed with exit 0.
+        {{"falcon-kinematics", "--position", "0,0,-0.11"}, "reach"},
+        {{"falcon-kinematics", "--position", "0.1,0,0"}, "reach"},
+        // At the workspace's edge its counts named no position: `--encoders` called them singular.
+        {{"falcon-kinematics", "--position", "0.1,0,0.11"}, "edge of the Falcon's workspace"},
+        {{"falcon-kinematics", "--position", "1e400,0,0.1"}, "beyond what a double holds"},
+        {{"falcon-kinematics", "--position", "0x1p3,0,0.1"}, "three numbers"},
+        {{"falcon-kinematics", "--position", " 0,0,0.1"}, "three numbers"},
     };
     for (const Case& c : cases) {
         CAPTURE(c.args.back());

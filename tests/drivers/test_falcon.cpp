@@ -183,6 +183,23 @@ TEST_CASE("falcon kinematics: angles no pose can take give a named status and le
     CHECK(std::string(to_string(KinStatus::no_convergence)) == "no_convergence");
 }
 
+TEST_CASE("falcon kinematics: behind the base only the mirror assembly reaches, and it is refused") {
+    // The legs' equations solve for a grip 11 cm behind the plane of the hip axes with the thighs
+    // folded back to -189 deg (the mirror of the device through its base); on and behind that
+    // plane nothing is reachable, and in front no thigh folds back past -90 deg.
+    const FalconGeometry g;
+    std::array<double, 3> th{1.0, 2.0, 3.0};
+    for (const Vec3& p : {Vec3{0.0, 0.0, -0.11}, Vec3{0.1, 0.0, 0.0}, Vec3{0.06, 0.0, -0.11}, Vec3{0.0, 0.0, -0.0}}) {
+        CAPTURE(p.z);
+        CHECK(inverse_kinematics(g, p, th) == KinStatus::unreachable);
+    }
+    CHECK(th == std::array<double, 3>{1.0, 2.0, 3.0});  // left alone
+    for (const Vec3& p : workspace_grid()) {
+        REQUIRE(inverse_kinematics(g, p, th) == KinStatus::ok);
+        for (double t : th) CHECK(t > kMinThighAngle);
+    }
+}
+
 TEST_CASE("falcon kinematics: the analytic Jacobians match finite differences of inverse and forward") {
     const FalconGeometry g;
     for (const Vec3& p : workspace_grid()) {
