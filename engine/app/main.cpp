@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
     register_fuzz_contact_command(app, rc);
     register_experiment_command(app, rc);
     register_experiment_power_command(app, rc);
+    register_experiment_merge_command(app, rc);
     register_experiment_calibrate_command(app, rc);
     register_falcon_kinematics_command(app, rc);
 

@@ -36,6 +36,8 @@ void register_fuzz_contact_command(CLI::App& app, int& rc);  // fuzz-contact (fu
 void register_experiment_command(CLI::App& app, int& rc);  // experiment run|analyze (experiment_cli.cpp)
 // experiment power (experiment_power_cli.cpp); after register_experiment_command, whose subcommand it joins
 void register_experiment_power_command(CLI::App& app, int& rc);
+// experiment merge (experiment_merge_cli.cpp); after register_experiment_command, as power
+void register_experiment_merge_command(CLI::App& app, int& rc);
 // experiment calibrate (experiment_calibrate_cli.cpp); after register_experiment_command
 void register_experiment_calibrate_command(CLI::App& app, int& rc);
 void register_falcon_kinematics_command(CLI::App& app, int& rc);  // falcon-kinematics (falcon_kinematics_cli.cpp)

@@ -13,6 +13,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <unistd.h>
+
 namespace contactlab::experiments {
 
 using nlohmann::json;
@@ -25,6 +27,12 @@ std::string utc_now() {
     gmtime_r(&now, &tm);
     char buf[32];
     std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+    return buf;
+}
+
+std::string host_name() {
+    char buf[256] = {};
+    if (gethostname(buf, sizeof buf - 1) != 0) return "";
     return buf;
 }
 
@@ -50,6 +58,7 @@ json make_meta(const RunIdentity& id, const std::string& command) {
     m["finished_utc"] = nullptr;
     m["rows"] = nullptr;
     m["command"] = command;
+    m["host"] = host_name();  // where it ran: runs split over a cluster's nodes are merged later
     m["resumed"] = json::array();
     return m;
 }

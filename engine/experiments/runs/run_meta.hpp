@@ -24,6 +24,9 @@ std::string meta_path(const std::string& results_path);
 // Now, as ISO 8601 UTC to the second ("2025-01-31T12:00:00Z").
 std::string utc_now();
 
+// This machine's host name (gethostname), "" when it has none: where a run ran, for the meta.
+std::string host_name();
+
 struct RunIdentity {
     std::string protocol_path;
     const Protocol* protocol = nullptr;
