@@ -39,14 +39,18 @@ struct Reader {
         if (!j.contains(key)) fail(join(path, key), "missing");
         return j[key];
     }
+    // The value as the file gave it, for a message: JSON's shortest exact form ("20.0000001", where
+    // an ostream's default precision printed "20"; an integer with all its digits).
+    static std::string shown(const json& j) {
+        if (j.is_number_float() && !std::isfinite(j.get<double>())) return "a number beyond a double's range";
+        return j.dump();
+    }
     double number(const json& j, const std::string& path, double lo, double hi, const char* unit) const {
         if (!j.is_number()) fail(path, "expected a number");
         const double v = j.get<double>();
-        if (!std::isfinite(v) || v < lo || v > hi) {
-            std::ostringstream s;
-            s << "must lie in [" << lo << ", " << hi << "]" << (unit[0] ? " " : "") << unit << ", got " << v;
-            fail(path, s.str());
-        }
+        if (!std::isfinite(v) || v < lo || v > hi)
+            fail(path, "must lie in [" + number_text(lo) + ", " + number_text(hi) + "]" + (unit[0] ? " " : "") + unit + ", got " +
+                           shown(j));
         return v;
     }
     double number(const json& obj, const std::string& path, const char* key, double lo, double hi, const char* unit,
@@ -56,10 +60,15 @@ struct Reader {
     int integer(const json& obj, const std::string& path, const char* key, int lo, int hi, int fallback) const {
         if (!obj.contains(key)) return fallback;
         const json& j = obj[key];
-        if (!j.is_number_integer()) fail(join(path, key), "expected a whole number");
-        const long long v = j.get<long long>();
-        if (v < lo || v > hi) fail(join(path, key), "must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + std::to_string(v));
-        return static_cast<int>(v);
+        const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+        if (!j.is_number_integer())
+            fail(join(path, key), "expected a whole number in " + range + (j.is_number() ? ", got " + shown(j) : std::string()));
+        // Unsigned beyond a long long (18446744073709551615) is compared as unsigned, never wrapped to -1.
+        const bool inside = j.is_number_unsigned() ? j.get<std::uint64_t>() <= static_cast<std::uint64_t>(std::max(hi, 0)) &&
+                                                         static_cast<long long>(j.get<std::uint64_t>()) >= lo
+                                                   : j.get<long long>() >= lo && j.get<long long>() <= hi;
+        if (!inside) fail(join(path, key), "must lie in " + range + ", got " + shown(j));
+        return static_cast<int>(j.get<long long>());
     }
     std::string text(const json& j, const std::string& path) const {
         if (!j.is_string()) fail(path, "expected a string");
@@ -163,9 +172,10 @@ Procedure read_procedure(const Reader& r, const json& j, const std::vector<doubl
             pr.halve_at.clear();
             for (std::size_t i = 0; i < h.size(); ++i) {
                 const std::string hp = path + ".halve_at[" + std::to_string(i) + "]";
-                if (!h[i].is_number_integer() || h[i].get<long long>() < 1 || h[i].get<long long>() > 100)
-                    r.fail(hp, "expected a reversal number from 1 to 100");
-                const int v = h[i].get<int>();
+                // JSON reads 0 and up as unsigned: compared as such, never wrapped.
+                if (!h[i].is_number_unsigned() || h[i].get<std::uint64_t>() < 1 || h[i].get<std::uint64_t>() > 100)
+                    r.fail(hp, "expected a reversal number from 1 to 100, got " + Reader::shown(h[i]));
+                const int v = static_cast<int>(h[i].get<std::uint64_t>());
                 if (!pr.halve_at.empty() && v <= pr.halve_at.back()) r.fail(hp, "reversal numbers must increase");
                 pr.halve_at.push_back(v);
             }
