@@ -6,6 +6,7 @@
 #include "haptics/parameter_limits.hpp"
 #include "engine/editor/editor.hpp"
 #include "engine/editor/script.hpp"
+#include "engine/experiments/base/path_name.hpp"
 #include "engine/experiments/base/results_table.hpp"
 #include "engine/render/vk_check.hpp"
 
@@ -30,6 +31,10 @@ int run_edit_command() {
         throw BadInput("--rate: must be between 100 and 20000 Hz");  // haptics/parameter_limits.hpp
     if (o.experiment.empty() != o.participant.empty())
         throw BadInput("--experiment and --participant go together (a protocol and the person's id, e.g. P07)");
+    // The id names the default results file (PROTOCOL-ID.csv): refused here, before a window opens.
+    if (const std::string why = experiments::path_name_problem(o.participant); !o.participant.empty() && !why.empty())
+        throw BadInput("--participant: the id " + why + " (it is part of a file name), e.g. P07, got \"" +
+                       experiments::escaped_name(o.participant) + "\"");
     try {
         return editor::run_editor(o);
     } catch (const experiments::ExperimentError& e) {

@@ -209,6 +209,14 @@ TEST_CASE("issue 49: fuzz-contact, generate bumps and edit take --seed/--jobs th
     CHECK(dir.entries().empty());
 }
 
+TEST_CASE("issue 49: edit --participant ../P07 is refused before a window opens (the id names the results file)") {
+    TempDir dir;
+    const auto e = run_contactlab({"edit", "--experiment", protocol(), "--participant", "../P07"}, dir.path().string());
+    CHECK(e.exit_code == 2);
+    CHECK(contains(e.err, "--participant: the id must not hold '/' (it is part of a file name), e.g. P07, got \"../P07\""));
+    CHECK(dir.entries().empty());
+}
+
 TEST_CASE("issue 49: valid numbers still read as before: --seed 0, the largest seed, --jobs 0") {
     TempDir dir;
     const auto p = run_contactlab({"generate", "bumps", "--seed", "18446744073709551615", "--output", dir.file("b.json")});

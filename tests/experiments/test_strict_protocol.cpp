@@ -3,8 +3,10 @@
 // numbers never wrapped, numbers shown in messages as given (not rounded), and names that become
 // file names (condition names, a live participant's id) checked when they are read. One named
 // case per input the issue lists.
+#include "engine/experiments/base/path_name.hpp"
 #include "engine/experiments/base/results_table.hpp"
 #include "engine/experiments/protocol/protocol.hpp"
+#include "engine/experiments/runs/live_session.hpp"
 #include "process.hpp"
 
 #include <nlohmann/json.hpp>
@@ -63,3 +65,46 @@ TEST_CASE("issue 49: a whole number beyond a long long is not wrapped to -1 in t
           "p.json: procedure.halve_at[0]: expected a reversal number from 1 to 100, got 18446744073709551615");
 }
 
+TEST_CASE("issue 49: a condition name with a slash is refused naming conditions[0].name") {
+    CHECK(refusal(with("\"name\": \"A\"", "\"name\": \"a/b\"")) ==
+          "p.json: conditions[0].name: must not hold '/' (it is part of the traces' file names), got \"a/b\"");
+}
+
+TEST_CASE("issue 49: a condition name with a backslash is refused naming conditions[0].name") {
+    CHECK(refusal(with("\"name\": \"A\"", R"("name": "a\\b")")) ==
+          "p.json: conditions[0].name: must not hold '\\' (it is part of the traces' file names), got \"a\\b\"");
+}
+
+TEST_CASE("issue 49: a condition name with two dots is refused naming conditions[0].name") {
+    CHECK(refusal(with("\"name\": \"A\"", "\"name\": \"..\"")).rfind("p.json: conditions[0].name: must not hold \"..\"", 0) == 0);
+    CHECK(refusal(with("\"name\": \"A\"", "\"name\": \"x..y\"")).rfind("p.json: conditions[0].name: must not hold \"..\"", 0) == 0);
+}
+
+TEST_CASE("issue 49: a condition name with a control character is refused naming conditions[0].name") {
+    CHECK(refusal(with("\"name\": \"A\"", R"("name": "a\tb")")) ==
+          "p.json: conditions[0].name: must not hold a control character (it is part of the traces' file names), got \"a\\x09b\"");
+    CHECK(refusal(with("\"name\": \"A\"", R"("name": "a\u0001")")).rfind("p.json: conditions[0].name: must not hold a control character", 0) == 0);
+}
+
+TEST_CASE("issue 49: an empty condition name is refused naming conditions[0].name") {
+    CHECK(refusal(with("\"name\": \"A\"", "\"name\": \"\"")).rfind("p.json: conditions[0].name: must be non-empty", 0) == 0);
+}
+
+TEST_CASE("issue 49: names that may be parts of file names") {
+    CHECK(path_name_problem("F+CLD") == "");
+    CHECK(path_name_problem("e0.40") == "");
+    CHECK(path_name_problem("P07") == "");
+    CHECK(path_name_problem(".") == "");  // inside a file name it is only a dot
+    CHECK(path_name_problem("") == "must not be empty");
+    CHECK(path_name_problem("a/b") == "must not hold '/'");
+    CHECK(path_name_problem("..") == "must not hold \"..\"");
+    CHECK(path_name_problem(std::string("a\x7f")) == "must not hold a control character");
+}
+
+TEST_CASE("issue 49: a live participant id with a path in it is refused before any file is named") {
+    const Protocol p = parse_protocol(kMinimal, "p.json");
+    cli_test::TempDir dir;
+    for (const char* id : {"../P07", "P/07", "P\\07", "..", "P\t07"})
+        CHECK_THROWS_WITH_AS(LiveSession(p, id, 1, dir.file("r.csv")), doctest::Contains("--participant: the id must not hold"), ExperimentError);
+    CHECK_NOTHROW(LiveSession(p, "P07", 1, dir.file("r.csv")));
+}

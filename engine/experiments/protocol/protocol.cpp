@@ -1,6 +1,7 @@
 // protocol.cpp — strict reading of protocol files (protocol.hpp).
 #include "engine/experiments/protocol/protocol.hpp"
 
+#include "engine/experiments/base/path_name.hpp"
 #include "engine/experiments/base/results_table.hpp"
 #include "engine/experiments/base/sha256.hpp"
 #include "engine/experiments/base/random_stream.hpp"
@@ -309,6 +310,9 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
         c.name = r.text(r.need(conds[i], path, "name"), path + ".name");
         if (c.name.empty() || c.name.find_first_of(",\"\n") != std::string::npos)
             r.fail(path + ".name", "must be non-empty, without commas, quotes or line breaks (it is a CSV field)");
+        // It names trace files (PARTICIPANT-CONDITION-TRIAL.csv): checked here, not when a run writes.
+        if (const std::string why = path_name_problem(c.name); !why.empty())
+            r.fail(path + ".name", why + " (it is part of the traces' file names), got \"" + escaped_name(c.name) + "\"");
         if (!names.insert(c.name).second) r.fail(path + ".name", "\"" + c.name + "\" appears twice");
         c.contact_location = r.flag(conds[i], path, "contact_location", true);
         if (p.task == Task::curvature) {
