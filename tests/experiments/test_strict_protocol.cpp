@@ -48,7 +48,71 @@ std::string refusal(const std::string& text) {
     return "(accepted)";
 }
 
+std::string rule_refusal(const std::string& rule) {
+    return refusal(edge_with(R"({"type": "staircase", "rule": ")" + rule + R"("})"));
+}
+
+const char* kRuleMessage = "p.json: procedure.rule: expected \"1-up-N-down\" with N from 1 to 5, one digit";
+
 }  // namespace
+
+TEST_CASE("issue 49: staircase rule 1-up-2.5-down is refused (sscanf read it as 1-up-2-down)") {
+    const std::string m = rule_refusal("1-up-2.5-down");
+    CHECK(m.rfind(kRuleMessage, 0) == 0);
+    CHECK(cli_test::contains(m, "got \"1-up-2.5-down\""));
+}
+
+TEST_CASE("issue 49: staircase rules 1-up-2abc and 1-up-2abc-down are refused") {
+    CHECK(rule_refusal("1-up-2abc").rfind(kRuleMessage, 0) == 0);
+    CHECK(rule_refusal("1-up-2abc-down").rfind(kRuleMessage, 0) == 0);
+}
+
+TEST_CASE("issue 49: staircase rule with a blank before N is refused") {
+    CHECK(rule_refusal("1-up- 2-down").rfind(kRuleMessage, 0) == 0);
+}
+
+TEST_CASE("issue 49: staircase rule 1-up-+2-down (a sign) is refused") {
+    CHECK(rule_refusal("1-up-+2-down").rfind(kRuleMessage, 0) == 0);
+}
+
+TEST_CASE("issue 49: staircase rules 1-up-02-down and 01-up-2-down (leading zeros) are refused") {
+    CHECK(rule_refusal("1-up-02-down").rfind(kRuleMessage, 0) == 0);
+    CHECK(rule_refusal("01-up-2-down").rfind(kRuleMessage, 0) == 0);
+    CHECK(rule_refusal("1-up-6-down").rfind(kRuleMessage, 0) == 0);
+    CHECK(rule_refusal("1-up-0-down").rfind(kRuleMessage, 0) == 0);
+}
+
+TEST_CASE("issue 49: the staircase rules 1-up-1-down .. 1-up-5-down still read") {
+    for (int n = 1; n <= 5; ++n) {
+        const Protocol p = parse_protocol(edge_with(R"({"type": "staircase", "rule": "1-up-)" + std::to_string(n) + R"(-down"})"), "p.json");
+        CHECK(p.procedure.down == n);
+    }
+}
+
+TEST_CASE("issue 49: trials 0 is refused with its range") {
+    CHECK(refusal(with("\"stimuli\"", "\"trials\": 0, \"stimuli\"")) == "p.json: trials: must lie in [1, 100000], got 0");
+    CHECK(parse_protocol(with("\"stimuli\"", "\"trials\": 4, \"stimuli\""), "p.json").trials == 4);
+    CHECK(parse_protocol(kMinimal, "p.json").trials == 0);  // absent: repetitions x stimuli
+}
+
+TEST_CASE("issue 49: a key given twice at the top of a protocol is refused naming the key") {
+    CHECK(refusal(with("\"stimuli\"", "\"trials\": 4, \"trials\": 5, \"stimuli\"")) ==
+          "p.json: key \"trials\" given twice (a key appears once in its object: JSON readers keep either one)");
+}
+
+TEST_CASE("issue 49: a key given twice inside conditions[0] is refused naming the key and where") {
+    CHECK(refusal(with("\"name\": \"A\"", "\"name\": \"A\", \"name\": \"B\"")).rfind("p.json: conditions[0]: key \"name\" given twice", 0) ==
+          0);
+    // The second element of an array, and an object inside an object.
+    CHECK(refusal(with("[{\"name\": \"A\", \"motion\": \"A\"}]",
+                       "[{\"name\": \"A\", \"motion\": \"A\"}, {\"name\": \"B\", \"motion\": \"B\", \"motion\": \"A\"}]"))
+              .rfind("p.json: conditions[1]: key \"motion\" given twice", 0) == 0);
+    CHECK(refusal(with("\"stimuli\"", "\"hand\": {\"speed\": 0.1, \"speed\": 0.2}, \"stimuli\"")).rfind("p.json: hand: key \"speed\" given twice", 0) ==
+          0);
+    // The same key in two different objects is no duplicate.
+    CHECK(refusal(with("[{\"name\": \"A\", \"motion\": \"A\"}]", "[{\"name\": \"A\", \"motion\": \"A\"}, {\"name\": \"B\", \"motion\": \"B\"}]")) ==
+          "(accepted)");
+}
 
 TEST_CASE("issue 49: a number out of range is shown as given, not rounded (20.0000001 was printed as got 20)") {
     CHECK(refusal(edge_with(R"({"type": "staircase", "start": 20.0000001})")) ==

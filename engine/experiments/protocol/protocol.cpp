@@ -16,7 +16,10 @@
 #include <cstring>
 #include <fstream>
 #include <set>
+#include <optional>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 namespace contactlab::experiments {
 namespace {
@@ -79,6 +82,67 @@ struct Reader {
         if (!obj.contains(key)) return fallback;
         if (!obj[key].is_boolean()) fail(join(path, key), "expected true or false");
         return obj[key].get<bool>();
+    }
+};
+
+// The first key an object names twice and the object's path ("conditions[1]"; "" at the top):
+// nlohmann::json keeps the last of two silently, so a protocol with "trials" twice would run with
+// one of them and the reader would never see the other.
+class DuplicateKeys : public json::json_sax_t {
+public:
+    std::optional<std::pair<std::string, std::string>> found;  // (object's path, key)
+
+    bool null() override { return value(); }
+    bool boolean(bool) override { return value(); }
+    bool number_integer(number_integer_t) override { return value(); }
+    bool number_unsigned(number_unsigned_t) override { return value(); }
+    bool number_float(number_float_t, const string_t&) override { return value(); }
+    bool string(string_t&) override { return value(); }
+    bool binary(binary_t&) override { return value(); }
+    bool start_object(std::size_t) override {
+        stack_.push_back({true, here(), {}, {}, 0});
+        return true;
+    }
+    bool key(string_t& k) override {
+        Frame& f = stack_.back();
+        if (!f.keys.insert(k).second) {
+            found = {f.path, k};
+            return false;  // the first is enough
+        }
+        f.key = k;
+        return true;
+    }
+    bool end_object() override { return close(); }
+    bool start_array(std::size_t) override {
+        stack_.push_back({false, here(), {}, {}, 0});
+        return true;
+    }
+    bool end_array() override { return close(); }
+    bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override { return false; }
+
+private:
+    struct Frame {
+        bool object;
+        std::string path;            // of this object or array
+        std::set<std::string> keys;  // an object's keys so far
+        std::string key;             // an object's current key
+        std::size_t index;           // an array's current element
+    };
+    std::vector<Frame> stack_;
+
+    // The path of the value that starts now.
+    std::string here() const {
+        if (stack_.empty()) return "";
+        const Frame& f = stack_.back();
+        return f.object ? Reader::join(f.path, f.key) : f.path + "[" + std::to_string(f.index) + "]";
+    }
+    bool value() {
+        if (!stack_.empty() && !stack_.back().object) ++stack_.back().index;
+        return true;
+    }
+    bool close() {
+        stack_.pop_back();
+        return value();
     }
 };
 
@@ -158,12 +222,16 @@ Procedure read_procedure(const Reader& r, const json& j, const std::vector<doubl
         pr.type = ProcedureType::staircase;
         r.only(j, path, {"type", "rule", "start", "step", "halve_at", "reversals", "estimate_reversals", "max_trials"});
         if (j.contains("rule")) {
+            // Exactly "1-up-N-down", N one plain digit 1..5: sscanf("%d-up-%d-down%c") took
+            // "1-up-2.5-down" and "1-up-2abc" for 1-up-2-down, and " 2", "+2" and "02" for 2.
             const std::string rule = r.text(j["rule"], path + ".rule");
-            int up = 0, down = 0;
-            char tail = 0;
-            if (std::sscanf(rule.c_str(), "%d-up-%d-down%c", &up, &down, &tail) != 2 || up != 1 || down < 1 || down > 5)
-                r.fail(path + ".rule", "expected \"1-up-N-down\" with N from 1 to 5 (e.g. \"1-up-2-down\", 70.7 % correct), got \"" + rule + "\"");
-            pr.down = down;
+            const std::string head = "1-up-", tail = "-down";
+            const bool form = rule.size() == head.size() + 1 + tail.size() && rule.compare(0, head.size(), head) == 0 &&
+                              rule.compare(head.size() + 1, tail.size(), tail) == 0;
+            const char n = form ? rule[head.size()] : '0';
+            if (n < '1' || n > '5')
+                r.fail(path + ".rule", "expected \"1-up-N-down\" with N from 1 to 5, one digit (e.g. \"1-up-2-down\", 70.7 % correct), got \"" + rule + "\"");
+            pr.down = n - '0';
         }
         pr.start = r.number(j, path, "start", pr.lo, pr.hi, "(within the stimuli's range)", pr.hi);
         pr.step = r.number(j, path, "step", span * 1e-3, span, "(stimulus units, at most the stimuli's range)", span / 8.0);
@@ -279,6 +347,11 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
     } catch (const json::exception& e) {
         r.fail("", std::string("invalid JSON: ") + e.what());
     }
+    DuplicateKeys duplicates;
+    json::sax_parse(text, &duplicates);
+    if (duplicates.found)
+        r.fail(duplicates.found->first, "key \"" + duplicates.found->second +
+                                            "\" given twice (a key appears once in its object: JSON readers keep either one)");
     r.only(root, "", {"format", "version", "name", "seed", "task", "conditions", "stimuli", "repetitions", "trials", "warmup",
                       "repeat_invalid", "answers", "hand", "finger", "force", "curves", "bumps", "arc", "block", "edge", "procedure", "participant",
                       "device"});
@@ -354,7 +427,8 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
     }
     if (root.contains("procedure")) p.procedure = read_procedure(r, root["procedure"], p.stimuli);
     p.repetitions = r.integer(root, "", "repetitions", 1, 1000, 1);
-    p.trials = r.integer(root, "", "trials", 0, 100000, 0);
+    // Absent (0 here): repetitions x stimuli. Given, at least 1: "trials": 0 is no design.
+    p.trials = r.integer(root, "", "trials", 1, 100000, 0);
     p.warmup = r.integer(root, "", "warmup", 0, 1000, 0);
     p.repeat_invalid = r.flag(root, "", "repeat_invalid", true);
     // Adaptive procedures: `warmup` practice trials per condition, at the procedure's easy end,
