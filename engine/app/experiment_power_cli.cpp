@@ -28,6 +28,8 @@
 #include <fstream>
 #include <sstream>
 #include <thread>
+#include <tuple>
+#include <utility>
 
 namespace contactlab::app {
 namespace {
@@ -41,6 +43,7 @@ struct PowerArgs {
     double alpha = 0.05;
     unsigned long long seed = 1;
     bool overwrite = false;
+    bool conditions_given = false;  // "--conditions ''" is refused, not taken for the default
 };
 
 // "4-16" -> 4..16; "10" -> {10}. Each size read by whole_number (never wrapped or saturated).
@@ -62,6 +65,17 @@ std::vector<int> group_sizes(const std::string& spec) {
     return out;
 }
 
+// "A,B": two different conditions of the protocol, by name (which exist is checked against the
+// pool's analysis). "A,B,x" is not condition "B,x": condition names hold no comma (protocol.cpp).
+std::pair<std::string, std::string> two_conditions(const std::string& spec) {
+    const auto comma = spec.find(',');
+    const std::string a = spec.substr(0, comma), b = comma == std::string::npos ? std::string() : spec.substr(comma + 1);
+    if (comma == std::string::npos || a.empty() || b.empty() || b.find(',') != std::string::npos)
+        throw BadInput("--conditions: expected two conditions A,B (names without commas), got " + given(spec));
+    if (a == b) throw BadInput("--conditions: \"" + a + "\" compared with itself: name two different conditions A,B, got " + given(spec));
+    return {a, b};
+}
+
 std::string file_text(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     std::ostringstream s;
@@ -77,12 +91,7 @@ int run_power(const PowerArgs& a) {
     o.resamples = a.resamples;
     o.alpha = a.alpha;
     o.seed = a.seed;
-    if (!a.conditions.empty()) {
-        const auto comma = a.conditions.find(',');
-        if (comma == std::string::npos) throw BadInput("--conditions: expected A,B, got \"" + a.conditions + "\"");
-        o.condition_a = a.conditions.substr(0, comma);
-        o.condition_b = a.conditions.substr(comma + 1);
-    }
+    if (a.conditions_given) std::tie(o.condition_a, o.condition_b) = two_conditions(a.conditions);
     const fs::path out(a.json);
     const std::string pool_path = (out.parent_path() / (out.stem().string() + ".pool.csv")).string();
     json result;
@@ -148,11 +157,12 @@ void register_experiment_power_command(CLI::App& app, int& rc) {
     add_real_option(c, "--alpha", args->alpha, {0.0, 1.0, true, true, "e.g. 0.05"}, "Two-sided significance level");
     add_whole_option(c, "--seed", args->seed, 0, kMaxSeed, "Seed of the pool's run and of the draws");
     add_whole_option(c, "--jobs", args->jobs, 0, kMaxJobs, "Pool participants run in parallel (0: every core)");
-    c->add_option("--conditions", args->conditions, "The two conditions compared, A,B (default: the protocol's two)");
+    CLI::Option* conditions = c->add_option("--conditions", args->conditions, "The two conditions compared, A,B (default: the protocol's two)");
     c->add_option("--json", args->json, "Write the power per group size as JSON (the pool goes to OUT's stem + .pool.csv)")->required();
     c->add_option("--report", args->report, "Write report.md and power.png into this folder");
     c->add_flag("--overwrite", args->overwrite, "Replace a pool file made by another run (without it such a file is refused)");
-    c->callback([args, &rc] {
+    c->callback([args, conditions, &rc] {
+        args->conditions_given = conditions->count() > 0;
         args->protocol = installed_data_path(args->protocol);
         rc = run_power(*args);
     });

@@ -154,6 +154,31 @@ TEST_CASE("issue 49: experiment power --participants 2-99999999999999999999 is r
                   "got \"-3\"");
 }
 
+TEST_CASE("issue 49: experiment power --conditions A,A is refused: a condition compared with itself") {
+    TempDir dir;
+    check_refused(dir,
+                  run_contactlab({"experiment", "power", protocol(), "--participants", "2-3", "--conditions", "A,A", "--json", dir.file("p.json")}),
+                  "--conditions: \"A\" compared with itself: name two different conditions A,B, got \"A,A\"");
+}
+
+TEST_CASE("issue 49: experiment power --conditions with a lone comma is refused") {
+    TempDir dir;
+    check_refused(dir,
+                  run_contactlab({"experiment", "power", protocol(), "--participants", "2-3", "--conditions", ",", "--json", dir.file("p.json")}),
+                  "--conditions: expected two conditions A,B (names without commas), got \",\"");
+    check_refused(dir,
+                  run_contactlab({"experiment", "power", protocol(), "--participants", "2-3", "--conditions", "", "--json", dir.file("p.json")}),
+                  "--conditions: expected two conditions A,B (names without commas), got \"\"");
+}
+
+TEST_CASE("issue 49: experiment power --conditions A,B,x is refused as not two conditions (was: no condition B,x)") {
+    TempDir dir;
+    const auto p =
+        run_contactlab({"experiment", "power", protocol(), "--participants", "2-3", "--conditions", "A,B,x", "--json", dir.file("p.json")});
+    check_refused(dir, p, "--conditions: expected two conditions A,B (names without commas), got \"A,B,x\"");
+    CHECK_FALSE(contains(p.err, "no condition"));
+}
+
 TEST_CASE("issue 49: experiment calibrate --seed -1, --jobs empty, --participants and --evaluations out of range are refused") {
     TempDir dir;
     write_text(dir.file("t.json"), R"({"format": "contactlab calibration targets", "version": 1, "targets": [
