@@ -1,10 +1,12 @@
 // edit_cli.cpp — the `edit` subcommand (also what `contactlab` with no arguments runs): the
 // interactive editor (engine/editor). Needs a display; without one it says how to run it under
 // xvfb-run and which subcommands work headless, and exits 2.
+#include "engine/app/number_options.hpp"
 #include "engine/app/subcommands.hpp"
 #include "haptics/parameter_limits.hpp"
 #include "engine/editor/editor.hpp"
 #include "engine/editor/script.hpp"
+#include "engine/experiments/base/path_name.hpp"
 #include "engine/experiments/base/results_table.hpp"
 #include "engine/render/vk_check.hpp"
 
@@ -29,6 +31,10 @@ int run_edit_command() {
         throw BadInput("--rate: must be between 100 and 20000 Hz");  // haptics/parameter_limits.hpp
     if (o.experiment.empty() != o.participant.empty())
         throw BadInput("--experiment and --participant go together (a protocol and the person's id, e.g. P07)");
+    // The id names the default results file (PROTOCOL-ID.csv): refused here, before a window opens.
+    if (const std::string why = experiments::path_name_problem(o.participant); !o.participant.empty() && !why.empty())
+        throw BadInput("--participant: the id " + why + " (it is part of a file name), e.g. P07, got \"" +
+                       experiments::escaped_name(o.participant) + "\"");
     try {
         return editor::run_editor(o);
     } catch (const experiments::ExperimentError& e) {
@@ -59,7 +65,7 @@ void register_edit_command(CLI::App& app, int& rc) {
     cmd->add_option("--autosave", o.autosave_interval, "Seconds between writes of the recovery file")->default_val(30.0);
     cmd->add_option("--experiment", o.experiment, "Run this protocol's trials live (scenes/experiments/); needs --participant");
     cmd->add_option("--participant", o.participant, "The person's id in the results (e.g. P07)");
-    cmd->add_option("--seed", o.experiment_seed, "Seed of the experiment's trial order")->default_val(1);
+    add_whole_option(cmd, "--seed", o.experiment_seed, 0, kMaxSeed, "Seed of the experiment's trial order");
     cmd->add_option("--results", o.results, "Results CSV, written row by row (default PROTOCOL-ID.csv); resumed if it exists");
     cmd->add_flag("--software", o.software, "Use the CPU Vulkan device (lavapipe)");
     cmd->add_flag("--validation,!--no-validation", o.validation,

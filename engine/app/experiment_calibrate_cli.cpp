@@ -5,6 +5,7 @@
 // protocol; targets not in --fit are held out and reported as they come out. Each evaluation's
 // results files are kept in OUT's stem + ".runs/" (rewritten by the next).
 #include "engine/app/command_line.hpp"
+#include "engine/app/number_options.hpp"
 #include "engine/app/progress_bar.hpp"
 #include "engine/app/subcommands.hpp"
 #include "engine/experiments/calibration/calibration.hpp"
@@ -32,21 +33,16 @@ struct CalibrateArgs {
     unsigned long long seed = 1;
 };
 
-// "NAME=LO:HI" -> a bounded parameter.
+// "NAME=LO:HI" -> a bounded parameter; LO and HI read by real_number (finite, no blanks).
 experiments::CalibrationParameter parameter_of(const std::string& spec) {
     const auto eq = spec.find('='), colon = spec.find(':', eq == std::string::npos ? 0 : eq);
+    if (eq == std::string::npos || colon == std::string::npos)
+        throw BadInput("--param: expected NAME=LO:HI (e.g. force_angle_noise_deg=0.5:20), got " + given(spec));
     experiments::CalibrationParameter p;
-    try {
-        if (eq == std::string::npos || colon == std::string::npos) throw std::invalid_argument("form");
-        p.name = spec.substr(0, eq);
-        std::size_t used = 0;
-        p.lo = std::stod(spec.substr(eq + 1, colon - eq - 1), &used);
-        if (used != colon - eq - 1) throw std::invalid_argument("lo");
-        p.hi = std::stod(spec.substr(colon + 1), &used);
-        if (used != spec.size() - colon - 1) throw std::invalid_argument("hi");
-    } catch (const std::exception&) {
-        throw BadInput("--param: expected NAME=LO:HI (e.g. force_angle_noise_deg=0.5:20), got \"" + spec + "\"");
-    }
+    p.name = spec.substr(0, eq);
+    const std::string what = "--param " + p.name;
+    p.lo = real_number(spec.substr(eq + 1, colon - eq - 1), what + ": LO", {});
+    p.hi = real_number(spec.substr(colon + 1), what + ": HI", {});
     return p;
 }
 
@@ -59,8 +55,6 @@ std::vector<std::string> split_commas(const std::string& s) {
 }
 
 int run_calibrate(const CalibrateArgs& a) {
-    if (a.participants < 2 || a.participants > 1000) throw BadInput("--participants: 2..1000 simulated participants per evaluation");
-    if (a.evaluations < 2 || a.evaluations > 10000) throw BadInput("--evaluations: 2..10000");
     experiments::CalibrationOptions o;
     nlohmann::json result;
     try {
@@ -123,10 +117,10 @@ void register_experiment_calibrate_command(CLI::App& app, int& rc) {
     c->add_option("--target", args->target, "Targets file (scenes/experiments/seed-targets.json: the seeds' figures)")->required();
     c->add_option("--param", args->params, "A parameter to fit and its bounds, NAME=LO:HI (repeat for more)")->required();
     c->add_option("--fit", args->fit, "Targets in the objective, by name, comma-separated, or all; the rest are held out")->required();
-    c->add_option("--participants", args->participants, "Simulated participants sim:1..N in every evaluation")->default_val(10);
-    c->add_option("--seed", args->seed, "Seed of every evaluation's runs (the same for all: a deterministic objective)")->default_val(1);
-    c->add_option("--jobs", args->jobs, "Participants run in parallel (0: every core)")->default_val(0);
-    c->add_option("--evaluations", args->evaluations, "At most this many evaluations (each runs every protocol)")->default_val(40);
+    add_whole_option(c, "--participants", args->participants, 2, 1000, "Simulated participants sim:1..N in every evaluation");
+    add_whole_option(c, "--seed", args->seed, 0, kMaxSeed, "Seed of every evaluation's runs (the same for all: a deterministic objective)");
+    add_whole_option(c, "--jobs", args->jobs, 0, kMaxJobs, "Participants run in parallel (0: every core)");
+    add_whole_option(c, "--evaluations", args->evaluations, 2, 10000, "At most this many evaluations (each runs every protocol)");
     c->add_option("--json", args->json, "Write the fitted parameters, every target's figure and the trace as JSON")->required();
     c->callback([args, &rc] {
         args->target = installed_data_path(args->target);

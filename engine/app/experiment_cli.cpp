@@ -7,6 +7,7 @@
 // condition, the tests' rule and any warnings, and writes them as JSON (schema:
 // scenes/README.md) with each file's provenance, and as a Markdown page with plots.
 #include "engine/app/command_line.hpp"
+#include "engine/app/number_options.hpp"
 #include "engine/reports/experiment_report.hpp"
 #include "engine/app/progress_bar.hpp"
 #include "engine/app/subcommands.hpp"
@@ -40,15 +41,19 @@ struct RunArgs {
 
 // "sim" -> {1}; "sim:3" -> {3}; "sim:1-20" -> {1..20}; "observer:FN:KEY=V,...[:N|:A-B]" ->
 // model observers (the observer's spec into `observer`), numbered the same way.
-std::vector<std::uint64_t> sim_participants(const std::string& given, const char* option,
+// Participant numbers run from 1 to this: a run takes at most this many (the limit was once on B - A
+// alone, so "sim:99999999999999999999-99999999999999999999" saturated to one participant and passed).
+constexpr std::uint64_t kMaxParticipant = 10000;
+
+std::vector<std::uint64_t> sim_participants(const std::string& given_spec, const char* option,
                                             std::optional<experiments::ObserverSpec>* observer = nullptr) {
-    std::string spec = given;
+    std::string spec = given_spec;
     if (spec.rfind("observer:", 0) == 0 && observer) {
-        std::string rest = spec.substr(9), numbers;
+        std::string rest = spec.substr(9), numbers = "sim";
         // A trailing ":N" or ":A-B" numbers the observers; the observer's own spec has no ':' after its function.
         if (const std::size_t last = rest.rfind(':'); last != std::string::npos && last != rest.find(':') &&
                                                       rest.find_first_not_of("0123456789-", last + 1) == std::string::npos) {
-            numbers = rest.substr(last + 1);
+            numbers = "sim:" + rest.substr(last + 1);
             rest = rest.substr(0, last);
         }
         try {
@@ -56,7 +61,7 @@ std::vector<std::uint64_t> sim_participants(const std::string& given, const char
         } catch (const experiments::ExperimentError& e) {
             throw BadInput(std::string(option) + ": " + e.what());
         }
-        spec = numbers.empty() ? "sim" : "sim:" + numbers;
+        spec = numbers;
     }
     if (spec == "sim") return {1};
     if (spec.rfind("sim:", 0) != 0)
@@ -64,15 +69,23 @@ std::vector<std::uint64_t> sim_participants(const std::string& given, const char
                        "\": a person takes part in the editor's experiment mode (contactlab edit --experiment PROTOCOL "
                        "--participant " + spec + "); headless runs take simulated participants (sim, sim:N or sim:A-B) or model "
                        "observers (observer:logistic:threshold=T,scale=S[,guess=G,lapse=L][:A-B])");
+    // N or A-B, each a whole number from 1 to kMaxParticipant (read by whole_number: never wrapped
+    // or saturated, "sim:-3" is not participant 18446744073709551613), A <= B.
     const std::string range = spec.substr(4);
-    unsigned long long a = 0, b = 0;
-    char dash = 0, extra = 0;
-    const int n = std::sscanf(range.c_str(), "%llu%c%llu%c", &a, &dash, &b, &extra);
-    if (n == 1) b = a;
-    else if (!(n == 3 && dash == '-')) throw BadInput(std::string(option) + ": expected sim:N or sim:A-B, got \"" + spec + "\"");
-    if (a < 1 || b < a || b - a >= 10000) throw BadInput(std::string(option) + ": participants A-B need 1 <= A <= B, at most 10000");
+    const std::size_t dash = range.find('-');
+    const std::string rule = std::string(option) + ": expected sim:N or sim:A-B with whole numbers 1 <= A <= B <= " +
+                             std::to_string(kMaxParticipant) + " (at most " + std::to_string(kMaxParticipant) +
+                             " participants in a run), got " + app::given(given_spec);
+    std::uint64_t a = 0, b = 0;
+    try {
+        a = whole_number(range.substr(0, dash), option, 1, kMaxParticipant);
+        b = dash == std::string::npos ? a : whole_number(range.substr(dash + 1), option, 1, kMaxParticipant);
+    } catch (const BadInput&) {
+        throw BadInput(rule);
+    }
+    if (b < a) throw BadInput(rule);
     std::vector<std::uint64_t> out;
-    for (unsigned long long i = a; i <= b; ++i) out.push_back(i);
+    for (std::uint64_t i = a; i <= b; ++i) out.push_back(i);
     return out;
 }
 
@@ -142,7 +155,6 @@ std::string figure_at(const nlohmann::json& c, std::size_t index, const char* f)
 }
 
 int run_analyze(const AnalyzeArgs& a) {
-    if (!(a.confidence > 0.0 && a.confidence < 1.0)) throw BadInput("--confidence: must lie in (0, 1), e.g. 0.99");
     experiments::PooledResults pooled;
     nlohmann::json result;
     try {
@@ -153,9 +165,10 @@ int run_analyze(const AnalyzeArgs& a) {
             experiments::PsyFitOptions fo;
             if (!experiments::parse_psy_function(a.psychometric, fo.function))
                 throw BadInput("--psychometric: expected logistic, weibull or cumulative-normal, got \"" + a.psychometric + "\"");
-            if (!(a.guess >= 0.0 && a.guess < 1.0)) throw BadInput("--guess: must lie in [0, 1), e.g. 0.5 for two-alternative forced choice");
-            if (!(a.max_lapse >= 0.0 && a.guess + a.max_lapse < 1.0)) throw BadInput("--max-lapse: must be at least 0 with --guess + --max-lapse below 1");
-            if (a.bootstrap < 0 || a.bootstrap > 100000) throw BadInput("--bootstrap: must lie in [0, 100000]");
+            // Each alone was checked as it was read (number_options.hpp); together:
+            if (!(a.guess + a.max_lapse < 1.0))
+                throw BadInput("--max-lapse: must be at least 0 with --guess + --max-lapse below 1, got --guess " + number_text(a.guess) +
+                               " and --max-lapse " + number_text(a.max_lapse));
             fo.guess = a.guess;
             fo.max_lapse = a.max_lapse;
             fo.bootstrap = a.bootstrap;
@@ -239,10 +252,9 @@ void register_experiment_command(CLI::App& app, int& rc) {
                   "observer:logistic|weibull|cumulative-normal:threshold=T,scale=S[,guess=G,lapse=L]");
     r->add_option("--participants", run->participants,
                   "sim:A-B: simulated participants A..B, each its own seed; observer:FN:threshold=T,...:A-B: model observers A..B");
-    r->add_option("--seed", run->seed, "Seed of the trial orders and the perceptual noise")->default_val(1);
+    add_whole_option(r, "--seed", run->seed, 0, kMaxSeed, "Seed of the trial orders and the perceptual noise");
     r->add_option("-o,--output", run->output, "Results CSV (one row per trial)")->required();
-    r->add_option("--jobs", run->jobs, "Participants run in parallel (0: every core); the results do not depend on it")
-        ->default_val(0);
+    add_whole_option(r, "--jobs", run->jobs, 0, kMaxJobs, "Participants run in parallel (0: every core); the results do not depend on it");
     r->add_flag("--no-traces", run->no_traces, "Skip the per-trial traces (RESULTS.csv.traces/)");
     r->add_flag("--profile", run->profile,
                 "Print where the wall time went, by stage (servo tick, simulated rig, hand paths, perception, files), in ms "
@@ -262,15 +274,16 @@ void register_experiment_command(CLI::App& app, int& rc) {
                  "Pool results files from different protocols (different protocol_sha256 in their meta files)");
     an->add_option("--json", analyze->json, "Write the figures as JSON");
     an->add_option("--report", analyze->report, "Write report.md and PNG plots into this folder");
-    an->add_option("--confidence", analyze->confidence, "Confidence of the t tests' intervals (seed 000: 0.99)")
-        ->default_val(0.95);
+    add_real_option(an, "--confidence", analyze->confidence, {0.0, 1.0, true, true, "e.g. 0.99"},
+                    "Confidence of the t tests' intervals (seed 000: 0.99)");
     an->add_option("--psychometric", analyze->psychometric,
                    "Fit logistic, weibull or cumulative-normal per condition and participant (maximum likelihood, lapse free, "
                    "parametric-bootstrap 95 % intervals)");
-    an->add_option("--guess", analyze->guess, "The fit's chance rate (0.5 for two-alternative forced choice)")->default_val(0.5);
-    an->add_option("--max-lapse", analyze->max_lapse, "The fit's lapse rate is free in [0, this]")->default_val(0.06);
-    an->add_option("--bootstrap", analyze->bootstrap, "Parametric bootstrap resamples for the fit's intervals (seed 1)")
-        ->default_val(1000);
+    add_real_option(an, "--guess", analyze->guess, {0.0, 1.0, false, true, "e.g. 0.5 for two-alternative forced choice"},
+                    "The fit's chance rate (0.5 for two-alternative forced choice)");
+    add_real_option(an, "--max-lapse", analyze->max_lapse, {0.0, 1.0, false, true, "with --guess + --max-lapse below 1"},
+                    "The fit's lapse rate is free in [0, this]");
+    add_whole_option(an, "--bootstrap", analyze->bootstrap, 0, 100000, "Parametric bootstrap resamples for the fit's intervals (seed 1)");
     an->callback([analyze, &rc] { rc = run_analyze(*analyze); });
 }
 

@@ -8,6 +8,7 @@
 // seed, device, rate) and its own hash; --report draws power against group size
 // (engine/reports/power_report.hpp).
 #include "engine/app/command_line.hpp"
+#include "engine/app/number_options.hpp"
 #include "engine/app/progress_bar.hpp"
 #include "engine/app/subcommands.hpp"
 #include "engine/reports/power_report.hpp"
@@ -27,6 +28,8 @@
 #include <fstream>
 #include <sstream>
 #include <thread>
+#include <tuple>
+#include <utility>
 
 namespace contactlab::app {
 namespace {
@@ -40,20 +43,37 @@ struct PowerArgs {
     double alpha = 0.05;
     unsigned long long seed = 1;
     bool overwrite = false;
+    bool conditions_given = false;  // "--conditions ''" is refused, not taken for the default
 };
 
-// "4-16" -> 4..16; "10" -> {10}.
+// "4-16" -> 4..16; "10" -> {10}. Each size read by whole_number (never wrapped or saturated).
 std::vector<int> group_sizes(const std::string& spec) {
-    int a = 0, b = 0;
-    char dash = 0, extra = 0;
-    const int n = std::sscanf(spec.c_str(), "%d%c%d%c", &a, &dash, &b, &extra);
-    if (n == 1) b = a;
-    else if (!(n == 3 && dash == '-')) throw BadInput("--participants: expected group sizes A-B (e.g. 4-16) or N, got \"" + spec + "\"");
-    if (a < 2 || b < a || b > 10000)
-        throw BadInput("--participants: group sizes A-B need 2 <= A <= B <= 10000 (a paired t test needs 2), got \"" + spec + "\"");
+    constexpr std::uint64_t kMost = 10000;
+    const std::string rule = "--participants: group sizes A-B need whole numbers 2 <= A <= B <= " + std::to_string(kMost) +
+                             " (a paired t test needs 2), e.g. 4-16 or one size N, got " + given(spec);
+    const std::size_t dash = spec.find('-');
+    std::uint64_t a = 0, b = 0;
+    try {
+        a = whole_number(spec.substr(0, dash), "--participants", 0, kMost);
+        b = dash == std::string::npos ? a : whole_number(spec.substr(dash + 1), "--participants", 0, kMost);
+    } catch (const BadInput&) {
+        throw BadInput(rule);
+    }
+    if (a < 2 || b < a) throw BadInput(rule);
     std::vector<int> out;
-    for (int i = a; i <= b; ++i) out.push_back(i);
+    for (std::uint64_t i = a; i <= b; ++i) out.push_back(static_cast<int>(i));
     return out;
+}
+
+// "A,B": two different conditions of the protocol, by name (which exist is checked against the
+// pool's analysis). "A,B,x" is not condition "B,x": condition names hold no comma (protocol.cpp).
+std::pair<std::string, std::string> two_conditions(const std::string& spec) {
+    const auto comma = spec.find(',');
+    const std::string a = spec.substr(0, comma), b = comma == std::string::npos ? std::string() : spec.substr(comma + 1);
+    if (comma == std::string::npos || a.empty() || b.empty() || b.find(',') != std::string::npos)
+        throw BadInput("--conditions: expected two conditions A,B (names without commas), got " + given(spec));
+    if (a == b) throw BadInput("--conditions: \"" + a + "\" compared with itself: name two different conditions A,B, got " + given(spec));
+    return {a, b};
 }
 
 std::string file_text(const std::string& path) {
@@ -65,21 +85,13 @@ std::string file_text(const std::string& path) {
 
 int run_power(const PowerArgs& a) {
     if (a.json.empty()) throw BadInput("experiment power: --json OUT is required");
-    if (a.pool < 2 || a.pool > 10000) throw BadInput("--pool: the pool needs 2..10000 simulated participants");
-    if (a.resamples < 1 || a.resamples > 1000000) throw BadInput("--resamples: 1..1000000 groups per size");
-    if (!(a.alpha > 0.0 && a.alpha < 1.0)) throw BadInput("--alpha: must lie in (0, 1), e.g. 0.05");
     experiments::PowerOptions o;
     o.measure = a.measure == "IT_est" ? "it_est_bits" : a.measure;
     o.sizes = group_sizes(a.participants);
     o.resamples = a.resamples;
     o.alpha = a.alpha;
     o.seed = a.seed;
-    if (!a.conditions.empty()) {
-        const auto comma = a.conditions.find(',');
-        if (comma == std::string::npos) throw BadInput("--conditions: expected A,B, got \"" + a.conditions + "\"");
-        o.condition_a = a.conditions.substr(0, comma);
-        o.condition_b = a.conditions.substr(comma + 1);
-    }
+    if (a.conditions_given) std::tie(o.condition_a, o.condition_b) = two_conditions(a.conditions);
     const fs::path out(a.json);
     const std::string pool_path = (out.parent_path() / (out.stem().string() + ".pool.csv")).string();
     json result;
@@ -140,16 +152,17 @@ void register_experiment_power_command(CLI::App& app, int& rc) {
                   "failure_proportion")
         ->default_val("it_est_bits");
     c->add_option("--participants", args->participants, "Group sizes A-B (e.g. 4-16), or one size N")->required();
-    c->add_option("--pool", args->pool, "Simulated participants run once through the servo, the population resampled")->default_val(20);
-    c->add_option("--resamples", args->resamples, "Groups drawn per size")->default_val(1000);
-    c->add_option("--alpha", args->alpha, "Two-sided significance level")->default_val(0.05);
-    c->add_option("--seed", args->seed, "Seed of the pool's run and of the draws")->default_val(1);
-    c->add_option("--jobs", args->jobs, "Pool participants run in parallel (0: every core)")->default_val(0);
-    c->add_option("--conditions", args->conditions, "The two conditions compared, A,B (default: the protocol's two)");
+    add_whole_option(c, "--pool", args->pool, 2, 10000, "Simulated participants run once through the servo, the population resampled");
+    add_whole_option(c, "--resamples", args->resamples, 1, 1000000, "Groups drawn per size");
+    add_real_option(c, "--alpha", args->alpha, {0.0, 1.0, true, true, "e.g. 0.05"}, "Two-sided significance level");
+    add_whole_option(c, "--seed", args->seed, 0, kMaxSeed, "Seed of the pool's run and of the draws");
+    add_whole_option(c, "--jobs", args->jobs, 0, kMaxJobs, "Pool participants run in parallel (0: every core)");
+    CLI::Option* conditions = c->add_option("--conditions", args->conditions, "The two conditions compared, A,B (default: the protocol's two)");
     c->add_option("--json", args->json, "Write the power per group size as JSON (the pool goes to OUT's stem + .pool.csv)")->required();
     c->add_option("--report", args->report, "Write report.md and power.png into this folder");
     c->add_flag("--overwrite", args->overwrite, "Replace a pool file made by another run (without it such a file is refused)");
-    c->callback([args, &rc] {
+    c->callback([args, conditions, &rc] {
+        args->conditions_given = conditions->count() > 0;
         args->protocol = installed_data_path(args->protocol);
         rc = run_power(*args);
     });

@@ -2,6 +2,7 @@
 // the long soak of the proxy against the brute-force reference (haptics/verify/contact_fuzz.hpp).
 // Prints the counts; exit 1 when any row violated a property. --dump writes the first failure's
 // scene and hand path so `contactlab trace DIR/scene.json --input DIR/hand.csv` replays it.
+#include "engine/app/number_options.hpp"
 #include "engine/app/progress_bar.hpp"
 #include "engine/app/subcommands.hpp"
 #include "haptics/atomic_file.hpp"
@@ -12,6 +13,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <thread>
 
@@ -90,9 +92,9 @@ void register_fuzz_contact_command(CLI::App& app, int& rc) {
     static FuzzArgs a;
     CLI::App* cmd = app.add_subcommand("fuzz-contact",
                                        "Soak the proxy against a brute-force reference on seeded random scenes");
-    cmd->add_option("--rows", a.rows, "hand samples (servo ticks) in all")->capture_default_str();
-    cmd->add_option("--seed", a.seed, "seed of the random scenes and hand paths")->capture_default_str();
-    cmd->add_option("--jobs", a.jobs, "threads (0: one per core; the counts do not depend on it)")->capture_default_str();
+    add_whole_option(cmd, "--rows", a.rows, 1, std::numeric_limits<long long>::max(), "hand samples (servo ticks) in all");
+    add_whole_option(cmd, "--seed", a.seed, 0, kMaxSeed, "seed of the random scenes and hand paths");
+    add_whole_option(cmd, "--jobs", a.jobs, 0, kMaxJobs, "threads (0: one per core; the counts do not depend on it)");
     cmd->add_option("--dump", a.dump, "folder for the first failure's scene.json and hand.csv");
     cmd->callback([&rc] { rc = run(a); });
 }

@@ -1,6 +1,7 @@
 // generate_cli.cpp — `contactlab generate bumps|block|arc ... --output SCENE.json`: the seeds'
 // stimuli as scene files (haptics/stimuli.hpp); `generate peer-workload`: the bench's dense
 // sinusoid and its 1 mm deep stroke as files, the workload to time another haptics library on.
+#include "engine/app/number_options.hpp"
 #include "engine/app/subcommands.hpp"
 #include "engine/bench/cost_scenes.hpp"
 #include "haptics/atomic_file.hpp"
@@ -60,7 +61,7 @@ void register_generate_command(CLI::App& app, int& rc) {
 
     CLI::App* bumps = gen->add_subcommand("bumps", "Seed 002: base shape + small/large bumps as G1 quadratic Beziers");
     bumps->add_option("--output,-o", a.output, "Scene file to write")->required();
-    bumps->add_option("--seed", a.bumps.seed, "Random seed (same seed, same file)")->default_val(1);
+    add_whole_option(bumps, "--seed", a.bumps.seed, 0, kMaxSeed, "Random seed (same seed, same file)");
     bumps->add_option("--small", a.bumps.small_bumps, "Number of small (3 mm) bumps")->default_val(2);
     bumps->add_option("--large", a.bumps.large_bumps, "Number of large (18 mm) bumps")->default_val(1);
     bumps->add_option("--length", a.bumps.length, "Traced length (m)")->default_val(0.184);

@@ -10,6 +10,10 @@
 #include <doctest/doctest.h>
 
 #include <filesystem>
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
 #include <string>
 
 using namespace cli_test;
@@ -117,7 +121,25 @@ void killed_and_resumed(int jobs) {
     CHECK(meta["finished_utc"].is_string());
     CHECK(meta["rows"] == 32);
     CHECK(meta["resumed"].size() == 1);
+    // The killed run's lock file was taken over and removed when the run finished.
+    CHECK_FALSE(fs::exists(out + ".lock"));
+    CHECK_FALSE(fs::exists(dir.file("whole.csv.lock")));
 }
+
+// Holds OUT.lock as a live run does (flock), until it goes away.
+class HeldLock {
+public:
+    explicit HeldLock(const std::string& path) : fd_(::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644)) {
+        REQUIRE(fd_ >= 0);
+        REQUIRE(::flock(fd_, LOCK_EX | LOCK_NB) == 0);
+    }
+    ~HeldLock() { ::close(fd_); }
+    HeldLock(const HeldLock&) = delete;
+    HeldLock& operator=(const HeldLock&) = delete;
+
+private:
+    int fd_;
+};
 
 }  // namespace
 
@@ -260,4 +282,42 @@ TEST_CASE("experiment run: an adaptive run killed with SIGKILL resumes by replay
     const auto refused = run_contactlab(args(out2));
     CHECK(refused.exit_code == 2);
     CHECK(contains(refused.err, "the procedure has"));
+}
+
+TEST_CASE("issue 49: a run into a live run's output is told it is locked, even when the parts folder has no meta yet") {
+    TempDir dir;
+    const std::string proto = small_protocol(dir, 3), out = dir.file("r.csv");
+    const std::vector<std::string> args = {"experiment", "run", proto, "--participant", "sim", "--no-traces", "-o", out};
+    // The moment two runs start together: the first has locked and made its parts folder, and has
+    // not yet written its meta. The second used to look at the folder first and be told it "exists
+    // without r.csv.meta.json ... give --overwrite".
+    fs::create_directories(out + ".parts");
+    {
+        const HeldLock live(out + ".lock");
+        const auto p = run_contactlab(args);
+        INFO("stderr: " << p.err);
+        CHECK(p.exit_code == 2);
+        CHECK(contains(p.err, "r.csv: another contactlab run is writing it now (" + out + ".lock is locked)"));
+        CHECK_FALSE(contains(p.err, "exists without"));
+        // --overwrite waits its turn too: the live run's folder is not removed under it.
+        write_text(out + ".parts/sim1.csv", "the live run's rows");
+        const auto o = run_contactlab({"experiment", "run", proto, "--participant", "sim", "--no-traces", "-o", out, "--overwrite"});
+        CHECK(o.exit_code == 2);
+        CHECK(contains(o.err, "is locked"));
+        CHECK(read_text(out + ".parts/sim1.csv") == "the live run's rows");
+        CHECK_FALSE(fs::exists(out + ".meta.json"));
+    }
+    // Unlocked, the same folder says what it is: parts without a meta.
+    const auto q = run_contactlab(args);
+    CHECK(q.exit_code == 2);
+    CHECK(contains(q.err, "exists without r.csv.meta.json"));
+    // And a run that finishes leaves no lock file behind.
+    const auto r = run_contactlab({"experiment", "run", proto, "--participant", "sim", "--no-traces", "-o", dir.file("fresh/r.csv")});
+    INFO("stderr: " << r.err);
+    CHECK(r.exit_code == 0);
+    CHECK(fs::exists(dir.file("fresh/r.csv")));
+    CHECK_FALSE(fs::exists(dir.file("fresh/r.csv.lock")));
+    const auto again = run_contactlab({"experiment", "run", proto, "--participant", "sim", "--no-traces", "-o", dir.file("fresh/r.csv")});
+    CHECK(contains(again.err, "nothing to do"));
+    CHECK_FALSE(fs::exists(dir.file("fresh/r.csv.lock")));
 }

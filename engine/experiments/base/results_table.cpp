@@ -32,6 +32,12 @@ NumberParse parse_number(const std::string& s, double& value) {
     return NumberParse::ok;
 }
 
+std::string number_text(double v) {
+    char buf[64];
+    const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
+    return ec == std::errc() ? std::string(buf, end) : std::string("?");
+}
+
 long ResultsTable::line(std::size_t row) const { return row < lines.size() ? lines[row] : static_cast<long>(row) + 2; }
 
 std::string ResultsTable::where(std::size_t row) const {

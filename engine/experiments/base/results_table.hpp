@@ -24,6 +24,9 @@ struct ExperimentError : std::runtime_error {
 enum class NumberParse { ok, not_a_number, out_of_range };
 // A whole cell as a finite double (an optional leading '+'; no blanks, hex, inf or nan).
 NumberParse parse_number(const std::string& cell, double& value);
+// The shortest text that reads back as exactly `v`, for messages: "20.0000001" (%g and an
+// ostream's default both print "20"), "1e-09", "0.25".
+std::string number_text(double v);
 
 struct ResultsTable {
     std::string origin;  // the file, for messages

@@ -1,6 +1,7 @@
 // protocol.cpp — strict reading of protocol files (protocol.hpp).
 #include "engine/experiments/protocol/protocol.hpp"
 
+#include "engine/experiments/base/path_name.hpp"
 #include "engine/experiments/base/results_table.hpp"
 #include "engine/experiments/base/sha256.hpp"
 #include "engine/experiments/base/random_stream.hpp"
@@ -15,7 +16,10 @@
 #include <cstring>
 #include <fstream>
 #include <set>
+#include <optional>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 namespace contactlab::experiments {
 namespace {
@@ -39,14 +43,18 @@ struct Reader {
         if (!j.contains(key)) fail(join(path, key), "missing");
         return j[key];
     }
+    // The value as the file gave it, for a message: JSON's shortest exact form ("20.0000001", where
+    // an ostream's default precision printed "20"; an integer with all its digits).
+    static std::string shown(const json& j) {
+        if (j.is_number_float() && !std::isfinite(j.get<double>())) return "a number beyond a double's range";
+        return j.dump();
+    }
     double number(const json& j, const std::string& path, double lo, double hi, const char* unit) const {
         if (!j.is_number()) fail(path, "expected a number");
         const double v = j.get<double>();
-        if (!std::isfinite(v) || v < lo || v > hi) {
-            std::ostringstream s;
-            s << "must lie in [" << lo << ", " << hi << "]" << (unit[0] ? " " : "") << unit << ", got " << v;
-            fail(path, s.str());
-        }
+        if (!std::isfinite(v) || v < lo || v > hi)
+            fail(path, "must lie in [" + number_text(lo) + ", " + number_text(hi) + "]" + (unit[0] ? " " : "") + unit + ", got " +
+                           shown(j));
         return v;
     }
     double number(const json& obj, const std::string& path, const char* key, double lo, double hi, const char* unit,
@@ -56,10 +64,15 @@ struct Reader {
     int integer(const json& obj, const std::string& path, const char* key, int lo, int hi, int fallback) const {
         if (!obj.contains(key)) return fallback;
         const json& j = obj[key];
-        if (!j.is_number_integer()) fail(join(path, key), "expected a whole number");
-        const long long v = j.get<long long>();
-        if (v < lo || v > hi) fail(join(path, key), "must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + std::to_string(v));
-        return static_cast<int>(v);
+        const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+        if (!j.is_number_integer())
+            fail(join(path, key), "expected a whole number in " + range + (j.is_number() ? ", got " + shown(j) : std::string()));
+        // Unsigned beyond a long long (18446744073709551615) is compared as unsigned, never wrapped to -1.
+        const bool inside = j.is_number_unsigned() ? j.get<std::uint64_t>() <= static_cast<std::uint64_t>(std::max(hi, 0)) &&
+                                                         static_cast<long long>(j.get<std::uint64_t>()) >= lo
+                                                   : j.get<long long>() >= lo && j.get<long long>() <= hi;
+        if (!inside) fail(join(path, key), "must lie in " + range + ", got " + shown(j));
+        return static_cast<int>(j.get<long long>());
     }
     std::string text(const json& j, const std::string& path) const {
         if (!j.is_string()) fail(path, "expected a string");
@@ -69,6 +82,67 @@ struct Reader {
         if (!obj.contains(key)) return fallback;
         if (!obj[key].is_boolean()) fail(join(path, key), "expected true or false");
         return obj[key].get<bool>();
+    }
+};
+
+// The first key an object names twice and the object's path ("conditions[1]"; "" at the top):
+// nlohmann::json keeps the last of two silently, so a protocol with "trials" twice would run with
+// one of them and the reader would never see the other.
+class DuplicateKeys : public json::json_sax_t {
+public:
+    std::optional<std::pair<std::string, std::string>> found;  // (object's path, key)
+
+    bool null() override { return value(); }
+    bool boolean(bool) override { return value(); }
+    bool number_integer(number_integer_t) override { return value(); }
+    bool number_unsigned(number_unsigned_t) override { return value(); }
+    bool number_float(number_float_t, const string_t&) override { return value(); }
+    bool string(string_t&) override { return value(); }
+    bool binary(binary_t&) override { return value(); }
+    bool start_object(std::size_t) override {
+        stack_.push_back({true, here(), {}, {}, 0});
+        return true;
+    }
+    bool key(string_t& k) override {
+        Frame& f = stack_.back();
+        if (!f.keys.insert(k).second) {
+            found = {f.path, k};
+            return false;  // the first is enough
+        }
+        f.key = k;
+        return true;
+    }
+    bool end_object() override { return close(); }
+    bool start_array(std::size_t) override {
+        stack_.push_back({false, here(), {}, {}, 0});
+        return true;
+    }
+    bool end_array() override { return close(); }
+    bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override { return false; }
+
+private:
+    struct Frame {
+        bool object;
+        std::string path;            // of this object or array
+        std::set<std::string> keys;  // an object's keys so far
+        std::string key;             // an object's current key
+        std::size_t index;           // an array's current element
+    };
+    std::vector<Frame> stack_;
+
+    // The path of the value that starts now.
+    std::string here() const {
+        if (stack_.empty()) return "";
+        const Frame& f = stack_.back();
+        return f.object ? Reader::join(f.path, f.key) : f.path + "[" + std::to_string(f.index) + "]";
+    }
+    bool value() {
+        if (!stack_.empty() && !stack_.back().object) ++stack_.back().index;
+        return true;
+    }
+    bool close() {
+        stack_.pop_back();
+        return value();
     }
 };
 
@@ -148,12 +222,16 @@ Procedure read_procedure(const Reader& r, const json& j, const std::vector<doubl
         pr.type = ProcedureType::staircase;
         r.only(j, path, {"type", "rule", "start", "step", "halve_at", "reversals", "estimate_reversals", "max_trials"});
         if (j.contains("rule")) {
+            // Exactly "1-up-N-down", N one plain digit 1..5: sscanf("%d-up-%d-down%c") took
+            // "1-up-2.5-down" and "1-up-2abc" for 1-up-2-down, and " 2", "+2" and "02" for 2.
             const std::string rule = r.text(j["rule"], path + ".rule");
-            int up = 0, down = 0;
-            char tail = 0;
-            if (std::sscanf(rule.c_str(), "%d-up-%d-down%c", &up, &down, &tail) != 2 || up != 1 || down < 1 || down > 5)
-                r.fail(path + ".rule", "expected \"1-up-N-down\" with N from 1 to 5 (e.g. \"1-up-2-down\", 70.7 % correct), got \"" + rule + "\"");
-            pr.down = down;
+            const std::string head = "1-up-", tail = "-down";
+            const bool form = rule.size() == head.size() + 1 + tail.size() && rule.compare(0, head.size(), head) == 0 &&
+                              rule.compare(head.size() + 1, tail.size(), tail) == 0;
+            const char n = form ? rule[head.size()] : '0';
+            if (n < '1' || n > '5')
+                r.fail(path + ".rule", "expected \"1-up-N-down\" with N from 1 to 5, one digit (e.g. \"1-up-2-down\", 70.7 % correct), got \"" + rule + "\"");
+            pr.down = n - '0';
         }
         pr.start = r.number(j, path, "start", pr.lo, pr.hi, "(within the stimuli's range)", pr.hi);
         pr.step = r.number(j, path, "step", span * 1e-3, span, "(stimulus units, at most the stimuli's range)", span / 8.0);
@@ -163,9 +241,10 @@ Procedure read_procedure(const Reader& r, const json& j, const std::vector<doubl
             pr.halve_at.clear();
             for (std::size_t i = 0; i < h.size(); ++i) {
                 const std::string hp = path + ".halve_at[" + std::to_string(i) + "]";
-                if (!h[i].is_number_integer() || h[i].get<long long>() < 1 || h[i].get<long long>() > 100)
-                    r.fail(hp, "expected a reversal number from 1 to 100");
-                const int v = h[i].get<int>();
+                // JSON reads 0 and up as unsigned: compared as such, never wrapped.
+                if (!h[i].is_number_unsigned() || h[i].get<std::uint64_t>() < 1 || h[i].get<std::uint64_t>() > 100)
+                    r.fail(hp, "expected a reversal number from 1 to 100, got " + Reader::shown(h[i]));
+                const int v = static_cast<int>(h[i].get<std::uint64_t>());
                 if (!pr.halve_at.empty() && v <= pr.halve_at.back()) r.fail(hp, "reversal numbers must increase");
                 pr.halve_at.push_back(v);
             }
@@ -268,6 +347,11 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
     } catch (const json::exception& e) {
         r.fail("", std::string("invalid JSON: ") + e.what());
     }
+    DuplicateKeys duplicates;
+    json::sax_parse(text, &duplicates);
+    if (duplicates.found)
+        r.fail(duplicates.found->first, "key \"" + duplicates.found->second +
+                                            "\" given twice (a key appears once in its object: JSON readers keep either one)");
     r.only(root, "", {"format", "version", "name", "seed", "task", "conditions", "stimuli", "repetitions", "trials", "warmup",
                       "repeat_invalid", "answers", "hand", "finger", "force", "curves", "bumps", "arc", "block", "edge", "procedure", "participant",
                       "device"});
@@ -299,6 +383,9 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
         c.name = r.text(r.need(conds[i], path, "name"), path + ".name");
         if (c.name.empty() || c.name.find_first_of(",\"\n") != std::string::npos)
             r.fail(path + ".name", "must be non-empty, without commas, quotes or line breaks (it is a CSV field)");
+        // It names trace files (PARTICIPANT-CONDITION-TRIAL.csv): checked here, not when a run writes.
+        if (const std::string why = path_name_problem(c.name); !why.empty())
+            r.fail(path + ".name", why + " (it is part of the traces' file names), got \"" + escaped_name(c.name) + "\"");
         if (!names.insert(c.name).second) r.fail(path + ".name", "\"" + c.name + "\" appears twice");
         c.contact_location = r.flag(conds[i], path, "contact_location", true);
         if (p.task == Task::curvature) {
@@ -340,7 +427,8 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
     }
     if (root.contains("procedure")) p.procedure = read_procedure(r, root["procedure"], p.stimuli);
     p.repetitions = r.integer(root, "", "repetitions", 1, 1000, 1);
-    p.trials = r.integer(root, "", "trials", 0, 100000, 0);
+    // Absent (0 here): repetitions x stimuli. Given, at least 1: "trials": 0 is no design.
+    p.trials = r.integer(root, "", "trials", 1, 100000, 0);
     p.warmup = r.integer(root, "", "warmup", 0, 1000, 0);
     p.repeat_invalid = r.flag(root, "", "repeat_invalid", true);
     // Adaptive procedures: `warmup` practice trials per condition, at the procedure's easy end,

@@ -2,6 +2,7 @@
 #include "engine/experiments/runs/live_session.hpp"
 
 #include "engine/experiments/runs/results_row.hpp"
+#include "engine/experiments/base/path_name.hpp"
 #include "engine/experiments/base/results_table.hpp"
 #include "engine/experiments/protocol/stimulus.hpp"
 #include "engine/experiments/base/random_stream.hpp"
@@ -19,6 +20,10 @@ LiveSession::LiveSession(Protocol protocol, std::string participant, std::uint64
     : protocol_(std::move(protocol)), participant_(std::move(participant)), results_path_(std::move(results_path)) {
     if (participant_.empty() || participant_.find_first_of(",\"\n\r") != std::string::npos)
         throw ExperimentError("--participant: an id without commas, quotes or line breaks, e.g. P07");
+    // The id names the default results file (PROTOCOL-ID.csv, the editor's): no path in it.
+    if (const std::string why = path_name_problem(participant_); !why.empty())
+        throw ExperimentError("--participant: the id " + why + " (it is part of a file name), e.g. P07, got \"" +
+                              escaped_name(participant_) + "\"");
     // A person's id numbers the trial order as a simulated participant's number does.
     // FNV-1a: the same number for the same id on any machine (std::hash promises no such thing).
     std::uint64_t number = 0xcbf29ce484222325ull;

@@ -10,6 +10,7 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace contactlab::experiments {
@@ -29,11 +30,9 @@ std::string overwrite_hint() { return "; give --overwrite to replace it (its tra
 }  // namespace
 
 RunFiles::RunFiles(std::string output)
-    : output_(std::move(output)), parts_(output_ + ".parts"), traces_(output_ + ".traces") {}
+    : output_(std::move(output)), parts_(output_ + ".parts"), traces_(output_ + ".traces"), lock_(output_ + ".lock") {}
 
-RunFiles::~RunFiles() {
-    if (lock_fd_ >= 0) ::close(lock_fd_);
-}
+RunFiles::~RunFiles() { unlock(); }
 
 std::string RunFiles::part(const std::string& participant) const { return parts_ + "/" + participant + ".csv"; }
 
@@ -42,6 +41,12 @@ std::string RunFiles::trace(const std::string& participant, const std::string& c
 }
 
 RunState RunFiles::claim(const nlohmann::json& now_meta, bool overwrite) {
+    // The lock first: nothing below looks at the files (the meta, the parts folder, what
+    // --overwrite removes) until this process is the one run that may. When the lock lived on the
+    // parts folder it was taken after those looks, so a second run started with the first was told
+    // that the folder "exists without R.csv.meta.json", or with --overwrite removed a live run's
+    // folder and locked a new one beside it.
+    lock();
     RunState st;
     std::error_code ec;
     if (overwrite) {
@@ -65,17 +70,47 @@ RunState RunFiles::claim(const nlohmann::json& now_meta, bool overwrite) {
     }
     if (st.complete) return st;
     fs::create_directories(parts_);
-    lock();
     remove_temps();
     if (now_meta.value("traces", true)) fs::create_directories(traces_);
     return st;
 }
 
 void RunFiles::lock() {
-    lock_fd_ = ::open(parts_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (lock_fd_ < 0) throw ExperimentError(parts_ + ": cannot open (" + std::strerror(errno) + ")");
-    if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0)
-        throw ExperimentError(output_ + ": another contactlab run is writing it now (" + parts_ + " is locked)");
+    // RESULTS.csv.lock, beside the results: it outlives --overwrite (which removes the parts
+    // folder) and is there before the parts are. Removed by its holder when done, so a finished
+    // run leaves only its results; whoever opened it just before that removal finds the file it
+    // locked gone (or another in its place) and opens it again.
+    std::error_code ec;
+    const fs::path out(output_);
+    if (out.has_parent_path()) fs::create_directories(out.parent_path(), ec);
+    for (int attempt = 0; attempt < 100; ++attempt) {
+        const int fd = ::open(lock_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+        if (fd < 0) throw ExperimentError(lock_ + ": cannot open (" + std::strerror(errno) + ")");
+        if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+            const int err = errno;
+            ::close(fd);
+            if (err == EWOULDBLOCK)
+                throw ExperimentError(output_ + ": another contactlab run is writing it now (" + lock_ +
+                                      " is locked); wait for it to finish, or give another --output");
+            throw ExperimentError(lock_ + ": cannot lock (" + std::strerror(err) + ")");
+        }
+        struct stat held {}, named {};
+        if (::fstat(fd, &held) == 0 && ::stat(lock_.c_str(), &named) == 0 && held.st_dev == named.st_dev &&
+            held.st_ino == named.st_ino) {
+            lock_fd_ = fd;
+            return;
+        }
+        ::close(fd);  // removed by the run that held it: open the name again
+    }
+    throw ExperimentError(lock_ + ": cannot lock (it keeps being replaced)");
+}
+
+void RunFiles::unlock() {
+    if (lock_fd_ < 0) return;
+    // Removed while still held (see lock()), then released.
+    ::unlink(lock_.c_str());
+    ::close(lock_fd_);
+    lock_fd_ = -1;
 }
 
 void RunFiles::remove_temps() const {
@@ -108,10 +143,9 @@ std::vector<std::vector<std::string>> RunFiles::done_rows(const std::vector<std:
 }
 
 void RunFiles::finish() {
-    if (lock_fd_ >= 0) ::close(lock_fd_);
-    lock_fd_ = -1;
     std::error_code ec;
     fs::remove_all(parts_, ec);
+    unlock();
 }
 
 }  // namespace contactlab::experiments

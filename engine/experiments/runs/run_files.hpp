@@ -1,9 +1,10 @@
 // run_files.hpp — the files of one batch run and who owns them: RESULTS.csv, its meta
 // (run_meta.hpp), RESULTS.csv.parts/ (each participant's finished trials while the run is
-// unfinished) and RESULTS.csv.traces/. claim() decides, from the meta, whether they are this
-// run's to resume, another run's to refuse, or (overwrite) to clear; it removes what a killed
-// run left half-written (write_file_atomically's NAME.tmp-XXXXXX) and locks the parts folder so
-// that two processes never write one run.
+// unfinished) and RESULTS.csv.traces/. claim() first locks RESULTS.csv.lock (flock; removed
+// when the run is done) so that two processes never write one run, and only then decides, from
+// the meta, whether the files are this run's to resume, another run's to refuse, or (overwrite)
+// to clear; it removes what a killed run left half-written (write_file_atomically's
+// NAME.tmp-XXXXXX).
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -26,7 +27,8 @@ public:
     RunFiles(const RunFiles&) = delete;
     RunFiles& operator=(const RunFiles&) = delete;
 
-    // Throws ExperimentError saying why the files are not this run's (and naming --overwrite).
+    // Throws ExperimentError saying why the files are not this run's (and naming --overwrite), or
+    // that another process is writing them now (whatever the files on disk look like).
     RunState claim(const nlohmann::json& now_meta, bool overwrite);
 
     std::string part(const std::string& participant) const;
@@ -39,9 +41,10 @@ public:
 
 private:
     void lock();
+    void unlock();
     void remove_temps() const;
 
-    std::string output_, parts_, traces_;
+    std::string output_, parts_, traces_, lock_;
     int lock_fd_ = -1;
 };
 
