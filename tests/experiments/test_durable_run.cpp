@@ -14,6 +14,7 @@
 #include <fcntl.h>
 #include <sys/file.h>
 #include <unistd.h>
+#include <sstream>
 #include <string>
 
 using namespace cli_test;
@@ -281,7 +282,8 @@ TEST_CASE("experiment run: an adaptive run killed with SIGKILL resumes by replay
     write_text(out2 + ".parts/sim1.csv", flipped);
     const auto refused = run_contactlab(args(out2));
     CHECK(refused.exit_code == 2);
-    CHECK(contains(refused.err, "the procedure has"));
+    // The first flipped answer no longer grades as its stimulus and response say.
+    CHECK(contains(refused.err, "grades"));
 }
 
 TEST_CASE("issue 49: a run into a live run's output is told it is locked, even when the parts folder has no meta yet") {
@@ -320,4 +322,69 @@ TEST_CASE("issue 49: a run into a live run's output is told it is locked, even w
     const auto again = run_contactlab({"experiment", "run", proto, "--participant", "sim", "--no-traces", "-o", dir.file("fresh/r.csv")});
     CHECK(contains(again.err, "nothing to do"));
     CHECK_FALSE(fs::exists(dir.file("fresh/r.csv.lock")));
+}
+
+// Issue 49: a run folder is verified before it is resumed. Each committed row and its trace have
+// their SHA-256 in RESULTS.csv.parts/P.sums; a resume checks every row it replays against it, and
+// its `correct` against its stimulus and response, and refuses (exit 2, naming the file and the
+// trial) instead of carrying on from a folder the run did not write.
+TEST_CASE("issue 49: a resume refuses a changed digit, a flipped correct, and a deleted trace, naming the file and trial") {
+    TempDir dir;
+    const std::string proto = small_protocol(dir);
+    auto args = [&](const std::string& out) {
+        return std::vector<std::string>{"experiment", "run", proto, "--participants", "sim:1-2", "--seed", "4", "--jobs", "1", "-o", out};
+    };
+    // The part's rows as cells (header first).
+    auto cells = [](const std::string& text) {
+        std::vector<std::vector<std::string>> rows;
+        std::stringstream lines(text);
+        for (std::string line; std::getline(lines, line);) {
+            std::vector<std::string> r;
+            std::stringstream fields(line);
+            for (std::string f; std::getline(fields, f, ',');) r.push_back(f);
+            rows.push_back(r);
+        }
+        return rows;
+    };
+    auto join = [](const std::vector<std::vector<std::string>>& rows) {
+        std::string text;
+        for (const auto& r : rows) {
+            for (std::size_t i = 0; i < r.size(); ++i) text += (i ? "," : "") + r[i];
+            text += "\n";
+        }
+        return text;
+    };
+    struct Case {
+        const char* name;
+        const char* says;
+    };
+    for (const Case c : {Case{"digit", "SHA-256 differs"}, Case{"correct", "grades"}, Case{"trace", "missing"}}) {
+        CAPTURE(c.name);
+        const std::string out = dir.file(std::string(c.name) + ".csv");
+        REQUIRE(kill_when(args(out), [&] { return rows_in(out + ".parts/sim1.csv") >= 4; }));
+        const std::string part = out + ".parts/sim1.csv";
+        REQUIRE(fs::exists(out + ".parts/sim1.sums"));
+        auto rows = cells(read_text(part));
+        REQUIRE(rows.size() >= 5);
+        const std::size_t col_correct = 6, col_peak = 12;
+        REQUIRE(rows[0][col_correct] == "correct");
+        REQUIRE(rows[0][col_peak] == "peak_force_n");
+        if (std::string(c.name) == "digit") {
+            char& d = rows[2][col_peak].back();  // one digit of row 2's peak force
+            d = d == '9' ? '8' : static_cast<char>(d + 1);
+            write_text(part, join(rows));
+        } else if (std::string(c.name) == "correct") {
+            rows[3][col_correct] = rows[3][col_correct] == "1" ? "0" : "1";
+            write_text(part, join(rows));
+        } else {
+            fs::remove(out + ".traces/sim1-" + rows[1][1] + "-" + rows[1][2] + ".csv");
+        }
+        const auto again = run_contactlab(args(out));
+        CAPTURE(again.err);
+        CHECK(again.exit_code == 2);
+        CHECK(contains(again.err, c.says));
+        CHECK(contains(again.err, std::string(c.name) == "trace" ? "sim1-" : "parts/sim1.csv: row "));
+        CHECK(contains(again.err, "--overwrite"));
+        CHECK_FALSE(nlohmann::json::parse(read_text(out + ".meta.json"))["finished_utc"].is_string());
+    }
 }

@@ -12,13 +12,17 @@
 #include "engine/experiments/protocol/trial_plan.hpp"
 #include "engine/experiments/participants/wearable_trial.hpp"
 #include "engine/experiments/base/random_stream.hpp"
+#include "engine/experiments/base/sha256.hpp"
+#include "engine/experiments/protocol/grading.hpp"
 #include "haptics/atomic_file.hpp"
 
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <mutex>
+#include <sstream>
 #include <thread>
 
 namespace contactlab::experiments {
@@ -102,6 +106,59 @@ std::size_t column_index(const std::vector<std::string>& columns, const char* na
     return static_cast<std::size_t>(std::find(columns.begin(), columns.end(), name) - columns.begin());
 }
 
+// ---- a resume checks what it replays ----
+// A participant's checksums (RunFiles::sums): per committed row, its own and its trace's SHA-256.
+struct Ledger {
+    bool present = false;
+    std::vector<std::pair<std::string, std::string>> rows;  // (row sha256, trace sha256 or "-")
+};
+
+Ledger read_ledger(const std::string& path) {
+    Ledger l;
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return l;
+    l.present = true;
+    std::string row, trace;
+    while (in >> row >> trace) l.rows.emplace_back(row, trace);
+    return l;
+}
+
+std::string file_bytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// A row from an interrupted run, before it is replayed: graded as its stimulus and response say,
+// the same bytes as when its trial was committed, and its trace there with the same bytes.
+// Anything else: an edited or damaged run folder, refused rather than resumed from.
+void verify_done_row(const Protocol& p, const RunOptions& o, const RunFiles& files, const std::string& id, std::size_t k,
+                     const std::vector<std::string>& row, const PlannedTrial& t, const Condition& c, const Ledger& ledger) {
+    const std::string part = files.part(id);
+    const std::string which = part + ": row " + std::to_string(k + 1) + " (" + c.name + " trial " + std::to_string(t.trial) + ")";
+    const std::string hint = "; give --overwrite to start again";
+    const std::vector<std::string>& columns = results_columns(p);
+    const std::string& response = row[column_index(columns, "response")];
+    const std::string graded = response.empty() ? "" : (graded_correct(p, t, response) ? "1" : "0");
+    if (row[column_index(columns, "correct")] != graded)
+        throw ExperimentError(which + ": correct is \"" + row[column_index(columns, "correct")] + "\" but the response \"" + response +
+                              "\" to stimulus " + row[column_index(columns, "stimulus")] + " grades \"" + graded + "\"" + hint);
+    if (!ledger.present)
+        throw ExperimentError(which + ": no checksums (" + files.sums(id) + " is missing), so the rows cannot be trusted" + hint);
+    if (k >= ledger.rows.size())
+        throw ExperimentError(which + ": not in " + files.sums(id) + " (a row this run did not commit)" + hint);
+    if (sha256_hex(csv_line(row)) != ledger.rows[k].first)
+        throw ExperimentError(which + ": not the row committed for that trial (its SHA-256 differs from " + files.sums(id) +
+                              "): edited or damaged" + hint);
+    if (!o.traces || o.observer) return;
+    const std::string trace = files.trace(id, c.name, t.trial);
+    if (!std::filesystem::exists(trace))
+        throw ExperimentError(trace + ": missing, the trace of " + which + hint);
+    if (sha256_hex(file_bytes(trace)) != ledger.rows[k].second)
+        throw ExperimentError(trace + ": not the trace committed with " + which + " (its SHA-256 differs): edited or damaged" + hint);
+}
+
 TrialRecord record_of(const Protocol& p, const RunOptions& o, const std::string& id, const PlannedTrial& t, const TrialOutcome& r) {
     TrialRecord rec;
     rec.participant = id;
@@ -131,6 +188,8 @@ void run_adaptive_participant(Shared& sh, std::size_t index, const std::vector<s
     const std::size_t condition_col = column("condition"), trial_col = column("trial"), valid_col = column("valid"),
                       correct_col = column("correct"), stimulus_col = column("stimulus");
     std::string part_text = csv_line(columns) + "\n";
+    const Ledger ledger = done_rows.empty() ? Ledger{} : read_ledger(sh.files.sums(id));
+    std::string sums_text;  // the ledger as committed so far
     AdaptivePlan plan(p, o.seed, o.participants[index]);
     std::size_t k = 0;
     for (; !plan.done(); ++k) {
@@ -144,6 +203,8 @@ void run_adaptive_participant(Shared& sh, std::size_t index, const std::vector<s
                 throw ExperimentError(part + ": row " + std::to_string(k + 1) + " is " + row[condition_col] + " trial " + row[trial_col] +
                                       " at " + row[stimulus_col] + ", the procedure has " + c.name + " trial " + std::to_string(t.trial) +
                                       " at " + stimulus_label(p, t.stimulus) + " there (the file is not this run's); give --overwrite to start again");
+            verify_done_row(p, o, sh.files, id, k, row, t, c, ledger);
+            sums_text += ledger.rows[k].first + " " + ledger.rows[k].second + "\n";
             const bool valid = row[valid_col] == "1";
             plan.record(valid, row[correct_col] == "1");
             out.invalid += !valid;
@@ -155,10 +216,14 @@ void run_adaptive_participant(Shared& sh, std::size_t index, const std::vector<s
             rec.reversal = a.reversal;
             rec.estimate = a.estimate;
             row = results_row(p, rec);
+            std::string trace_sha = "-";
             if (o.traces && !o.observer) {
                 const StageTimer timer(&TrialProfile::files);
-                write_file_atomically(sh.files.trace(id, c.name, t.trial), trace_csv(r));
+                const std::string trace = trace_csv(r);
+                write_file_atomically(sh.files.trace(id, c.name, t.trial), trace);
+                trace_sha = sha256_hex(trace);
             }
+            sums_text += sha256_hex(csv_line(row)) + " " + trace_sha + "\n";
             out.invalid += !r.valid;
         }
         out.warmup += t.warmup;
@@ -170,6 +235,7 @@ void run_adaptive_participant(Shared& sh, std::size_t index, const std::vector<s
         }
         if (k >= done_rows.size()) {
             const StageTimer timer(&TrialProfile::files);
+            write_file_atomically(sh.files.sums(id), sums_text);  // the checksums first: a row on disk has its own
             write_file_atomically(part, part_text);  // on disk before the next trial
         }
         if (o.progress) o.progress(++sh.done, std::max(sh.total, sh.done.load()));
@@ -194,6 +260,8 @@ void run_participant(Shared& sh, std::size_t index, const std::vector<std::vecto
     auto column = [&](const char* name) { return column_index(columns, name); };
     const std::size_t condition_col = column("condition"), trial_col = column("trial"), valid_col = column("valid");
     std::string part_text = csv_line(columns) + "\n";
+    const Ledger ledger = done_rows.empty() ? Ledger{} : read_ledger(sh.files.sums(id));
+    std::string sums_text;  // the ledger as committed so far
     std::size_t k = 0;  // this participant's trials so far, in order
     for (std::vector<PlannedTrial> block : plan_trials(p, o.seed, o.participants[index])) {
         const std::size_t planned = block.size();
@@ -209,6 +277,8 @@ void run_participant(Shared& sh, std::size_t index, const std::vector<std::vecto
                     throw ExperimentError(part + ": row " + std::to_string(k + 1) + " is " + row[condition_col] + " trial " +
                                           row[trial_col] + ", the plan has " + c.name + " trial " + std::to_string(t.trial) +
                                           " there (the file is not this run's); give --overwrite to start again");
+                verify_done_row(p, o, sh.files, id, k, row, t, c, ledger);
+                sums_text += ledger.rows[k].first + " " + ledger.rows[k].second + "\n";
                 valid = row[valid_col] == "1";
                 ++out.resumed;
             } else {
@@ -216,10 +286,14 @@ void run_participant(Shared& sh, std::size_t index, const std::vector<std::vecto
                 valid = r.valid;
                 row = results_row(p, record_of(p, o, id, t, r));
                 // The trace first, then the row: a row on disk always has its trace.
+                std::string trace_sha = "-";
                 if (o.traces && !o.observer) {
                     const StageTimer timer(&TrialProfile::files);
-                    write_file_atomically(sh.files.trace(id, c.name, t.trial), trace_csv(r));
+                    const std::string trace = trace_csv(r);
+                    write_file_atomically(sh.files.trace(id, c.name, t.trial), trace);
+                    trace_sha = sha256_hex(trace);
                 }
+                sums_text += sha256_hex(csv_line(row)) + " " + trace_sha + "\n";
             }
             // At most as many repeats as planned trials: a stimulus that always faults the servo
             // cannot keep the block going for ever.
@@ -241,6 +315,7 @@ void run_participant(Shared& sh, std::size_t index, const std::vector<std::vecto
             // On disk before the next trial starts.
             if (k >= done_rows.size()) {
                 const StageTimer timer(&TrialProfile::files);
+                write_file_atomically(sh.files.sums(id), sums_text);  // the checksums first: a row on disk has its own
                 write_file_atomically(part, part_text);
             }
             if (o.progress) o.progress(++sh.done, sh.total);

@@ -36,6 +36,8 @@ RunFiles::~RunFiles() { unlock(); }
 
 std::string RunFiles::part(const std::string& participant) const { return parts_ + "/" + participant + ".csv"; }
 
+std::string RunFiles::sums(const std::string& participant) const { return parts_ + "/" + participant + ".sums"; }
+
 std::string RunFiles::trace(const std::string& participant, const std::string& condition, int trial) const {
     return traces_ + "/" + participant + "-" + condition + "-" + std::to_string(trial) + ".csv";
 }

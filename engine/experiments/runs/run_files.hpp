@@ -32,6 +32,10 @@ public:
     RunState claim(const nlohmann::json& now_meta, bool overwrite);
 
     std::string part(const std::string& participant) const;
+    // The participant's checksums (RESULTS.csv.parts/P.sums): one line per committed row,
+    // "ROW_SHA256 TRACE_SHA256" ("-" for no trace), written before the row joins the part, so a
+    // resume can tell a row or trace changed or lost since from one the run wrote.
+    std::string sums(const std::string& participant) const;
     std::string trace(const std::string& participant, const std::string& condition, int trial) const;
     // The participant's rows already on disk, in order: from its part, else from RESULTS.csv
     // (an interrupted run whose parts were removed by hand). Cells checked against `columns`.
