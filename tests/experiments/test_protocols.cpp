@@ -9,6 +9,7 @@
 #include "engine/experiments/analysis/statistics.hpp"
 #include "engine/experiments/protocol/stimulus.hpp"
 #include "engine/experiments/protocol/trial_plan.hpp"
+#include "minimal_protocol.hpp"
 #include "process.hpp"
 
 #include <nlohmann/json.hpp>
@@ -27,15 +28,8 @@ namespace {
 
 std::string protocol_path(const char* name) { return (cli_test::source_dir() / "scenes" / "experiments" / name).string(); }
 
-const char* kMinimal = R"({"format": "contactlab experiment protocol", "version": 1, "name": "x", "seed": "003",
-  "task": "curvature", "conditions": [{"name": "A", "motion": "A"}], "stimuli": [0.01, 0.02], "answers": ["10", "20"]})";
-
-std::string with(const std::string& from, const std::string& to) {
-    std::string s = kMinimal;
-    const auto at = s.find(from);
-    REQUIRE(at != std::string::npos);
-    return s.replace(at, from.size(), to);
-}
+using protocol_test::kMinimal;
+using protocol_test::with;
 
 }  // namespace
 

@@ -7,6 +7,7 @@
 #include "engine/experiments/base/results_table.hpp"
 #include "engine/experiments/protocol/protocol.hpp"
 #include "engine/experiments/runs/live_session.hpp"
+#include "minimal_protocol.hpp"
 #include "process.hpp"
 
 #include <nlohmann/json.hpp>
@@ -19,16 +20,8 @@ using namespace contactlab::experiments;
 
 namespace {
 
-const char* kMinimal = R"({"format": "contactlab experiment protocol", "version": 1, "name": "x", "seed": "003",
-  "task": "curvature", "conditions": [{"name": "A", "motion": "A"}], "stimuli": [0.01, 0.02], "answers": ["10", "20"]})";
-
-// kMinimal with `from` replaced by `to`.
-std::string with(const std::string& from, const std::string& to) {
-    std::string s = kMinimal;
-    const auto at = s.find(from);
-    REQUIRE(at != std::string::npos);
-    return s.replace(at, from.size(), to);
-}
+using protocol_test::kMinimal;
+using protocol_test::with;
 
 // The shipped edge-sharpness protocol (stimuli 0.25 .. 8 mm) with its "procedure" replaced.
 std::string edge_with(const std::string& procedure) {
