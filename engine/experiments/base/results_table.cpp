@@ -162,13 +162,15 @@ ResultsTable parse_results_csv(const std::string& input, const std::string& orig
     return t;
 }
 
-ResultsTable read_results_csv(const std::string& path) {
+std::string read_file_bytes(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw ExperimentError(path + ": cannot open (" + std::strerror(errno) + ")");
     std::ostringstream s;
     s << in.rdbuf();
-    return parse_results_csv(s.str(), path);
+    return s.str();
 }
+
+ResultsTable read_results_csv(const std::string& path) { return parse_results_csv(read_file_bytes(path), path); }
 
 std::string csv_line(const std::vector<std::string>& fields) {
     std::string out;

@@ -51,6 +51,9 @@ struct ResultsTable {
 ResultsTable parse_results_csv(const std::string& text, const std::string& origin);
 ResultsTable read_results_csv(const std::string& path);
 
+// A whole file's bytes; ExperimentError naming it when it cannot be opened.
+std::string read_file_bytes(const std::string& path);
+
 // One CSV line (no newline): fields with a comma, quote or line break are quoted.
 std::string csv_line(const std::vector<std::string>& fields);
 

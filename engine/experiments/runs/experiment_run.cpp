@@ -22,7 +22,6 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
-#include <sstream>
 #include <thread>
 
 namespace contactlab::experiments {
@@ -123,18 +122,12 @@ Ledger read_ledger(const std::string& path) {
     return l;
 }
 
-std::string file_bytes(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 // A row from an interrupted run, before it is replayed: graded as its stimulus and response say,
 // the same bytes as when its trial was committed, and its trace there with the same bytes.
 // Anything else: an edited or damaged run folder, refused rather than resumed from.
 void verify_done_row(const Protocol& p, const RunOptions& o, const RunFiles& files, const std::string& id, std::size_t k,
-                     const std::vector<std::string>& row, const PlannedTrial& t, const Condition& c, const Ledger& ledger) {
+                     const std::vector<std::string>& row, const std::string& line, const PlannedTrial& t, const Condition& c,
+                     const Ledger& ledger) {
     const std::string part = files.part(id);
     const std::string which = part + ": row " + std::to_string(k + 1) + " (" + c.name + " trial " + std::to_string(t.trial) + ")";
     const std::string hint = "; give --overwrite to start again";
@@ -148,15 +141,26 @@ void verify_done_row(const Protocol& p, const RunOptions& o, const RunFiles& fil
         throw ExperimentError(which + ": no checksums (" + files.sums(id) + " is missing), so the rows cannot be trusted" + hint);
     if (k >= ledger.rows.size())
         throw ExperimentError(which + ": not in " + files.sums(id) + " (a row this run did not commit)" + hint);
-    if (sha256_hex(csv_line(row)) != ledger.rows[k].first)
+    if (sha256_hex(line) != ledger.rows[k].first)
         throw ExperimentError(which + ": not the row committed for that trial (its SHA-256 differs from " + files.sums(id) +
                               "): edited or damaged" + hint);
     if (!o.traces || o.observer) return;
     const std::string trace = files.trace(id, c.name, t.trial);
     if (!std::filesystem::exists(trace))
         throw ExperimentError(trace + ": missing, the trace of " + which + hint);
-    if (sha256_hex(file_bytes(trace)) != ledger.rows[k].second)
+    if (sha256_hex(read_file_bytes(trace)) != ledger.rows[k].second)
         throw ExperimentError(trace + ": not the trace committed with " + which + " (its SHA-256 differs): edited or damaged" + hint);
+}
+
+// A new trial's trace on disk (before its row: a row on disk always has its trace); its SHA-256
+// for the ledger, "-" when the run keeps no traces.
+std::string commit_trace(const RunOptions& o, const RunFiles& files, const std::string& id, const Condition& c,
+                         const PlannedTrial& t, const TrialOutcome& r) {
+    if (!o.traces || o.observer) return "-";
+    const StageTimer timer(&TrialProfile::files);
+    const std::string trace = trace_csv(r);
+    write_file_atomically(files.trace(id, c.name, t.trial), trace);
+    return sha256_hex(trace);
 }
 
 TrialRecord record_of(const Protocol& p, const RunOptions& o, const std::string& id, const PlannedTrial& t, const TrialOutcome& r) {
@@ -196,6 +200,7 @@ void run_adaptive_participant(Shared& sh, std::size_t index, const std::vector<s
         const PlannedTrial t = plan.next();
         const Condition& c = p.conditions[static_cast<std::size_t>(t.condition)];
         std::vector<std::string> row;
+        std::string line, trace_sha;  // the row as written, and its trace's SHA-256 ("-": none)
         if (k < done_rows.size()) {
             // Done before the run was interrupted: replay its answer (the next stimulus depends on it).
             row = done_rows[k];
@@ -203,8 +208,9 @@ void run_adaptive_participant(Shared& sh, std::size_t index, const std::vector<s
                 throw ExperimentError(part + ": row " + std::to_string(k + 1) + " is " + row[condition_col] + " trial " + row[trial_col] +
                                       " at " + row[stimulus_col] + ", the procedure has " + c.name + " trial " + std::to_string(t.trial) +
                                       " at " + stimulus_label(p, t.stimulus) + " there (the file is not this run's); give --overwrite to start again");
-            verify_done_row(p, o, sh.files, id, k, row, t, c, ledger);
-            sums_text += ledger.rows[k].first + " " + ledger.rows[k].second + "\n";
+            line = csv_line(row);
+            verify_done_row(p, o, sh.files, id, k, row, line, t, c, ledger);
+            trace_sha = ledger.rows[k].second;
             const bool valid = row[valid_col] == "1";
             plan.record(valid, row[correct_col] == "1");
             out.invalid += !valid;
@@ -216,18 +222,12 @@ void run_adaptive_participant(Shared& sh, std::size_t index, const std::vector<s
             rec.reversal = a.reversal;
             rec.estimate = a.estimate;
             row = results_row(p, rec);
-            std::string trace_sha = "-";
-            if (o.traces && !o.observer) {
-                const StageTimer timer(&TrialProfile::files);
-                const std::string trace = trace_csv(r);
-                write_file_atomically(sh.files.trace(id, c.name, t.trial), trace);
-                trace_sha = sha256_hex(trace);
-            }
-            sums_text += sha256_hex(csv_line(row)) + " " + trace_sha + "\n";
+            line = csv_line(row);
+            trace_sha = commit_trace(o, sh.files, id, c, t, r);
             out.invalid += !r.valid;
         }
         out.warmup += t.warmup;
-        const std::string line = csv_line(row);
+        sums_text += sha256_hex(line) + " " + trace_sha + "\n";
         part_text += line + "\n";
         {
             std::lock_guard<std::mutex> g(sh.lock);
@@ -269,6 +269,7 @@ void run_participant(Shared& sh, std::size_t index, const std::vector<std::vecto
             PlannedTrial t = block[i];
             const Condition& c = p.conditions[static_cast<std::size_t>(t.condition)];
             std::vector<std::string> row;
+            std::string line, trace_sha;  // the row as written, and its trace's SHA-256 ("-": none)
             bool valid = true;
             if (k < done_rows.size()) {
                 // Done before the run was interrupted: the row must be the trial the plan puts here.
@@ -277,23 +278,17 @@ void run_participant(Shared& sh, std::size_t index, const std::vector<std::vecto
                     throw ExperimentError(part + ": row " + std::to_string(k + 1) + " is " + row[condition_col] + " trial " +
                                           row[trial_col] + ", the plan has " + c.name + " trial " + std::to_string(t.trial) +
                                           " there (the file is not this run's); give --overwrite to start again");
-                verify_done_row(p, o, sh.files, id, k, row, t, c, ledger);
-                sums_text += ledger.rows[k].first + " " + ledger.rows[k].second + "\n";
+                line = csv_line(row);
+                verify_done_row(p, o, sh.files, id, k, row, line, t, c, ledger);
+                trace_sha = ledger.rows[k].second;
                 valid = row[valid_col] == "1";
                 ++out.resumed;
             } else {
                 const TrialOutcome r = perform(p, o, t);
                 valid = r.valid;
                 row = results_row(p, record_of(p, o, id, t, r));
-                // The trace first, then the row: a row on disk always has its trace.
-                std::string trace_sha = "-";
-                if (o.traces && !o.observer) {
-                    const StageTimer timer(&TrialProfile::files);
-                    const std::string trace = trace_csv(r);
-                    write_file_atomically(sh.files.trace(id, c.name, t.trial), trace);
-                    trace_sha = sha256_hex(trace);
-                }
-                sums_text += sha256_hex(csv_line(row)) + " " + trace_sha + "\n";
+                line = csv_line(row);
+                trace_sha = commit_trace(o, sh.files, id, c, t, r);
             }
             // At most as many repeats as planned trials: a stimulus that always faults the servo
             // cannot keep the block going for ever.
@@ -306,7 +301,7 @@ void run_participant(Shared& sh, std::size_t index, const std::vector<std::vecto
             }
             out.invalid += !valid;
             out.warmup += t.warmup;
-            const std::string line = csv_line(row);
+            sums_text += sha256_hex(line) + " " + trace_sha + "\n";
             part_text += line + "\n";
             {
                 std::lock_guard<std::mutex> g(sh.lock);

@@ -9,12 +9,8 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
 
 namespace contactlab::experiments {
 namespace {
@@ -31,18 +27,10 @@ struct Source {
     std::map<std::string, std::vector<std::string>> rows_of;
 };
 
-std::string read_bytes(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw ExperimentError(path + ": cannot open (" + std::strerror(errno) + ")");
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 Source read_source(const std::string& path) {
     Source s;
     s.path = path;
-    s.bytes = read_bytes(path);
+    s.bytes = read_file_bytes(path);
     const auto meta = read_meta(path);
     if (!meta) throw ExperimentError(path + ": no " + meta_path(path) + ": which run made it is unknown, so it cannot be merged");
     s.meta = *meta;
