@@ -78,6 +78,11 @@ struct ProxyWork {
     // those that asked every piece's box: sliding along a chain, most of the first.
     int chain_scans = 0;
     int full_scans = 0;
+    // Free space: segments whose pieces anticipation's nearest-first search built (Proxy::anticipate).
+    int anticipated_segments = 0;
+    // The proxy left free space from afar and the gather reached only from where a disc free of
+    // pieces let it go straight toward the finger (Proxy::free_advance).
+    bool free_advance = false;
 };
 
 // Where one update's time went, ns (ProxyDef::profile; all 0 when off). Each stage is the wall
@@ -171,6 +176,9 @@ private:
         double radius = 0.0; // m
     };
     WarmDisc warm_start_disc(Vec2 finger, double max_push) const;
+    // The full gather's reach (m) for a free proxy at `start` after its first, piece-free step
+    // toward the finger; the plain reach when no such step frees anything.
+    double free_advance(Vec2 start, Vec2 finger, double max_push) const;
     // segment_ids_ for a warm start within `warm` as the pad turns by `turn` (rad) to phi: a kept
     // gather when one covers it, else a slightly wider one, kept (kept_).
     WarmDisc gather_warm(const WarmDisc& warm, double phi, double turn);

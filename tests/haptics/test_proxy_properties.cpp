@@ -307,6 +307,68 @@ TEST_CASE("in contact the index gathers every piece that matters: the same proxy
     }
 }
 
+TEST_CASE("a press from far above (the free-space advance) lands the proxy as a search of every segment, gathering near the finger only") {
+    // A free proxy whose finger jumps far in one tick first moves straight toward the finger
+    // through a disc free of pieces (Proxy::free_advance); the gather then reaches only from
+    // there. Presses from 3-12 cm above onto the index's scenes, landing anywhere within 2 cm
+    // sideways and up to a few millimetres deep, the pad turning up to 0.7 rad in the same tick:
+    // proxy, force and l_d bit for bit those of a proxy that builds every segment's pieces. On
+    // the dense sinusoid (4,000 segments of 0.1 mm) the gather holds what lies within a few
+    // millimetres of the finger, not the whole jump's disc.
+    std::mt19937_64 rng(37);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    int scene_index = 0;
+    for (const Scene& scene : index_test_scenes()) {
+        IndexedAndBrute pair(scene);
+        int presses = 0, advanced = 0, contacts = 0;
+        double advanced_segments = 0.0, jump_disc_segments = 0.0;
+        const double kR = proxy_def_of(scene).finger.radius;  // m
+        for (int k = 0; k < 400; ++k) {
+            const Vec2 above{-0.17 + 0.34 * u(rng), 0.06 + 0.06 * u(rng)};
+            const double phi0 = 1.2 * (u(rng) - 0.5);
+            pair.indexed.reset(above, phi0);
+            pair.brute.reset(above, phi0);
+            if (pair.brute.update(above, phi0).contact) continue;  // not free up there: no press
+            pair.indexed.update(above, phi0);
+            const Vec2 pressed{std::clamp(above.x + 0.04 * (u(rng) - 0.5), -0.18, 0.18), 0.015 + 0.035 * u(rng)};
+            const double phi = k % 2 == 0 ? phi0 : std::clamp(phi0 + 0.7 * (u(rng) - 0.5), -0.7, 0.7);
+            const ProxyOutput a = pair.indexed.update(pressed, phi);
+            const ProxyOutput& b = pair.brute.update(pressed, phi);
+            ++presses;
+            CAPTURE(k);
+            REQUIRE(a.contact == b.contact);
+            CHECK(a.proxy == b.proxy);
+            CHECK(a.force == b.force);
+            CHECK(a.l_d == b.l_d);
+            contacts += a.contact ? 1 : 0;
+            if (a.work.free_advance) {
+                ++advanced;
+                advanced_segments += a.work.segments;
+                // What a gather reaching from the start would hold: every segment within the
+                // jump plus R of the finger (the annulus and normal cones prune little of it).
+                const double jump = glm::length(pressed - above);
+                for (const EnvSegment& e : pair.env.segments)
+                    jump_disc_segments += distance_to_segment(e, pressed) <= jump + kR ? 1.0 : 0.0;
+            }
+        }
+        CAPTURE(scene_index);
+        CAPTURE(presses);
+        CAPTURE(contacts);
+        CHECK(presses > 300);
+        CHECK(contacts > presses / 4);
+        CHECK(advanced > presses / 2);  // most jumps start farther than R from every segment
+        if (scene_index == 0) {
+            // The jump's own disc (3-12 cm plus R) holds a third or more of the 0.4 m contour;
+            // what is left after the advance is the press's depth and the slide it causes.
+            MESSAGE("dense sinusoid, mean segments on an advanced press: gathered " << advanced_segments / advanced
+                                                                                     << ", within the jump's disc "
+                                                                                     << jump_disc_segments / advanced);
+            CHECK(advanced_segments < 0.25 * jump_disc_segments);
+        }
+        ++scene_index;
+    }
+}
+
 TEST_CASE("a kept gather (slow slides, the angle stepping by encoder counts) moves the proxy as a search of every segment") {
     // Proxy::gather_warm keeps a gather a little wider than asked, in space and in angle, and
     // reuses it while later ticks' discs and turns fit inside. Slides at 1-5 cm/s pressed 0.5-3 mm
