@@ -177,6 +177,7 @@ ProxyDef proxy_def_of(const Scene& scene) {
     def.max_force = scene.force.max_force;
     def.contact_rule = scene.contact_location.rule;
     def.law = scene.force.law;
+    def.anticipation_budget = scene.anticipation.segments_per_tick;
     return def;
 }
 
@@ -207,6 +208,8 @@ void Proxy::reset(Vec2 finger, double phi) {
     last_finger_ = finger;
     last_finger_motion_ = Vec2{0.0};
     last_motion_ = Vec2{0.0};
+    search_.active = false;
+    anticipated_ = Anticipated{};
 }
 
 void Proxy::place(Vec2 proxy, double phi, double max_push) {
@@ -220,6 +223,7 @@ void Proxy::place(Vec2 proxy, double phi, double max_push) {
 // ---- Proxy::update ------------------------------------------------------------------------------
 const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
     if (!initialised_) reset(finger, phi);
+    ++ticks_;
     const double previous_l_d = out_.l_d;
     const double R = def_.finger.radius;
     // How far any c-space piece can have moved since the last tick: only pieces made by the pad's
@@ -318,6 +322,10 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
         out_.depth = glm::length(out_.proxy - finger);
         apply_force_law(finger, dt);
         out_.l_d = contact_location_of_contacts(previous_l_d);
+        // A contact ends anticipation's search; free again, l_d starts from here.
+        search_.active = false;
+        anticipated_ = Anticipated{};
+        anticipated_.l_d = out_.l_d;
         clock_.lap(stages_.contact);
     } else {
         has_stiction_ = false;
@@ -1448,38 +1456,40 @@ void Proxy::anticipate(Vec2 finger, double phi) {
         // Nearest first through the index: a segment's pieces are built only if its node's lower
         // bound does not exceed the best distance so far. The winner is the first piece at the
         // least distance in (segment, piece) order: the one the search of every segment below
-        // finds, bit for bit.
-        const PadFrame& pad = pad_frame(phi);
-        const bool ends = pad_has_endpoints(def_.finger);
-        const Vec2 end_points[2] = {finger + R * pad.end_dir[0], finger + R * pad.end_dir[1]};
-        double best = std::numeric_limits<double>::infinity();  // m
-        int best_segment = -1;
-        Vec2 best_foot{0.0};
-        // Outer pieces press along normals opposite the pad's span (cspace.cpp).
-        const NormalCone outer_normals{wrap_2pi(pad.span.start + kPi), pad.span.width};
-        env_->tree.nearest_pad_item(finger, R, ends, end_points, ends ? 2 : 0, outer_normals, [&](int id) {
-            ++out_.work.anticipated_segments;
-            nearest_pieces_.clear();
-            append_cspace_pieces(*env_, id, pad, nearest_pieces_);
-            double least = std::numeric_limits<double>::infinity();
-            for (const CPiece& piece : nearest_pieces_) {
-                const PieceFoot foot = piece_foot(piece, finger);
-                const double d = glm::length(foot.point - finger);
-                least = std::min(least, d);
-                if (d < best || (d == best && id < best_segment)) {
-                    best = d;
-                    best_segment = id;
-                    best_foot = foot.point;
-                    anticipated_piece_ = piece;
-                }
+        // finds, bit for bit. With a budget the search may end ticks later (ProxyDef).
+        const int budget = std::max(def_.anticipation_budget, 0);
+        if (budget == 0 || !search_.active || search_phi_ != phi) {
+            const PadFrame& pad = pad_frame(phi);
+            const bool ends = pad_has_endpoints(def_.finger);
+            const Vec2 end_points[2] = {finger + R * pad.end_dir[0], finger + R * pad.end_dir[1]};
+            // Outer pieces press along normals opposite the pad's span (cspace.cpp).
+            const NormalCone outer_normals{wrap_2pi(pad.span.start + kPi), pad.span.width};
+            env_->tree.start_pad_search(search_, finger, R, ends, end_points, ends ? 2 : 0, outer_normals);
+            search_phi_ = phi;
+            search_best_segment_ = -1;
+            search_best_foot_ = Vec2{0.0};
+            search_started_ = ticks_;
+        }
+        if (continue_anticipation(budget)) {
+            const PadFrame& pad = pad_frame(search_phi_);
+            if constexpr (kValidation) validate_anticipation(search_.p, pad, search_best_segment_, search_best_foot_);
+            anticipated_.valid = search_best_segment_ >= 0;
+            anticipated_.searched_at = search_started_;
+            if (anticipated_.valid) {
+                anticipated_.l_d = piece_contact_location(anticipated_piece_, def_.finger, search_phi_, search_best_foot_);
+                anticipated_.point = piece_contact_point(anticipated_piece_, def_.finger, search_best_foot_);
             }
-            return least;
-        });
-        if constexpr (kValidation) validate_anticipation(finger, pad, best_segment, best_foot);
-        out_.anticipating = best_segment >= 0;
-        if (out_.anticipating) {
-            out_.l_d = piece_contact_location(anticipated_piece_, def_.finger, phi, best_foot);
-            out_.anticipated_point = piece_contact_point(anticipated_piece_, def_.finger, best_foot);
+        }
+        out_.work.anticipation_searching = search_.active;
+        out_.anticipating = anticipated_.valid;
+        if (anticipated_.valid) {
+            out_.l_d = anticipated_.l_d;
+            out_.anticipated_point = anticipated_.point;
+            out_.work.anticipation_behind = static_cast<int>(std::min<std::int64_t>(ticks_ - anticipated_.searched_at, 1 << 30));
+        } else {
+            // Nothing found yet since the last contact: l_d stays where the contact left it.
+            out_.l_d = anticipated_.l_d;
+            out_.work.anticipation_behind = -1;
         }
         return;
     }
@@ -1530,6 +1540,29 @@ void Proxy::anticipate(Vec2 finger, double phi) {
         }
         if (best <= reach) return;
     }
+}
+
+bool Proxy::continue_anticipation(int budget) {
+    const PadFrame& pad = pad_frame(search_phi_);
+    const Vec2 finger = search_.p;
+    return env_->tree.continue_pad_search(search_, budget, [&](int id) {
+        ++out_.work.anticipated_segments;
+        nearest_pieces_.clear();
+        append_cspace_pieces(*env_, id, pad, nearest_pieces_);
+        double least = std::numeric_limits<double>::infinity();
+        for (const CPiece& piece : nearest_pieces_) {
+            const PieceFoot foot = piece_foot(piece, finger);
+            const double d = glm::length(foot.point - finger);
+            least = std::min(least, d);
+            if (d < search_.best || (d == search_.best && id < search_best_segment_)) {
+                search_.best = d;
+                search_best_segment_ = id;
+                search_best_foot_ = foot.point;
+                anticipated_piece_ = piece;
+            }
+        }
+        return least;
+    });
 }
 
 // ---- validation ---------------------------------------------------------------------------------

@@ -36,6 +36,14 @@ struct ProxyDef {
     // Time the tick's named stages into ProxyOutput::stages (stage_clock.hpp): one clock read per
     // stage, about 0.1 us a tick on the development machine. Off: no clock is read.
     bool profile = false;
+    // Free space: at most this many segments' pieces a tick for anticipation's nearest-contact
+    // search (0: exact, the whole search every tick). A search that needs more continues in the
+    // next ticks, for the finger and angle it started at, and the anticipated contact (l_d, the
+    // point) stays the last finished search's until it ends: exact, but late by the ticks it took
+    // (ProxyWork::anticipation_behind). Why: 1 cm above a dense valley shaped like the pad, the
+    // exact search asks thousands of segments (0.2 ms a tick) for a contact the roller needs only
+    // to within its own travel; the bench measures the error against exact.
+    int anticipation_budget = 0;
 };
 
 inline constexpr double kDefaultServoPeriod = 1e-3;  // s: seed 000's 1 kHz
@@ -80,6 +88,11 @@ struct ProxyWork {
     int full_scans = 0;
     // Free space: segments whose pieces anticipation's nearest-first search built (Proxy::anticipate).
     int anticipated_segments = 0;
+    // Free space with ProxyDef::anticipation_budget: how many ticks ago the search behind this
+    // tick's anticipated contact started (0: this tick's own finger and angle), and whether a
+    // search is still running. -1: no search has finished since the last contact.
+    int anticipation_behind = 0;
+    bool anticipation_searching = false;
     // The proxy left free space from afar and the gather reached only from where a disc free of
     // pieces let it go straight toward the finger (Proxy::free_advance).
     bool free_advance = false;
@@ -250,6 +263,25 @@ private:
     std::vector<CPiece> next_pieces_;
     std::vector<CPiece> nearest_pieces_;  // anticipate: the nearest segment's pieces
     CPiece anticipated_piece_;            // anticipate: the nearest piece
+    // anticipate's nearest-first search (spread over ticks with ProxyDef::anticipation_budget):
+    // its angle, its best so far (the first piece at the least distance in (segment, piece)
+    // order), the tick it started; and the last finished search's answer, published every free
+    // tick until the next one ends.
+    AabbTree::PadSearch search_;
+    double search_phi_ = 0.0;
+    int search_best_segment_ = -1;
+    Vec2 search_best_foot_{0.0};
+    std::int64_t search_started_ = 0;
+    std::int64_t ticks_ = 0;
+    struct Anticipated {
+        bool valid = false;
+        double l_d = 0.0;     // m
+        Vec2 point{0.0};      // m
+        std::int64_t searched_at = 0;
+    };
+    Anticipated anticipated_;
+    // Asks the search for at most `budget` segments (0: all); true when it ended.
+    bool continue_anticipation(int budget);
     // An empty build keeps the last one here (cache_aside_), still described by built_*.
     std::vector<CPiece> aside_pieces_;
     std::vector<Aabb> aside_boxes_;

@@ -106,6 +106,14 @@ const char* curve_mode_name(CurveMode mode);
 // The mode a name stands for; nullopt for any other name.
 std::optional<CurveMode> curve_mode_named(std::string_view name);
 
+// Free-space anticipation of the nearest contact (proxy.hpp, ProxyDef::anticipation_budget):
+// 0 segments a tick is the exact search every tick; N > 0 spreads a search that needs more than N
+// segments' pieces over the next ticks, the anticipated contact late by the ticks it took.
+struct AnticipationDef {
+    int segments_per_tick = 0;
+};
+inline constexpr int kMaxAnticipationSegmentsPerTick = 1000000;
+
 // Which contact location l_d a tick with several contacts reports (proxy.hpp).
 enum class ContactRule {
     centroid,            // seed 000: the centroid of the contacts
@@ -134,6 +142,7 @@ struct Scene {
     ForceDef force;
     ContactLocationDef contact_location;
     CurveDef curves;
+    AnticipationDef anticipation;
     WearableDef wearable;
 };
 

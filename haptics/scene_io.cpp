@@ -167,7 +167,7 @@ Scene read_scene(const json& root) {
     Scene s;
     expect_object(root, "");
     reject_unknown_keys(root, "", {"version", "description", "finger", "contours", "force",
-                                   "contact_location", "curves", "wearable"});
+                                   "contact_location", "curves", "anticipation", "wearable"});
     const json& version = require(root, "", "version");
     // Only scalars are echoed back: dump() recurses, and a version nested 100000 arrays deep
     // would overflow the stack.
@@ -279,6 +279,16 @@ Scene read_scene(const json& root) {
         if (!named) fail("curves.mode", "unknown curve mode \"" + mode + "\" (expected \"exact\" or \"flatten\")");
         s.curves.mode = *named;
         if (it->contains("tolerance")) s.curves.tolerance = read_number(*it, "curves", "tolerance");
+    }
+
+    if (auto it = root.find("anticipation"); it != root.end()) {
+        expect_object(*it, "anticipation");
+        reject_unknown_keys(*it, "anticipation", {"segments_per_tick"});
+        const double n = read_number(*it, "anticipation", "segments_per_tick");
+        if (!(n >= 0.0 && n <= kMaxAnticipationSegmentsPerTick && n == std::floor(n)))
+            fail("anticipation.segments_per_tick", "must be a whole number in [0, " +
+                                                       std::to_string(kMaxAnticipationSegmentsPerTick) + "] (0: exact), got " + fmt(n));
+        s.anticipation.segments_per_tick = static_cast<int>(n);
     }
 
     if (auto it = root.find("wearable"); it != root.end()) {
@@ -500,6 +510,9 @@ void validate_scene(const Scene& s) {
         s.curves.tolerance > kMaxCurveTolerance)
         fail("curves.tolerance", "must lie in [" + fmt(kMinCurveTolerance) + ", " + fmt(kMaxCurveTolerance) +
                                      "] m, got " + fmt(s.curves.tolerance));
+    if (s.anticipation.segments_per_tick < 0 || s.anticipation.segments_per_tick > kMaxAnticipationSegmentsPerTick)
+        fail("anticipation.segments_per_tick", "must lie in [0, " + std::to_string(kMaxAnticipationSegmentsPerTick) + "], got " +
+                                                   std::to_string(s.anticipation.segments_per_tick));
     // The wearable's K: finite, symmetric (a spring's), positive on the diagonal. Positive
     // definiteness is checked where Eigen is (haptics/wearable/finger_stiffness.hpp, check_stiffness).
     if (s.wearable.has_finger_stiffness) {
@@ -609,6 +622,8 @@ std::string scene_to_json_text(const Scene& s) {
         {"rule", s.contact_location.rule == ContactRule::centroid ? "centroid" : "least_displacement"}};
     root["curves"] = {{"mode", curve_mode_name(s.curves.mode)},
                       {"tolerance", s.curves.tolerance}};
+    if (s.anticipation.segments_per_tick != 0)
+        root["anticipation"] = {{"segments_per_tick", s.anticipation.segments_per_tick}};
     if (s.wearable.has_finger_stiffness) {
         json rows = json::array();
         for (int r = 0; r < 6; ++r) {

@@ -157,6 +157,12 @@ void cost_growth(const BenchOptions& o, BenchResults& r) {
                     profiled.profile = true;
                     row.tail_contact = measure(name + "/profiled", env, profiled, path, passes).tail;
                     row.tail_hover = measure(name + "/hover/profiled", env, profiled, hover_path, passes).tail;
+                    // Anticipation spread over ticks (an option, not the default): its times, and
+                    // its l_d against the exact hover's on the same stroke.
+                    ProxyDef spread = def;
+                    spread.anticipation_budget = kBenchAnticipationBudget;
+                    row.hover_spread = measure(name + "/hover/spread", env, spread, hover_path, passes).stats;
+                    row.spread_error = anticipation_spread_error(env, def, hover_path, kBenchAnticipationBudget);
                 }
                 r.cost.push_back(row);
             }

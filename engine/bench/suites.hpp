@@ -6,6 +6,7 @@
 // per batch.
 #pragma once
 
+#include "engine/bench/anticipation_spread.hpp"
 #include "engine/bench/cost_scenes.hpp"
 #include "engine/bench/energy_table.hpp"
 #include "engine/bench/render_frames.hpp"
@@ -63,6 +64,10 @@ struct CostRow {
     TickStats hover;
     // At the suite's largest size: the slowest ticks' stage split, in contact and hovering.
     TailSplit tail_contact, tail_hover;
+    // At the largest size: hovering with anticipation spread over ticks (kBenchAnticipationBudget
+    // segments a tick), its times and its l_d error against the exact hover.
+    std::optional<TickStats> hover_spread;
+    SpreadError spread_error;
     double contact_fraction = 0.0;  // ticks in contact / ticks
     int env_segments = 0;           // after compiling curves to arcs
 };

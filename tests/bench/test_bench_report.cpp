@@ -387,6 +387,23 @@ TEST_CASE("bench --quick --report: every PNG decodes at the plot size, render_ms
             CHECK(staged <= slow[stroke]["mean_ns"].get<double>());
         }
     }
+    // Anticipation spread over ticks at the largest size: no tick asked more than the budget
+    // plus a leaf's last items (ProxyDef::anticipation_budget), the l_d error is a length on the
+    // pad (at most its whole span, 2 x 1 cm here), and the answers it showed came from at most
+    // as many ticks back as the stroke had.
+    CHECK(md.find("## Anticipation spread over ticks (an option)") != std::string::npos);
+    for (const char* key : {"lines", "arcs", "curves", "lines_dense", "arcs_dense", "curves_dense"}) {
+        CAPTURE(key);
+        const nlohmann::json& spread = j["hover_spread_ns"][key]["100000"];
+        CHECK(spread["segments_per_tick"].get<int>() == 256);
+        CHECK(spread["segments_asked_max"].get<int>() <= 256 + 3);
+        const double p99 = spread["l_d_error_p99_m"].get<double>(), max = spread["l_d_error_max_m"].get<double>();
+        CHECK(p99 >= 0.0);
+        CHECK(p99 <= max);
+        CHECK(max <= 0.02 + 1e-12);
+        CHECK(spread["ticks_behind_max"].get<int>() >= 0);
+        CHECK(spread["ticks_behind_max"].get<int>() < spread["ticks"].get<int>());
+    }
     // The energy terms on the seeds' trials (energy_table.hpp): seed 002 at 5 and 10 cm/s, seed
     // 000's block. None faulted; the observer's sum stayed under its threshold (K T / 2 = 0.65 N s/m
     // < b: the loop dissipates), and counted, the hand's turn of the finger would have passed it

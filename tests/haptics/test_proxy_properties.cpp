@@ -261,6 +261,70 @@ TEST_CASE("anticipation through the index finds exactly the piece a search of ev
     }
 }
 
+TEST_CASE("anticipation spread over ticks: each tick asks at most its budget, and shows the exact answer of the tick its search began") {
+    // ProxyDef::anticipation_budget: a search needing more segments than the budget continues in
+    // the next ticks for the finger and angle it began at. Hovering 0.5-15 mm above the dense
+    // sinusoid (valleys of 8 mm radius under a 26 mm pad: thousands of near ties), now and then
+    // touching down and lifting off, the pad turning every 200th tick: every free tick's l_d and
+    // anticipated point are those of the exact search at the tick its search began, bit for bit
+    // (ProxyWork::anticipation_behind ticks ago); no tick asks more than the budget plus a
+    // leaf's last items; a search within the budget answers in its own tick.
+    const Scene scene = index_test_scenes()[0];
+    const Environment env = build_environment(scene);
+    ProxyDef exact_def = proxy_def_of(scene);
+    ProxyDef spread_def = exact_def;
+    constexpr int kBudget = 16;
+    spread_def.anticipation_budget = kBudget;
+    Proxy exact(env, exact_def), spread(env, spread_def);
+    std::vector<ProxyOutput> history;
+    std::mt19937_64 rng(41);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const double R = exact_def.finger.radius;
+    double phi = 0.0, height = 0.005;  // rad; m above the contour's crest line
+    int free_ticks = 0, behind_ticks = 0, own_ticks = 0, waiting = 0, touchdowns = 0, max_behind = 0;
+    bool was_contact = false;
+    for (int k = 0; k < 6000; ++k) {
+        if (k % 200 == 199) phi = 0.4 * (u(rng) - 0.5);
+        if (k % 300 == 0) height = u(rng) < 0.35 ? -0.001 : 0.0005 + 0.015 * u(rng);  // sometimes pressed in
+        const Vec2 x{-0.15 + 0.3 * k / 6000.0, 0.005 + R + height};
+        const ProxyOutput a = exact.update(x, phi);
+        const ProxyOutput& b = spread.update(x, phi);
+        history.push_back(a);
+        CAPTURE(k);
+        REQUIRE(a.contact == b.contact);
+        REQUIRE(a.proxy == b.proxy);
+        touchdowns += a.contact && !was_contact ? 1 : 0;
+        was_contact = a.contact;
+        if (a.contact) {
+            CHECK(b.l_d == a.l_d);
+            continue;
+        }
+        ++free_ticks;
+        CHECK(b.work.anticipated_segments <= kBudget + 3);
+        const int behind = b.work.anticipation_behind;
+        if (behind < 0) {  // no search finished since the contact: l_d holds the contact's
+            ++waiting;
+            CHECK_FALSE(b.anticipating);
+            continue;
+        }
+        REQUIRE(behind <= k);
+        const ProxyOutput& then = history[static_cast<std::size_t>(k - behind)];
+        REQUIRE_FALSE(then.contact);
+        CHECK(b.anticipating == then.anticipating);
+        CHECK(b.l_d == then.l_d);
+        CHECK(b.anticipated_point == then.anticipated_point);
+        max_behind = std::max(max_behind, behind);
+        (behind == 0 ? own_ticks : behind_ticks) += 1;
+        if (a.work.anticipated_segments <= kBudget - 3 && !b.work.anticipation_searching && behind == 0) CHECK(b.l_d == a.l_d);
+    }
+    MESSAGE("free ticks " << free_ticks << ": own answer " << own_ticks << ", an earlier tick's " << behind_ticks
+                          << " (at most " << max_behind << " behind), waiting after a contact " << waiting);
+    CHECK(free_ticks > 4000);
+    CHECK(touchdowns > 2);
+    CHECK(own_ticks > 100);     // searches within the budget...
+    CHECK(behind_ticks > 100);  // ...and spread ones both happen
+}
+
 TEST_CASE("in contact the index gathers every piece that matters: the same proxy as a search of every segment") {
     // The motion gathers segments whose R-offset can come within reach of the finger, and those
     // near the pad's ends (Proxy::gather_for_motion), first only near the last proxy (the warm

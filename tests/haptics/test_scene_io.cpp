@@ -1,5 +1,6 @@
 // Scene files (haptics/scene_io.hpp): the shipped scenes load, saves round-trip exactly and are
 // atomic, and every rejected file gets a message of the form "ORIGIN: JSON.PATH: problem".
+#include "haptics/proxy.hpp"
 #include "haptics/scene_io.hpp"
 
 #include <doctest/doctest.h>
@@ -653,4 +654,33 @@ TEST_CASE("scene io error: deep nesting is refused without exhausting the stack"
     check_error(R"({"version": )" + deep + R"(, "contours": []})", "version", "unsupported format version");
     check_error(doc("[]", R"(, "description": )" + deep), "description", "expected a string");
     check_error(doc(deep), "contours[0]", "expected an object, found an array");
+}
+
+TEST_CASE("scene io: anticipation.segments_per_tick reads, writes only when set, and refuses what is not a count") {
+    // Absent: 0, the exact search every tick (ProxyDef::anticipation_budget), and not written back,
+    // so every scene saved before the option reads and saves to the same bytes.
+    const Scene plain = parse_scene(kFloorDoc);
+    CHECK(plain.anticipation.segments_per_tick == 0);
+    CHECK(proxy_def_of(plain).anticipation_budget == 0);
+    CHECK(scene_to_json_text(plain).find("anticipation") == std::string::npos);
+    // Set: read, handed to the proxy, round-tripped.
+    std::string text = kFloorDoc;
+    text.insert(text.rfind('}'), R"(, "anticipation": {"segments_per_tick": 256})");
+    const Scene spread = parse_scene(text);
+    CHECK(spread.anticipation.segments_per_tick == 256);
+    CHECK(proxy_def_of(spread).anticipation_budget == 256);
+    CHECK(parse_scene(scene_to_json_text(spread)).anticipation.segments_per_tick == 256);
+    auto with = [&](const std::string& value) {
+        std::string t = kFloorDoc;
+        t.insert(t.rfind('}'), R"(, "anticipation": )" + value);
+        return t;
+    };
+    CHECK(error_of(with(R"({"segments_per_tick": -1})")).find("t.json: anticipation.segments_per_tick: must be a whole number in [0, 1000000]") == 0);
+    CHECK(error_of(with(R"({"segments_per_tick": 2.5})")).find("t.json: anticipation.segments_per_tick: must be a whole number") == 0);
+    CHECK(error_of(with(R"({"segments_per_tick": 1e9})")).find("t.json: anticipation.segments_per_tick: must be a whole number") == 0);
+    CHECK(error_of(with(R"({"segments_per_tick": "fast"})")).find("t.json: anticipation.segments_per_tick") == 0);
+    CHECK(error_of(with(R"({"budget": 3})")).find("t.json: anticipation") == 0);
+    Scene bad = plain;
+    bad.anticipation.segments_per_tick = -5;
+    CHECK(validate_error_of(bad).find("anticipation.segments_per_tick: must lie in [0, 1000000], got -5") != std::string::npos);
 }
