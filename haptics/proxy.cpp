@@ -221,6 +221,14 @@ void Proxy::place(Vec2 proxy, double phi, double max_push) {
 }
 
 // ---- Proxy::update ------------------------------------------------------------------------------
+void Proxy::carry_motion(const ProxyOutput& last) {
+    if (!is_finite(last.finger) || !is_finite(last.proxy) || !is_finite(last.start)) return;
+    last_finger_ = last.finger;
+    last_finger_motion_ = Vec2{0.0};
+    last_motion_ = last.proxy - last.start;
+    resting_ = proxy_ != last.finger;
+}
+
 const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
     if (!initialised_) reset(finger, phi);
     ++ticks_;

@@ -124,6 +124,7 @@ void ServoTick::swap_scene(const ServoInput& in) noexcept {
     constexpr double kSwapPush = 0.002;  // m: the largest geometry change followed continuously
     if (scene_ != nullptr) {
         next->proxy.place(scene_->proxy.output().proxy, scene_->proxy.output().phi, kSwapPush);
+        next->proxy.carry_motion(scene_->proxy.output());  // the next tick keeps to the warm start
     } else if (seeded_) {
         next->proxy.place(seed_, seed_phi_, kSwapPush);
         seeded_ = false;

@@ -261,6 +261,60 @@ TEST_CASE("anticipation through the index finds exactly the piece a search of ev
     }
 }
 
+TEST_CASE("a scene edit while pressing: the new scene's first tick keeps to the warm start and goes where the old proxy goes") {
+    // The servo swaps in an edited scene's proxy with place() and carry_motion() (servo_tick.cpp):
+    // the old proxy's position, pushed out if the edit moved the surface, and its last finger and
+    // motion. An edit that left the geometry alone (a stiffness change, say) on the dense sinusoid,
+    // the finger pressed 1-12 mm in and sliding: from the first tick on, the new proxy goes where
+    // the old one goes, bit for bit, and its first tick gathers what the old one's did, not every
+    // segment within the press's depth (the first tick without carry_motion).
+    const Scene scene = index_test_scenes()[0];
+    const Environment env = build_environment(scene), edited_env = build_environment(scene);
+    const ProxyDef def = proxy_def_of(scene);
+    std::mt19937_64 rng(43);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    int carried_segments = 0, uncarried_segments = 0;
+    for (int edit = 0; edit < 40; ++edit) {
+        CAPTURE(edit);
+        Proxy old_proxy(env, def);
+        const double x0 = -0.15 + 0.3 * u(rng), depth = 0.001 + 0.011 * u(rng), speed = 0.05 * (u(rng) - 0.5);  // m, m, m/s
+        // Lowered onto the surface, then pressed `depth` below where it touched, sliding.
+        Vec2 x{x0, 0.04};
+        old_proxy.reset(x, 0.0);
+        while (!old_proxy.update(x, 0.0).contact) x.y -= 0.0002;
+        const double touch_y = old_proxy.output().proxy.y;
+        for (int k = 0; k < 50; ++k) {
+            x = {x.x + speed * 1e-3, std::max(touch_y - depth * k / 49.0, touch_y - depth)};
+            old_proxy.update(x, 0.0);
+        }
+        REQUIRE(old_proxy.output().contact);
+        Proxy carried(edited_env, def), uncarried(edited_env, def);
+        carried.place(old_proxy.output().proxy, 0.0, 0.002);
+        carried.carry_motion(old_proxy.output());
+        uncarried.place(old_proxy.output().proxy, 0.0, 0.002);
+        for (int k = 0; k < 100; ++k) {
+            x.x += speed * 1e-3;
+            const ProxyOutput a = old_proxy.update(x, 0.0);
+            const ProxyOutput& b = carried.update(x, 0.0);
+            CAPTURE(k);
+            REQUIRE(a.proxy == b.proxy);
+            CHECK(a.force == b.force);
+            CHECK(a.l_d == b.l_d);
+            if (k == 0) {
+                const ProxyOutput& c = uncarried.update(x, 0.0);
+                CHECK(c.proxy == a.proxy);  // the same answer, the slow way
+                CHECK(b.work.warm_start);
+                CHECK(b.work.segments <= 2 * a.work.segments + 8);
+                carried_segments += b.work.segments;
+                uncarried_segments += c.work.segments;
+            }
+        }
+    }
+    MESSAGE("first tick after the edit, segments gathered over 40 edits: carried " << carried_segments << ", not carried "
+                                                                                    << uncarried_segments);
+    CHECK(uncarried_segments > 4 * carried_segments);
+}
+
 TEST_CASE("anticipation spread over ticks: each tick asks at most its budget, and shows the exact answer of the tick its search began") {
     // ProxyDef::anticipation_budget: a search needing more segments than the budget continues in
     // the next ticks for the finger and angle it began at. Hovering 0.5-15 mm above the dense
