@@ -75,21 +75,20 @@ int submit(const std::string& file) {
 
 int run_slurm(const SlurmArgs& a) {
     const std::vector<std::uint64_t> people = sim_participants(a.participants, "--participants");
-    experiments::SlurmJob job;
-    job.contactlab = executable(a.contactlab);
-    job.protocol = fs::absolute(a.protocol).lexically_normal().string();
-    job.output = fs::absolute(a.output).lexically_normal().string();
-    job.first = people.front();
-    job.last = people.back();
-    job.per_task = a.per_task;
-    job.seed = a.seed;
-    job.traces = !a.no_traces;
-    job.cpus_per_task = a.cpus_per_task;
-    job.overwrite = a.overwrite;
-    job.partition = a.partition;
-    job.time = a.time;
-    job.mem = a.mem;
-    job.command = command_line();
+    const experiments::SlurmJob job{.contactlab = executable(a.contactlab),
+                                    .protocol = fs::absolute(a.protocol).lexically_normal().string(),
+                                    .output = fs::absolute(a.output).lexically_normal().string(),
+                                    .first = people.front(),
+                                    .last = people.back(),
+                                    .per_task = a.per_task,
+                                    .seed = a.seed,
+                                    .traces = !a.no_traces,
+                                    .cpus_per_task = a.cpus_per_task,
+                                    .overwrite = a.overwrite,
+                                    .partition = a.partition,
+                                    .time = a.time,
+                                    .mem = a.mem,
+                                    .command = command_line()};
     if (fs::exists(job.output) && !a.overwrite)
         throw BadInput("experiment slurm: " + job.output + " exists: the merge would refuse to replace it (--overwrite lets it)");
     const fs::path dir(experiments::slurm_dir(job.output));
