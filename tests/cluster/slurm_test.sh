@@ -50,10 +50,10 @@ ctld_port=$(free_port)
 slurmd_port=$(free_port)
 [ "$slurmd_port" != "$ctld_port" ] || slurmd_port=$((ctld_port + 1))
 
-host=$(hostname -s)
+host=$(hostname -s)   # the node's name must be this machine's; its address is given (no DNS needed)
 cat >"$work/slurm.conf" <<CONF
 ClusterName=contactlab-test
-SlurmctldHost=$host
+SlurmctldHost=$host(127.0.0.1)
 SlurmctldPort=$ctld_port
 SlurmdPort=$slurmd_port
 SlurmUser=root
@@ -75,7 +75,7 @@ MpiDefault=none
 JobAcctGatherType=jobacct_gather/none
 AccountingStorageType=accounting_storage/none
 ReturnToService=2
-NodeName=$host CPUs=$(nproc) RealMemory=1000 State=UNKNOWN
+NodeName=$host NodeAddr=127.0.0.1 CPUs=$(nproc) RealMemory=1000 State=UNKNOWN
 PartitionName=debug Nodes=$host Default=YES MaxTime=INFINITE State=UP
 CONF
 export SLURM_CONF="$work/slurm.conf"
