@@ -105,18 +105,35 @@ done
 [ "$state" = idle ] || fail "the node did not come up idle (sinfo says \"$state\")"
 echo "slurm test: one-node Slurm up ($host, $(nproc) CPUs, ports $ctld_port/$slurmd_port) in $(($(date +%s) - t_start)) s"
 
-# The study: participants 1-4 of seed 004, one per array task, then the merge.
+# Waits until Slurm's queue is empty (the array, then the merge it submits), at most 5 minutes.
+wait_for_empty_queue() {
+  for _ in $(seq 600); do
+    [ -z "$(squeue -h -o '%i' 2>/dev/null)" ] && return 0
+    sleep 0.5
+  done
+  squeue
+  fail "Slurm's queue did not empty within 5 minutes"
+}
+
+# The study: participants 1-4 of seed 004, one per array task, then the merge. Task 3 fails the
+# first time: its part file already holds another run (seed 2), which `experiment run` refuses.
 out="$work/study dir/all.csv"
+parts="$work/study dir/all.slurm/parts"
 cd "$work"
-"$exe" experiment slurm "$protocol" --participants sim:1-4 --per-task 1 --seed 1 --no-traces -o "$out" --time 0:10:00 --submit
-# Wait until the queue is empty (the array, then the merge it submits) and the merge is written.
-for _ in $(seq 600); do
-  [ -z "$(squeue -h -o '%i' 2>/dev/null)" ] && [ -f "$out.meta.json" ] && break
-  sleep 0.5
-done
-[ -f "$out.meta.json" ] || { squeue; fail "the merge did not write $out within 5 minutes"; }
+submit=$("$exe" experiment slurm "$protocol" --participants sim:1-4 --per-task 1 --seed 1 --no-traces -o "$out" --time 0:10:00)
+"$exe" experiment run "$protocol" --participants sim:3-3 --seed 2 --no-traces -o "$parts/p0003-0003.csv" 2>/dev/null
+eval "$submit"   # the one command experiment slurm printed
+wait_for_empty_queue
+[ ! -e "$out" ] || fail "the merge ran although task 3 failed"
+grep -q "another seed" "$work/study dir/all.slurm/logs/task-3.out" || fail "task 3 did not fail as arranged"
+echo "slurm test: task 3 failed, the merge was cancelled; resubmitting task 3 alone"
+# The fix, then only the failed task again: it submits a new merge, the finished parts stay.
+rm -f "$parts/p0003-0003.csv" "$parts/p0003-0003.csv.meta.json"
+sbatch --array=3 "$work/study dir/all.slurm/array.sbatch"
+wait_for_empty_queue
+[ -f "$out.meta.json" ] || fail "the merge did not write $out"
 "$exe" experiment run "$protocol" --participants sim:1-4 --seed 1 --no-traces -o "$work/one.csv"
 cmp "$out" "$work/one.csv" || fail "the merged file differs from one run of the same participants"
-parts=$(ls "$work/study dir/all.slurm/parts/"*.csv | wc -l)
-[ "$parts" -eq 4 ] || fail "expected 4 part files, found $parts"
-echo "slurm test: 4 array tasks and the merge gave the bytes of one run ($(wc -l <"$out") lines) in $(($(date +%s) - t_start)) s"
+n_parts=$(ls "$parts/"*.csv | wc -l)
+[ "$n_parts" -eq 4 ] || fail "expected 4 part files, found $n_parts"
+echo "slurm test: 4 array tasks (one of them submitted again) and the merge gave the bytes of one run ($(wc -l <"$out") lines) in $(($(date +%s) - t_start)) s"
