@@ -1,7 +1,9 @@
 // experiment_calibrate_cli.cpp — `contactlab experiment calibrate PROTOCOL... --target TARGETS.json
 // --param NAME=LO:HI [--param ...] --fit NAME[,NAME...]|all [--participants N] [--seed S]
-// [--jobs J] [--evaluations E] --json OUT`: the simulated participant's parameters fitted to
-// published figures (engine/experiments/calibration/calibration.hpp). The same parameters go to every
+// [--jobs J] [--evaluations E] [--pool-from RESULTS.csv...] --json OUT`: the simulated
+// participant's parameters fitted to published figures (engine/experiments/calibration/calibration.hpp).
+// --pool-from gives the start's runs (the protocols' own parameters) from results files made
+// elsewhere, e.g. on a cluster (docs/cluster.md). The same parameters go to every
 // protocol; targets not in --fit are held out and reported as they come out. Each evaluation's
 // results files are kept in OUT's stem + ".runs/" (rewritten by the next).
 #include "engine/app/command_line.hpp"
@@ -27,7 +29,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct CalibrateArgs {
-    std::vector<std::string> protocols, params;
+    std::vector<std::string> protocols, params, pool_from;
     std::string target, fit, json;
     int participants = 10, jobs = 0, evaluations = 40;
     unsigned long long seed = 1;
@@ -78,6 +80,7 @@ int run_calibrate(const CalibrateArgs& a) {
         o.seed = a.seed;
         o.jobs = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
         o.max_evaluations = a.evaluations;
+        o.pool_from = a.pool_from;
         const fs::path out(a.json);
         o.work_dir = (out.parent_path() / (out.stem().string() + ".runs")).string();
         o.progress = [&](int k, double objective) {
@@ -121,6 +124,9 @@ void register_experiment_calibrate_command(CLI::App& app, int& rc) {
     add_whole_option(c, "--seed", args->seed, 0, kMaxSeed, "Seed of every evaluation's runs (the same for all: a deterministic objective)");
     add_whole_option(c, "--jobs", args->jobs, 0, kMaxJobs, "Participants run in parallel (0: every core)");
     add_whole_option(c, "--evaluations", args->evaluations, 2, 10000, "At most this many evaluations (each runs every protocol)");
+    c->add_option("--pool-from", args->pool_from,
+                  "A finished results file of one of the protocols, as given, with this seed and these participants (e.g. merged "
+                  "from a cluster's tasks): the start's runs of that protocol, not run again (repeat for more)");
     c->add_option("--json", args->json, "Write the fitted parameters, every target's figure and the trace as JSON")->required();
     c->callback([args, &rc] {
         args->target = installed_data_path(args->target);

@@ -1,10 +1,12 @@
 // experiment_power_cli.cpp — `contactlab experiment power PROTOCOL --measure NAME --participants
 // A-B --pool N --resamples M [--alpha 0.05] [--seed S] [--jobs J] --json OUT [--report DIR]
-// [--conditions A,B] [--overwrite]`: how many participants a protocol needs
+// [--conditions A,B] [--overwrite] [--pool-from FILE]`: how many participants a protocol needs
 // (engine/experiments/analysis/power_analysis.hpp). The pool of N simulated participants runs once through
 // the servo into OUT's stem + ".pool.csv" (an `experiment run` results file with its meta: kept,
 // resumable, and reused when the same command runs again), then groups of A..B participants are
-// resampled from it. The JSON carries the pool file's provenance (version, protocol and its hash,
+// resampled from it. With --pool-from FILE the pool is a finished results file of the same
+// protocol instead (a cluster's merged run, docs/cluster.md): its participants, or its first N
+// with --pool; --seed then seeds the draws only. The JSON carries the pool file's provenance (version, protocol and its hash,
 // seed, device, rate) and its own hash; --report draws power against group size
 // (engine/reports/power_report.hpp).
 #include "engine/app/command_line.hpp"
@@ -14,7 +16,7 @@
 #include "engine/reports/power_report.hpp"
 #include "engine/experiments/analysis/analysis.hpp"
 #include "engine/experiments/runs/experiment_run.hpp"
-#include "engine/experiments/analysis/pooling.hpp"
+#include "engine/experiments/runs/finished_run.hpp"
 #include "engine/experiments/analysis/power_analysis.hpp"
 #include "engine/experiments/protocol/protocol.hpp"
 #include "engine/experiments/base/sha256.hpp"
@@ -25,8 +27,6 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <thread>
 #include <tuple>
 #include <utility>
@@ -44,6 +44,8 @@ struct PowerArgs {
     unsigned long long seed = 1;
     bool overwrite = false;
     bool conditions_given = false;  // "--conditions ''" is refused, not taken for the default
+    std::string pool_from;          // a finished results file taken as the pool instead of running one
+    bool pool_given = false;        // --pool given: with --pool-from, the file's first N participants
 };
 
 // "4-16" -> 4..16; "10" -> {10}. Each size read by whole_number (never wrapped or saturated).
@@ -76,13 +78,6 @@ std::pair<std::string, std::string> two_conditions(const std::string& spec) {
     return {a, b};
 }
 
-std::string file_text(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 int run_power(const PowerArgs& a) {
     if (a.json.empty()) throw BadInput("experiment power: --json OUT is required");
     experiments::PowerOptions o;
@@ -93,32 +88,43 @@ int run_power(const PowerArgs& a) {
     o.seed = a.seed;
     if (a.conditions_given) std::tie(o.condition_a, o.condition_b) = two_conditions(a.conditions);
     const fs::path out(a.json);
-    const std::string pool_path = (out.parent_path() / (out.stem().string() + ".pool.csv")).string();
+    // The pool: a results file given (--pool-from: e.g. merged from a cluster's array tasks), or
+    // run here into OUT's stem + ".pool.csv".
+    const std::string pool_path =
+        a.pool_from.empty() ? (out.parent_path() / (out.stem().string() + ".pool.csv")).string() : a.pool_from;
     json result;
     try {
         const experiments::Protocol p = experiments::load_protocol(a.protocol);
-        experiments::RunOptions ro;
-        for (int i = 1; i <= a.pool; ++i) ro.participants.push_back(static_cast<std::uint64_t>(i));
-        ro.seed = a.seed;
-        ro.output = pool_path;
-        ro.protocol_path = a.protocol;
-        ro.command = command_line();
-        ro.traces = false;
-        ro.overwrite = a.overwrite;
-        ro.jobs = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-        ro.progress = [](std::size_t done, std::size_t total) {
-            show_progress("power pool", static_cast<std::int64_t>(done), static_cast<std::int64_t>(total), "trials");
-        };
-        const auto t0 = std::chrono::steady_clock::now();
-        const experiments::RunSummary s = experiments::run_experiment(p, ro);
-        const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        std::fprintf(stderr, "experiment power: pool of %d participants in %s (%s, %.1f s)\n", a.pool, pool_path.c_str(),
-                     s.already_complete ? "already complete" : "simulated", secs);
-        const experiments::PooledResults pooled = experiments::pool_results({pool_path}, false);
-        const json analysis = experiments::analyze_results(pooled.table);
+        if (a.pool_from.empty()) {
+            experiments::RunOptions ro;
+            for (int i = 1; i <= a.pool; ++i) ro.participants.push_back(static_cast<std::uint64_t>(i));
+            ro.seed = a.seed;
+            ro.output = pool_path;
+            ro.protocol_path = a.protocol;
+            ro.command = command_line();
+            ro.traces = false;
+            ro.overwrite = a.overwrite;
+            ro.jobs = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+            ro.progress = [](std::size_t done, std::size_t total) {
+                show_progress("power pool", static_cast<std::int64_t>(done), static_cast<std::int64_t>(total), "trials");
+            };
+            const auto t0 = std::chrono::steady_clock::now();
+            const experiments::RunSummary s = experiments::run_experiment(p, ro);
+            const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            std::fprintf(stderr, "experiment power: pool of %d participants in %s (%s, %.1f s)\n", a.pool, pool_path.c_str(),
+                         s.already_complete ? "already complete" : "simulated", secs);
+        }
+        // Read back and checked either way: finished, its rows as its meta says, this protocol.
+        const bool own = a.pool_from.empty();
+        const experiments::FinishedRun run = experiments::read_pool_run(
+            pool_path, p, own || a.pool_given ? static_cast<std::size_t>(a.pool) : 2, own ? "the pool" : "--pool-from");
+        const std::size_t take = own || a.pool_given ? static_cast<std::size_t>(a.pool) : run.rows_of.size();
+        if (!own)
+            std::fprintf(stderr, "experiment power: pool of %zu of its %zu participants from %s\n", take, run.rows_of.size(),
+                         pool_path.c_str());
+        const json analysis = experiments::analyze_results(experiments::first_participants(run, take));
         result = experiments::power_analysis(analysis, o);
-        result["pool_results"] = {{"file", pool_path}, {"sha256", experiments::sha256_hex(file_text(pool_path))},
-                                  {"meta", pooled.provenance[pool_path]}};
+        result["pool_results"] = {{"file", pool_path}, {"sha256", experiments::sha256_hex(run.bytes)}, {"meta", run.meta}};
         result["command"] = command_line();
     } catch (const experiments::ExperimentError& e) {
         throw BadInput(e.what());
@@ -152,7 +158,12 @@ void register_experiment_power_command(CLI::App& app, int& rc) {
                   "failure_proportion")
         ->default_val("it_est_bits");
     c->add_option("--participants", args->participants, "Group sizes A-B (e.g. 4-16), or one size N")->required();
-    add_whole_option(c, "--pool", args->pool, 2, 10000, "Simulated participants run once through the servo, the population resampled");
+    CLI::Option* pool = add_whole_option(c, "--pool", args->pool, 2, 10000,
+                                         "Simulated participants run once through the servo, the population resampled (with "
+                                         "--pool-from: the file's first N, default all)");
+    c->add_option("--pool-from", args->pool_from,
+                  "Take the pool from this finished results file of the protocol (e.g. merged from a cluster's tasks) instead of "
+                  "running it");
     add_whole_option(c, "--resamples", args->resamples, 1, 1000000, "Groups drawn per size");
     add_real_option(c, "--alpha", args->alpha, {0.0, 1.0, true, true, "e.g. 0.05"}, "Two-sided significance level");
     add_whole_option(c, "--seed", args->seed, 0, kMaxSeed, "Seed of the pool's run and of the draws");
@@ -161,8 +172,9 @@ void register_experiment_power_command(CLI::App& app, int& rc) {
     c->add_option("--json", args->json, "Write the power per group size as JSON (the pool goes to OUT's stem + .pool.csv)")->required();
     c->add_option("--report", args->report, "Write report.md and power.png into this folder");
     c->add_flag("--overwrite", args->overwrite, "Replace a pool file made by another run (without it such a file is refused)");
-    c->callback([args, conditions, &rc] {
+    c->callback([args, conditions, pool, &rc] {
         args->conditions_given = conditions->count() > 0;
+        args->pool_given = pool->count() > 0;
         args->protocol = installed_data_path(args->protocol);
         rc = run_power(*args);
     });

@@ -6,6 +6,8 @@
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
+
 using namespace cli_test;
 
 namespace {
@@ -60,4 +62,57 @@ TEST_CASE("experiment calibrate: a bad parameter, bounds or target name exits 2 
     const auto target = run("stiffness_noise=0.1:1", "phi e9");
     CHECK(target.exit_code == 2);
     CHECK(contains(target.err, "no target called \"phi e9\""));
+}
+
+TEST_CASE("experiment calibrate --pool-from: a merged run of the protocol stands for the start, the same fit and figures") {
+    TempDir dir;
+    write_text(dir.file("small.json"), kProtocol);
+    write_text(dir.file("t.json"), kTargets);
+    auto ok = [](const std::vector<std::string>& args) {
+        const ProcessResult r = run_contactlab(args);
+        INFO(r.err);
+        REQUIRE(r.exit_code == 0);
+    };
+    auto calibrate = [&](const std::string& out, const std::string& param, std::vector<std::string> extra) {
+        std::vector<std::string> a = {"experiment", "calibrate", dir.file("small.json"), "--target", dir.file("t.json"), "--param", param,
+                                      "--fit", "phi e0.40", "--participants", "2", "--evaluations", "6", "--jobs", "2",
+                                      "--json", dir.file(out)};
+        a.insert(a.end(), extra.begin(), extra.end());
+        return run_contactlab(a);
+    };
+    // The start's run as two array tasks would make it, merged; and one of another seed.
+    ok({"experiment", "run", dir.file("small.json"), "--participants", "sim:1-1", "--seed", "1", "--no-traces", "-o", dir.file("a.csv")});
+    ok({"experiment", "run", dir.file("small.json"), "--participants", "sim:2-2", "--seed", "1", "--no-traces", "-o", dir.file("b.csv")});
+    ok({"experiment", "merge", dir.file("a.csv"), dir.file("b.csv"), "-o", dir.file("start.csv")});
+    ok({"experiment", "run", dir.file("small.json"), "--participants", "sim:1-2", "--seed", "2", "--no-traces", "-o", dir.file("s2.csv")});
+    REQUIRE(calibrate("own.json", "stiffness_noise=0.02:3", {}).exit_code == 0);
+    const ProcessResult pooled = calibrate("pooled.json", "stiffness_noise=0.02:3", {"--pool-from", dir.file("start.csv")});
+    INFO(pooled.err);
+    REQUIRE(pooled.exit_code == 0);
+    const auto own = nlohmann::json::parse(read_text(dir.file("own.json")));
+    const auto j = nlohmann::json::parse(read_text(dir.file("pooled.json")));
+    for (const char* key : {"parameters", "start", "objective", "start_objective", "evaluations", "targets", "trace"}) {
+        CAPTURE(key);
+        CHECK(j[key] == own[key]);
+    }
+    REQUIRE(j["pool_from"].size() == 1);
+    CHECK(j["pool_from"][0]["file"] == dir.file("start.csv"));
+    CHECK(j["pool_from"][0]["protocol"] == "small.json");
+    CHECK(j["pool_from"][0]["sha256"].get<std::string>().size() == 64);
+    CHECK(own["pool_from"].empty());
+
+    // A pool that is not the start's run is refused, exit 2, naming the file and why.
+    const ProcessResult seed = calibrate("x.json", "stiffness_noise=0.02:3", {"--pool-from", dir.file("s2.csv")});
+    CHECK(seed.exit_code == 2);
+    CHECK(contains(seed.err, "--pool-from " + dir.file("s2.csv") + ": run with seed 2, the evaluations with 1"));
+    // The protocol's own stiffness_noise (0.1) below these bounds: the start is moved, not the file's.
+    const ProcessResult moved = calibrate("x.json", "stiffness_noise=0.5:3", {"--pool-from", dir.file("start.csv")});
+    CHECK(moved.exit_code == 2);
+    CHECK(contains(moved.err, "outside the inner 98 % of the bounds"));
+    const ProcessResult few = run_contactlab({"experiment", "calibrate", dir.file("small.json"), "--target", dir.file("t.json"), "--param",
+                                              "stiffness_noise=0.02:3", "--fit", "phi e0.40", "--participants", "3", "--json",
+                                              dir.file("x.json"), "--pool-from", dir.file("start.csv")});
+    CHECK(few.exit_code == 2);
+    CHECK(contains(few.err, "holds 2 participants, 3 asked"));
+    CHECK_FALSE(std::filesystem::exists(dir.file("x.json")));
 }

@@ -69,3 +69,63 @@ TEST_CASE("experiment power: bad sizes, an unknown measure and a pool of another
     CHECK(other.exit_code == 2);
     CHECK(contains(other.err, "--overwrite"));
 }
+
+TEST_CASE("experiment power --pool-from: a merged file as the pool gives the numbers of power's own pool of those participants") {
+    TempDir dir;
+    const std::string proto = (source_dir() / "scenes/experiments/003-curvature-cld.json").string();
+    auto ok = [](const std::vector<std::string>& args) {
+        const ProcessResult r = run_contactlab(args);
+        INFO(r.err);
+        REQUIRE(r.exit_code == 0);
+        return r;
+    };
+    auto power = [&](const std::string& out, std::vector<std::string> extra) {
+        std::vector<std::string> a = {"experiment", "power", proto, "--measure", "proportion_correct", "--participants", "2-4",
+                                      "--resamples", "200", "--seed", "4", "--jobs", "2", "--json", dir.file(out)};
+        a.insert(a.end(), extra.begin(), extra.end());
+        return run_contactlab(a);
+    };
+    REQUIRE(power("own.json", {"--pool", "3"}).exit_code == 0);
+    // The same participants as two array tasks would run them, merged.
+    for (const auto& [range, file] : {std::pair{"sim:1-2", "a.csv"}, std::pair{"sim:3-3", "b.csv"}, std::pair{"sim:1-4", "four.csv"}})
+        ok({"experiment", "run", proto, "--participants", range, "--seed", "4", "--no-traces", "--jobs", "2", "-o", dir.file(file)});
+    ok({"experiment", "merge", dir.file("a.csv"), dir.file("b.csv"), "-o", dir.file("merged.csv")});
+    const ProcessResult merged = power("merged.json", {"--pool-from", dir.file("merged.csv")});
+    INFO(merged.err);
+    REQUIRE(merged.exit_code == 0);
+    CHECK(contains(merged.err, "pool of 3 of its 3 participants from " + dir.file("merged.csv")));
+    // --pool N takes the file's first N participants.
+    REQUIRE(power("first3.json", {"--pool-from", dir.file("four.csv"), "--pool", "3"}).exit_code == 0);
+    const auto own = nlohmann::json::parse(read_text(dir.file("own.json")));
+    for (const char* out : {"merged.json", "first3.json"}) {
+        CAPTURE(out);
+        const auto j = nlohmann::json::parse(read_text(dir.file(out)));
+        CHECK(j["pool"] == 3);
+        CHECK(j["points"] == own["points"]);
+        CHECK(j["pool_effect"] == own["pool_effect"]);
+        CHECK(j["left_out"] == own["left_out"]);
+    }
+    // Provenance: the file given and its bytes' hash (the merged file is own's pool, byte for byte).
+    const auto m = nlohmann::json::parse(read_text(dir.file("merged.json")));
+    CHECK(m["pool_results"]["file"] == dir.file("merged.csv"));
+    CHECK(m["pool_results"]["sha256"] == own["pool_results"]["sha256"]);
+    CHECK(m["pool_results"]["meta"]["merged_from"].size() == 2);
+    CHECK_FALSE(std::filesystem::exists(dir.file("merged.pool.csv")));  // nothing ran
+
+    // Refused, exit 2 naming the file: too few participants, another protocol, an unfinished run.
+    const ProcessResult few = power("x.json", {"--pool-from", dir.file("merged.csv"), "--pool", "4"});
+    CHECK(few.exit_code == 2);
+    CHECK(contains(few.err, "--pool-from " + dir.file("merged.csv") + ": holds 3 participants, 4 asked"));
+    const std::string other = (source_dir() / "scenes/experiments/004-surface-orientation.json").string();
+    const ProcessResult wrong = run_contactlab({"experiment", "power", other, "--participants", "2-3", "--json", dir.file("x.json"),
+                                                "--pool-from", dir.file("merged.csv")});
+    CHECK(wrong.exit_code == 2);
+    CHECK(contains(wrong.err, "--pool-from " + dir.file("merged.csv") + ": a run of another protocol"));
+    auto meta = nlohmann::json::parse(read_text(dir.file("a.csv.meta.json")));
+    meta["finished_utc"] = nullptr;
+    write_text(dir.file("a.csv.meta.json"), meta.dump(2));
+    const ProcessResult unfinished = power("x.json", {"--pool-from", dir.file("a.csv")});
+    CHECK(unfinished.exit_code == 2);
+    CHECK(contains(unfinished.err, dir.file("a.csv") + ": an unfinished run"));
+    CHECK_FALSE(std::filesystem::exists(dir.file("x.json")));
+}

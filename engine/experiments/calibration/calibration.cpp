@@ -3,10 +3,13 @@
 
 #include "engine/experiments/analysis/analysis.hpp"
 #include "engine/experiments/runs/experiment_run.hpp"
+#include "engine/experiments/runs/finished_run.hpp"
+#include "engine/experiments/runs/run_meta.hpp"
 #include "engine/experiments/analysis/nelder_mead.hpp"
 #include "engine/experiments/base/results_table.hpp"
 #include "engine/experiments/base/sha256.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -176,13 +179,58 @@ json calibrate(const CalibrationOptions& o) {
         if (!(std::isfinite(p.lo) && std::isfinite(p.hi) && p.lo < p.hi))
             throw ExperimentError("calibrate: " + p.name + ": bounds need LO < HI, both finite");
     }
+    // The start point: each parameter at the protocols' own value (the first protocol's), moved
+    // inside its bounds' inner 98 % (the logistic below never reaches a bound).
+    std::vector<double> v_start;
+    std::vector<bool> moved;
+    for (const CalibrationParameter& p : o.parameters) {
+        ParticipantModel m = o.protocols.empty() ? ParticipantModel{} : by_file[*used.begin()]->participant;
+        const double own = *participant_parameter(m, p.name);
+        v_start.push_back(std::clamp(own, p.lo + 0.01 * (p.hi - p.lo), p.hi - 0.01 * (p.hi - p.lo)));
+        moved.push_back(v_start.back() != own);
+    }
+    // --pool-from: a finished run of a protocol as given stands for that protocol's runs at the start.
+    std::map<std::string, ResultsTable> start_tables;  // protocol file name -> its rows
+    json pool_from = json::array();
+    for (const std::string& path : o.pool_from) {
+        const auto meta = read_meta(path);
+        const json sha = meta ? meta->value("protocol_sha256", json()) : json();
+        std::string file;
+        for (const std::string& f : used)
+            if (by_file[f]->sha256 == sha) file = f;
+        if (file.empty())
+            throw ExperimentError("--pool-from " + path + ": not a run of any protocol a target needs (by its meta's protocol_sha256)");
+        if (start_tables.count(file)) throw ExperimentError("--pool-from " + path + ": a second pool for " + file);
+        const FinishedRun run = read_pool_run(path, *by_file[file], o.participants.size(), "--pool-from");
+        if (run.meta.value("seed", json()) != json(o.seed))
+            throw ExperimentError("--pool-from " + path + ": run with seed " + run.meta.value("seed", json()).dump() +
+                                  ", the evaluations with " + std::to_string(o.seed));
+        for (std::size_t i = 0; i < o.participants.size(); ++i)
+            if (run.participants[i] != "sim" + std::to_string(o.participants[i]))
+                throw ExperimentError("--pool-from " + path + ": its participant " + std::to_string(i + 1) + " is " + run.participants[i] +
+                                      ", the evaluations' is sim" + std::to_string(o.participants[i]));
+        ParticipantModel own = by_file[file]->participant;
+        for (std::size_t i = 0; i < o.parameters.size(); ++i)
+            if (*participant_parameter(own, o.parameters[i].name) != v_start[i])
+                throw ExperimentError("--pool-from " + path + ": " + file + "'s own " + o.parameters[i].name + " is not the start (" +
+                                      (moved[i] ? "it lies outside the inner 98 % of the bounds" : "the first protocol's differs") +
+                                      "), so the run in the file is not the start's");
+        start_tables[file] = first_participants(run, o.participants.size());
+        pool_from.push_back({{"file", path}, {"sha256", sha256_hex(run.bytes)}, {"protocol", file}});
+    }
     fs::create_directories(o.work_dir);
 
     // One evaluation: the parameters on every protocol, every protocol a target needs run and
-    // analysed, each target's figure.
-    auto figures_at = [&](const std::vector<double>& values) {
+    // analysed (at the start, a pool file's rows where one was given), each target's figure.
+    auto figures_at = [&](const std::vector<double>& values, bool start) {
         std::map<std::string, double> out;
         for (const std::string& file : used) {
+            if (start && start_tables.count(file)) {
+                const json analysis = analyze_results(start_tables.at(file));
+                for (const CalibrationTarget& t : o.targets)
+                    if (t.protocol == file) out[t.name] = figure_of(analysis, t);
+                continue;
+            }
             Protocol p = *by_file[file];
             for (std::size_t i = 0; i < o.parameters.size(); ++i) *participant_parameter(p.participant, o.parameters[i].name) = values[i];
             RunOptions r;
@@ -219,12 +267,8 @@ json calibrate(const CalibrationOptions& o) {
         return v;
     };
     std::vector<double> u0, step(o.parameters.size(), 1.0);
-    json start = json::object();
-    for (const CalibrationParameter& p : o.parameters) {
-        // The protocols' own value (the first protocol's) where it lies inside the bounds.
-        ParticipantModel m = o.protocols.empty() ? ParticipantModel{} : by_file[*used.begin()]->participant;
-        const double x = std::clamp(*participant_parameter(m, p.name), p.lo + 0.01 * (p.hi - p.lo), p.hi - 0.01 * (p.hi - p.lo));
-        const double q = (x - p.lo) / (p.hi - p.lo);
+    for (std::size_t i = 0; i < o.parameters.size(); ++i) {
+        const double q = (v_start[i] - o.parameters[i].lo) / (o.parameters[i].hi - o.parameters[i].lo);
         u0.push_back(std::log(q / (1.0 - q)));
     }
     json trace = json::array();
@@ -232,8 +276,9 @@ json calibrate(const CalibrationOptions& o) {
     std::map<std::string, double> start_figures;
     double start_objective = NAN;
     auto f = [&](const std::vector<double>& u) {
-        const std::vector<double> v = values_of(u);
-        const std::map<std::string, double> figures = figures_at(v);
+        // The start exactly (the logistic's round trip may move it by a last bit).
+        const std::vector<double> v = u == u0 ? v_start : values_of(u);
+        const std::map<std::string, double> figures = figures_at(v, u == u0);
         const double obj = objective_of(figures);
         json params = json::object();
         for (std::size_t i = 0; i < v.size(); ++i) params[o.parameters[i].name] = v[i];
@@ -260,11 +305,11 @@ json calibrate(const CalibrationOptions& o) {
     double simplex_best = 0.0;
     std::vector<double> u = nelder_mead(f, best_u, step, left, simplex_best);
     if (!(simplex_best <= best)) u = best_u;
-    const std::vector<double> v = values_of(u);
+    const std::vector<double> v = u == u0 ? v_start : values_of(u);
     // The best parameters' figures (run again: the simplex keeps values, not figures).
-    const std::map<std::string, double> final_figures = figures_at(v);
+    const std::map<std::string, double> final_figures = figures_at(v, u == u0);
     json params = json::object(), bounds = json::object(), start_params = json::object();
-    const std::vector<double> v0 = values_of(u0);
+    const std::vector<double>& v0 = v_start;
     for (std::size_t i = 0; i < v.size(); ++i) {
         params[o.parameters[i].name] = v[i];
         start_params[o.parameters[i].name] = v0[i];
@@ -291,7 +336,7 @@ json calibrate(const CalibrationOptions& o) {
     return {{"parameters", params},       {"start", start_params}, {"bounds", bounds},
             {"objective", objective_of(final_figures)}, {"start_objective", start_objective}, {"evaluations", evaluations},
             {"fit_to", o.fit_to},         {"participants", participants}, {"seed", o.seed},
-            {"targets", targets},         {"trace", trace}};
+            {"targets", targets},         {"trace", trace}, {"pool_from", pool_from}};
 }
 
 }  // namespace contactlab::experiments

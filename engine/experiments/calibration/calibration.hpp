@@ -72,14 +72,21 @@ struct CalibrationOptions {
     int jobs = 1;
     int max_evaluations = 40;
     std::string work_dir;  // the evaluations' results files (rewritten by each evaluation)
+    // Finished results files of some of the protocols, each run with the protocol as given, this
+    // seed and these participants (first in the file): each stands for its protocol's runs at the
+    // start point (the protocols' own parameter values), which are then not run again here.
+    std::vector<std::string> pool_from;
     std::function<void(int evaluation, double objective)> progress;
 };
 
 // Returns {"parameters": {name: value}, "start": {name: value}, "bounds", "objective",
 // "start_objective", "evaluations", "fit_to", "participants", "seed", "targets": [{"name",
 // "protocol", "figure", "over", "value", "scale", "source", "fitted", "start", "simulated",
-// "error", "within_scale"}], "trace": [{"parameters", "objective"}]}. Throws ExperimentError for
-// a target naming a protocol not given, an unknown parameter, bad bounds, or a fit target unknown.
+// "error", "within_scale"}], "trace": [{"parameters", "objective"}], "pool_from": [{"file",
+// "sha256", "protocol"}]}. Throws ExperimentError for a target naming a protocol not given, an
+// unknown parameter, bad bounds, a fit target unknown, or a pool file that is not a finished run
+// of a given protocol with this seed and these participants, or whose protocol's own parameter
+// values are not the start (outside the bounds' inner 98 %).
 nlohmann::json calibrate(const CalibrationOptions& o);
 
 }  // namespace contactlab::experiments

@@ -3,6 +3,7 @@
 
 #include "engine/experiments/base/results_table.hpp"
 #include "engine/experiments/base/sha256.hpp"
+#include "engine/experiments/runs/finished_run.hpp"
 #include "engine/experiments/runs/run_meta.hpp"
 #include "haptics/atomic_file.hpp"
 
@@ -18,40 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-struct Source {
-    std::string path;
-    std::string bytes;  // the CSV as on disk
-    json meta;
-    ResultsTable table;
-    // Each participant's rows, as the lines the run wrote, in file order.
-    std::map<std::string, std::vector<std::string>> rows_of;
-};
-
-Source read_source(const std::string& path) {
-    Source s;
-    s.path = path;
-    s.bytes = read_file_bytes(path);
-    const auto meta = read_meta(path);
-    if (!meta) throw ExperimentError(path + ": no " + meta_path(path) + ": which run made it is unknown, so it cannot be merged");
-    s.meta = *meta;
-    if (s.meta.value("finished_utc", json()).is_null())
-        throw ExperimentError(path + ": an unfinished run (its meta has no finished_utc): finish it (run the same command "
-                                     "again) before merging");
-    s.table = parse_results_csv(s.bytes, path);
-    const json rows = s.meta.value("rows", json());
-    if (!rows.is_number_unsigned() || rows.get<std::size_t>() != s.table.rows.size())
-        throw ExperimentError(path + ": holds " + std::to_string(s.table.rows.size()) + " rows where its meta says " + rows.dump() +
-                              " (a truncated or edited file)");
-    // The run wrote each row as csv_line: the same bytes again, or the file is not a run's.
-    std::string again = csv_line(s.table.columns) + "\n";
-    for (const auto& r : s.table.rows) again += csv_line(r) + "\n";
-    if (again != s.bytes)
-        throw ExperimentError(path + ": not as `experiment run` wrote it (its bytes differ from its rows written again)");
-    const auto col = s.table.column("participant");
-    if (!col) throw ExperimentError(path + ": no participant column");
-    for (const auto& r : s.table.rows) s.rows_of[r[*col]].push_back(csv_line(r));
-    return s;
-}
+using Source = FinishedRun;
 
 // "" when b comes from the same study as a (all but the participants), else what differs.
 std::string study_difference(const Source& a, const Source& b) {
@@ -84,7 +52,7 @@ MergeSummary merge_runs(const std::vector<std::string>& paths, const std::string
     for (const std::string& p : paths) {
         if (fs::weakly_canonical(p) == fs::weakly_canonical(output))
             throw ExperimentError(p + ": is also the output (-o); merge into a new file");
-        sources.push_back(read_source(p));
+        sources.push_back(read_finished_run(p));
     }
     for (std::size_t i = 1; i < sources.size(); ++i)
         if (const std::string d = study_difference(sources[0], sources[i]); !d.empty())
