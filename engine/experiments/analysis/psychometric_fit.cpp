@@ -130,8 +130,10 @@ struct Limits {
     // Each test: the reason when the value runs past its limit, else "".
     std::string threshold(double t) const {
         const double v = u(t);
-        if (std::isfinite(v) && v >= lo - range && v <= hi + range && range > 0.0) return "";
-        return "it lies outside the stimuli (" + stimuli + ") by more than their range";
+        // Half the range: beyond it the threshold is where the assumed shape of the function,
+        // extrapolated over more than half the tested span, puts it, not where the data do.
+        if (std::isfinite(v) && v >= lo - 0.5 * range && v <= hi + 0.5 * range && range > 0.0) return "";
+        return "it lies outside the stimuli (" + stimuli + ") by more than half their range";
     }
     std::string width_of(double s) const {
         const double w = width(s);
@@ -201,8 +203,8 @@ PsyFit fit_checked(const PsyData& d, const PsyFitOptions& o, Limits& lim) {
 
 const char* const kBoundsRule =
     "a value is not bounded by the data when the likelihood has no single maximum (every trial right or every trial "
-    "wrong, fewer stimulus levels than free parameters), when a threshold lies outside the stimuli by more than their "
-    "range, or a fitted function's width (scale; 1 / beta in ln x for the Weibull) exceeds that range (flat over the "
+    "wrong, fewer stimulus levels than free parameters), when a threshold lies outside the stimuli by more than half "
+    "their range, or a fitted function's width (scale; 1 / beta in ln x for the Weibull) exceeds that range (flat over the "
     "stimuli: then its threshold is not located either) or is below 1/1000 of it (a step); an interval is not bounded "
     "when an end runs past those limits, when more than 20 % of the bootstrap fits ran past them, when fewer than 90 % "
     "of the resamples converged, or when it misses the estimate or has no width; a lapse at its maximum is reported, not "

@@ -15,8 +15,9 @@
 // in the function's own coordinate u (x; ln x for the Weibull) and measures the stimuli by their
 // range R = u(max) - u(min), and a fitted function by its width w (the scale; 1 / beta for the
 // Weibull, whose ln-x form is a Gumbel of scale 1 / beta). A fit "ran to a limit" when
-//   - its threshold lies outside the stimuli by more than R (the data say only "somewhere out
-//     there": a staircase's 1.03 mm threshold with a lower end at -7,194 mm), or
+//   - its threshold lies outside the stimuli by more than R / 2 (the function's assumed shape,
+//     extrapolated over more than half the tested span, puts it there, not the data: a
+//     staircase's 1.03 mm threshold with a lower end at -7,194 mm), or
 //   - its width exceeds R (over the whole stimulus range the function then rises less than a
 //     quarter of its span for the logistic, 0.38 for the normal: the data cannot tell it from a
 //     flat line, so the slope is not bounded), or is below R / 1000 (a step between two
@@ -28,7 +29,7 @@
 //   - the estimate itself is not identifiable when every trial is correct, every one wrong (the
 //     likelihood has no interior maximum), or there are fewer levels than free parameters (3
 //     with the lapse free: a family of curves fits equally well); the threshold is not bounded
-//     when the ML threshold lies outside the stimuli by more than R;
+//     when the ML threshold lies outside the stimuli by more than R / 2;
 //   - an interval is not bounded when an end runs past those limits, when more than 20 % of the
 //     converged resamples ran to a limit (a percentile interval over fits a bound stopped is the
 //     bound's interval, not the data's: 20 % is eight times the 2.5 % tail a 95 % interval
