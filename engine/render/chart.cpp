@@ -425,8 +425,16 @@ ChartLayout draw_chart(const Chart& c, DrawList& out) {
                                                : std::vector<P2>{P2(lo.x, v), P2(hi.x, v)};
         stroke_run(out, run, true, 2.f, r.color);
     }
-    // Every mark first, so that no label is put on a point drawn after it.
+    // Every mark first, so that no label is put on a point drawn after it; reference lines are
+    // data too (a threshold, a budget).
     for (const ChartSeries& s : c.series) add_marks(l, s);
+    for (const ChartReference& r : c.references) {
+        const AxisMap& m = r.vertical ? l.x : l.y;
+        if (!m.accepts(r.value)) continue;
+        const float v = static_cast<float>(m.to_px(r.value));
+        if (r.vertical ? (v < lo.x || v > hi.x) : (v < lo.y || v > hi.y)) continue;
+        l.mark_boxes.push_back(r.vertical ? ChartBox{P2(v - 2.f, lo.y), P2(v + 2.f, hi.y)} : ChartBox{P2(lo.x, v - 2.f), P2(hi.x, v + 2.f)});
+    }
     // Reference labels beside their lines at the top, a row lower when taken; the legend names
     // them anyway, so one with no room is left to it.
     for (const ChartReference& r : c.references) {
