@@ -10,6 +10,7 @@
 #include "engine/app/number_options.hpp"
 #include "engine/app/participant_options.hpp"
 #include "engine/reports/experiment_report.hpp"
+#include "engine/experiments/analysis/limits.hpp"
 #include "engine/app/progress_bar.hpp"
 #include "engine/app/subcommands.hpp"
 #include "engine/experiments/analysis/analysis.hpp"
@@ -136,6 +137,7 @@ int run_analyze(const AnalyzeArgs& a) {
     for (const auto& w : result["warnings"]) warnings.push_back(w);
     result["warnings"] = warnings;
     result["provenance"] = pooled.provenance;
+    experiments::add_limits(result);
     const experiments::ResultsTable& table = pooled.table;
     std::printf("%s: %zu rows, %zu left out (warm-up or invalid)\n", table.origin.c_str(), result["rows"].get<std::size_t>(),
                 result["excluded"].get<std::size_t>());
@@ -153,14 +155,19 @@ int run_analyze(const AnalyzeArgs& a) {
                         figure(c["adaptive"], "estimate", "%.4g").c_str(), figure(c["adaptive"], "target_p", "%.3f").c_str());
         if (c.contains("psychometric")) {
             const auto& f = c["psychometric"];
-            if (f.contains("threshold"))
-                std::printf("  %-24s %s fit: threshold %s, 95 %% interval %s .. %s, scale %s, lapse %s, deviance %s\n", "",
+            if (f.contains("threshold") && !f["threshold"].is_number())
+                std::printf("  %-24s %s fit: threshold %s\n", "", f["function"].get<std::string>().c_str(),
+                            f["threshold_undefined"].get<std::string>().c_str());
+            else if (f.contains("threshold"))
+                std::printf("  %-24s %s fit: threshold %s, 95 %% interval %s, scale %s, lapse %s, deviance %s\n", "",
                             f["function"].get<std::string>().c_str(), figure(f, "threshold", "%.4g").c_str(),
-                            f.contains("threshold_ci") ? figure_at(f["threshold_ci"], 0, "%.4g").c_str() : "-",
-                            f.contains("threshold_ci") ? figure_at(f["threshold_ci"], 1, "%.4g").c_str() : "-",
+                            f["threshold_ci"].is_array() ? (figure_at(f["threshold_ci"], 0, "%.4g") + " .. " + figure_at(f["threshold_ci"], 1, "%.4g")).c_str()
+                            : f.contains("threshold_ci_undefined") ? "not bounded (below)" : "-",
                             figure(f, "scale", "%.4g").c_str(), figure(f, "lapse", "%.3f").c_str(), figure(f, "deviance", "%.3g").c_str());
             else
                 std::printf("  %-24s %s fit: %s\n", "", f["function"].get<std::string>().c_str(), f["undefined"].get<std::string>().c_str());
+            for (const char* key : {"threshold_ci_undefined", "scale_ci_undefined"})
+                if (f.contains(key)) std::printf("  %-24s %s: %s\n", "", key, f[key].get<std::string>().c_str());
         }
     }
     if (!result["comparisons"].empty()) std::printf("  tests: %s\n", experiments::kPairingRule);

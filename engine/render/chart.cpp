@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string_view>
 
 namespace contactlab::render {
 namespace {
@@ -101,6 +102,44 @@ float text_w(const std::string& s) { return text_size(s, kTextScale).x; }
 
 void text_at(DrawList& out, P2 p, const std::string& s, Color c) { draw_text(out, p, s, c, kTextScale); }
 
+constexpr float kDescender = 4.f;  // px below the glyphs' baseline that g, j, p, q, y and , reach
+
+bool descends(char c) { return std::string_view("gjpqy,;").find(c) != std::string_view::npos; }
+
+// The whole text's box, for placing it: its width, and its glyphs' height (with descenders when
+// it has any).
+ChartBox text_box(P2 p, const std::string& s) {
+    const bool any = std::any_of(s.begin(), s.end(), descends);
+    return {p, p + P2(text_w(s), kGlyphHeight + (any ? kDescender : 0.f))};
+}
+
+// Text drawn and recorded in the layout's boxes, one box per glyph (text_size's line box is a
+// third taller than the glyphs, and an axis title's descender beside a tick label is not text
+// on text).
+void text_logged(DrawList& out, ChartLayout& l, P2 p, const std::string& s, Color c) {
+    text_at(out, p, s, c);
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        if (s[i] == ' ') continue;
+        const float x0 = p.x + text_w(s.substr(0, i)), x1 = p.x + text_w(s.substr(0, i + 1)) - 1.f;
+        l.text_boxes.push_back({P2(x0, p.y), P2(std::max(x1, x0 + 1.f), p.y + kGlyphHeight + (descends(s[i]) ? kDescender : 0.f))});
+    }
+}
+
+// The first of `candidates` for text `s` that stays inside the plot and overlaps no text or
+// mark already in the layout; false when none does.
+bool place(const ChartLayout& l, const std::string& s, const std::vector<P2>& candidates, P2& at) {
+    for (const P2& p : candidates) {
+        const ChartBox b = text_box(p, s);
+        if (b.lo.x < l.plot_lo.x || b.lo.y < l.plot_lo.y || b.hi.x > l.plot_hi.x || b.hi.y > l.plot_hi.y) continue;
+        auto hit = [&](const ChartBox& o) { return b.intersects(o); };
+        if (std::any_of(l.text_boxes.begin(), l.text_boxes.end(), hit) || std::any_of(l.mark_boxes.begin(), l.mark_boxes.end(), hit))
+            continue;
+        at = p;
+        return true;
+    }
+    return false;
+}
+
 // Liang-Barsky: clips segment a-b to the rectangle; false if nothing is left.
 bool clip(P2& a, P2& b, P2 lo, P2 hi) {
     double t0 = 0.0, t1 = 1.0;
@@ -187,6 +226,35 @@ P2 px(const ChartLayout& l, double x, double y) {
     return P2(static_cast<float>(l.x.to_px(x)), static_cast<float>(l.y.to_px(y)));
 }
 
+// The boxes of a series' markers, error bars and line segments (each segment's own bounding
+// box, widened by half the line: tight for the short segments of a track or a sampled curve),
+// as draw_series draws them.
+void add_marks(ChartLayout& l, const ChartSeries& s) {
+    constexpr float kCap = 5.f, kHalf = kMarkerRadius * 1.3f;  // the widest marker's half size
+    bool have_prev = false;
+    P2 prev{};
+    for (std::size_t i = 0; i < s.x.size(); ++i) {
+        if (!l.x.accepts(s.x[i]) || !l.y.accepts(s.y[i])) {
+            have_prev = false;
+            continue;
+        }
+        const P2 p = px(l, s.x[i], s.y[i]);
+        if (s.connect && have_prev) {
+            P2 a = prev, b = p;
+            const float h = s.line_width / 2.f + 1.f;
+            if (clip(a, b, l.plot_lo, l.plot_hi)) l.mark_boxes.push_back({glm::min(a, b) - P2(h), glm::max(a, b) + P2(h)});
+        }
+        prev = p;
+        have_prev = true;
+        if (s.marker != Marker::none && inside(p, l.plot_lo, l.plot_hi)) l.mark_boxes.push_back({p - P2(kHalf), p + P2(kHalf)});
+        if (i < s.y_low.size() && l.x.accepts(s.x[i]) && l.y.accepts(s.y_low[i]) && l.y.accepts(s.y_high[i])) {
+            P2 a = px(l, s.x[i], s.y_low[i]), b = px(l, s.x[i], s.y_high[i]);
+            if (clip(a, b, l.plot_lo, l.plot_hi))
+                l.mark_boxes.push_back({P2(a.x - kCap, std::min(a.y, b.y) - 1.f), P2(a.x + kCap, std::max(a.y, b.y) + 1.f)});
+        }
+    }
+}
+
 void draw_error_bars(DrawList& out, const ChartLayout& l, const ChartSeries& s) {
     constexpr float kCap = 5.f;  // px either side of the point
     for (std::size_t i = 0; i < s.x.size() && i < s.y_low.size() && i < s.y_high.size(); ++i) {
@@ -240,8 +308,21 @@ void draw_series(DrawList& out, const ChartLayout& l, const ChartSeries& s) {
         const P2 p = px(l, s.x[i], s.y[i]);
         if (!inside(p, l.plot_lo, l.plot_hi)) continue;
         draw_marker(out, s.marker, p, s.color);
-        if (i < s.labels.size() && !s.labels[i].empty())
-            draw_text(out, p + P2(kMarkerRadius + 3.f, -kMarkerRadius - 12.f), s.labels[i], s.color, kTextScale);
+    }
+}
+
+// Each point's label in the first free place beside it (chart.hpp), or left out and counted.
+void draw_point_labels(DrawList& out, ChartLayout& l, const ChartSeries& s) {
+    for (std::size_t i = 0; i < s.x.size() && i < s.labels.size(); ++i) {
+        if (s.labels[i].empty() || !l.x.accepts(s.x[i]) || !l.y.accepts(s.y[i])) continue;
+        const P2 p = px(l, s.x[i], s.y[i]);
+        if (!inside(p, l.plot_lo, l.plot_hi)) continue;
+        const float w = text_w(s.labels[i]), r = kMarkerRadius + 3.f;
+        P2 at;
+        if (place(l, s.labels[i], {p + P2(r, -kMarkerRadius - 12.f), p + P2(-r - w, -kMarkerRadius - 12.f), p + P2(r, 1.f), p + P2(-r - w, 1.f)}, at))
+            text_logged(out, l, at, s.labels[i], s.color), ++l.placed_labels;
+        else
+            ++l.dropped_labels;
     }
 }
 
@@ -321,7 +402,7 @@ ChartLayout layout_chart(const Chart& c) {
 }
 
 ChartLayout draw_chart(const Chart& c, DrawList& out) {
-    const ChartLayout l = layout_chart(c);
+    ChartLayout l = layout_chart(c);
     const P2 lo = l.plot_lo, hi = l.plot_hi;
     const auto xt = axis_ticks(c.x, l.x), yt = axis_ticks(c.y, l.y);
 
@@ -343,12 +424,36 @@ ChartLayout draw_chart(const Chart& c, DrawList& out) {
         const std::vector<P2> run = r.vertical ? std::vector<P2>{P2(v, hi.y), P2(v, lo.y)}
                                                : std::vector<P2>{P2(lo.x, v), P2(hi.x, v)};
         stroke_run(out, run, true, 2.f, r.color);
-        if (!r.label.empty()) {
-            const P2 at = r.vertical ? P2(v + 4.f, lo.y + 4.f) : P2(hi.x - text_w(r.label) - 4.f, v - kGlyphHeight - 4.f);
-            text_at(out, at, r.label, r.color);
+    }
+    // Every mark first, so that no label is put on a point drawn after it; reference lines are
+    // data too (a threshold, a budget).
+    for (const ChartSeries& s : c.series) add_marks(l, s);
+    for (const ChartReference& r : c.references) {
+        const AxisMap& m = r.vertical ? l.x : l.y;
+        if (!m.accepts(r.value)) continue;
+        const float v = static_cast<float>(m.to_px(r.value));
+        if (r.vertical ? (v < lo.x || v > hi.x) : (v < lo.y || v > hi.y)) continue;
+        l.mark_boxes.push_back(r.vertical ? ChartBox{P2(v - 2.f, lo.y), P2(v + 2.f, hi.y)} : ChartBox{P2(lo.x, v - 2.f), P2(hi.x, v + 2.f)});
+    }
+    // Reference labels beside their lines at the top, a row lower when taken; the legend names
+    // them anyway, so one with no room is left to it.
+    for (const ChartReference& r : c.references) {
+        const AxisMap& m = r.vertical ? l.x : l.y;
+        if (r.label.empty() || !m.accepts(r.value)) continue;
+        const float v = static_cast<float>(m.to_px(r.value)), w = text_w(r.label);
+        if (r.vertical ? (v < lo.x || v > hi.x) : (v < lo.y || v > hi.y)) continue;
+        std::vector<P2> tries;
+        for (int row = 0; row < 6; ++row) {
+            const float dy = static_cast<float>(row) * (kGlyphHeight + 6.f);
+            if (r.vertical) tries.insert(tries.end(), {P2(v + 4.f, lo.y + 4.f + dy), P2(v - 4.f - w, lo.y + 4.f + dy)});
+            else tries.insert(tries.end(), {P2(hi.x - w - 4.f - 3.f * dy, v - kGlyphHeight - 4.f), P2(hi.x - w - 4.f - 3.f * dy, v + 4.f)});
         }
+        P2 at;
+        if (place(l, r.label, tries, at)) text_logged(out, l, at, r.label, r.color), ++l.placed_labels;
+        else ++l.dropped_labels;
     }
     for (const ChartSeries& s : c.series) draw_series(out, l, s);
+    for (const ChartSeries& s : c.series) draw_point_labels(out, l, s);
 
     // Frame, ticks and their labels.
     const P2 frame[4] = {lo, P2(hi.x, lo.y), hi, P2(lo.x, hi.y)};
@@ -356,20 +461,20 @@ ChartLayout draw_chart(const Chart& c, DrawList& out) {
     for (const ChartTick& t : xt) {
         const float x = static_cast<float>(l.x.to_px(t.value));
         out.line(P2(x, hi.y), P2(x, hi.y + (t.label.empty() ? kMinorTick : kTick)), 1.5f, kInk);
-        if (!t.label.empty()) text_at(out, P2(x - text_w(t.label) / 2.f, hi.y + kTick + 6.f), t.label, kInk);
+        if (!t.label.empty()) text_logged(out, l, P2(x - text_w(t.label) / 2.f, hi.y + kTick + 6.f), t.label, kInk);
     }
     for (const ChartTick& t : yt) {
         const float y = static_cast<float>(l.y.to_px(t.value));
         out.line(P2(lo.x - (t.label.empty() ? kMinorTick : kTick), y), P2(lo.x, y), 1.5f, kInk);
         if (!t.label.empty())
-            text_at(out, P2(lo.x - kTick - 6.f - text_w(t.label), y - kGlyphHeight / 2.f), t.label, kInk);
+            text_logged(out, l, P2(lo.x - kTick - 6.f - text_w(t.label), y - kGlyphHeight / 2.f), t.label, kInk);
     }
     // Titles: the chart's centred on top, the y axis's above the plot (text does not rotate), the
     // x axis's centred under the tick labels.
     if (!c.title.empty())
-        text_at(out, P2((static_cast<float>(c.width) - text_w(c.title)) / 2.f, kPad), c.title, kInk);
-    text_at(out, P2(kPad, lo.y - kPad - kGlyphHeight), c.y.title, kInk);
-    text_at(out, P2((lo.x + hi.x - text_w(c.x.title)) / 2.f, hi.y + kTick + 6.f + kGlyphHeight + kPad), c.x.title, kInk);
+        text_logged(out, l, P2((static_cast<float>(c.width) - text_w(c.title)) / 2.f, kPad), c.title, kInk);
+    text_logged(out, l, P2(kPad, lo.y - kPad - kGlyphHeight), c.y.title, kInk);
+    text_logged(out, l, P2((lo.x + hi.x - text_w(c.x.title)) / 2.f, hi.y + kTick + 6.f + kGlyphHeight + kPad), c.x.title, kInk);
 
     // Legend right of the plot: a sample of each line (and marker), then its name.
     float y = lo.y + kGlyphHeight / 2.f;
@@ -377,7 +482,7 @@ ChartLayout draw_chart(const Chart& c, DrawList& out) {
         const float x0 = hi.x + 2 * kPad;
         if (e.line) stroke_run(out, {P2(x0, y), P2(x0 + kLegendSwatch, y)}, e.dashed, e.width, e.color);
         draw_marker(out, e.marker, P2(x0 + kLegendSwatch / 2.f, y), e.color);
-        text_at(out, P2(x0 + kLegendSwatch + 8.f, y - kGlyphHeight / 2.f), e.name, kInk);
+        text_logged(out, l, P2(x0 + kLegendSwatch + 8.f, y - kGlyphHeight / 2.f), e.name, kInk);
         y += kLegendRow;
     }
     return l;

@@ -100,11 +100,25 @@ std::vector<ChartTick> axis_ticks(const AxisMap& map);
 // A tick label: "0", "0.5", "200", "20000", "1e4", "1e-6" (short, ASCII).
 std::string tick_label(double v);
 
-// Where everything goes: the plot rectangle (px) and both axis maps.
+// An axis-aligned rectangle in px (lo: top-left, hi: bottom-right).
+struct ChartBox {
+    P2 lo, hi;
+    bool intersects(const ChartBox& o) const { return lo.x < o.hi.x && o.lo.x < hi.x && lo.y < o.hi.y && o.lo.y < hi.y; }
+};
+
+// Where everything goes: the plot rectangle (px) and both axis maps; after draw_chart also
+// where it put every piece of text and every data mark, so that a test can check that no text
+// sits on text or on data.
 struct ChartLayout {
     P2 plot_lo, plot_hi;  // top-left and bottom-right of the plot area, px
     AxisMap x, y;
     int skipped_points = 0;  // points left out: non-finite, or non-positive on a log axis
+    std::vector<ChartBox> text_boxes;  // every glyph drawn (titles, ticks, legend, labels)
+    std::vector<ChartBox> mark_boxes;  // every marker and error bar drawn
+    // Point labels (and reference lines' in-plot labels) left out because every place tried
+    // beside their point overlapped other text or data; the caller says their values elsewhere.
+    int dropped_labels = 0;
+    int placed_labels = 0;  // point and reference labels drawn in the plot
 };
 
 // Throws ChartError when the size is too small, a series' x and y (or labels) differ in length,
@@ -113,7 +127,12 @@ struct ChartLayout {
 ChartLayout layout_chart(const Chart& chart);
 
 // Draws the chart into `out` (its size must be the chart's; white background assumed: the
-// colours are chosen for it). Returns the layout used.
+// colours are chosen for it). Returns the layout used, with the boxes of what it drew.
+// Labels are placed, never stacked: a point's label goes above-right of it, else above-left,
+// below-right, below-left, whichever first overlaps no text, marker or error bar and stays in
+// the plot; a reference line's label goes beside the line at the top of the plot, right or left,
+// a row lower each time, else it stays in the legend only. A label with no free place is left
+// out and counted (dropped_labels), in series order: the earlier points keep theirs.
 ChartLayout draw_chart(const Chart& chart, DrawList& out);
 
 // Distinguishable series colours for a white background (Okabe-Ito, colour-blind safe), by index.

@@ -4,6 +4,7 @@
 #include "engine/reports/experiment_figures.hpp"
 #include "engine/reports/threshold_figures.hpp"
 #include "engine/experiments/analysis/analysis.hpp"
+#include "engine/experiments/analysis/binary_tests.hpp"
 #include "engine/experiments/analysis/intervals.hpp"
 #include "engine/experiments/analysis/statistics.hpp"
 #include "engine/render/chart_image.hpp"
@@ -48,6 +49,30 @@ void provenance_section(std::ostringstream& md, const json& a) {
            << (m.contains("commit") ? " " + text("commit").substr(0, 12) : std::string()) << " | " << text("started_utc") << " | "
            << text("finished_utc") << " |\n";
     }
+}
+
+// What the analysis left out or could not estimate, first (limits.hpp gathers it).
+void limits_section(std::ostringstream& md, const json& a) {
+    md << "## Limits\n\n";
+    const json limits = a.value("limits", json::array());
+    if (limits.empty()) md << "None found: every row was analysed and every figure below was estimable from these data.\n\n";
+    for (const auto& l : limits) md << "- " << l.get<std::string>() << "\n";
+    if (!limits.empty()) md << "\n";
+}
+
+// A comparison's binary-outcome tests (binary_tests.hpp): "p = ..; interval .. (rule below)".
+std::string binary_cell(const json& t) {
+    if (!t.contains("binary")) return "-";
+    const json& b = t["binary"];
+    if (b.contains("undefined")) return b["undefined"].get<std::string>();
+    std::string cell = "d = " + report_number(b["mean_difference"]) + ", permutation p = " + report_number(b["permutation"]["p"]) +
+                       (b["permutation"]["exact"].get<bool>() ? " (exact, " : " (Monte Carlo, ") + b["permutation"]["assignments"].dump() +
+                       "), ";
+    if (b["interval"].is_array())
+        cell += report_number(b["confidence"].get<double>() * 100.0, "%.0f") + " % bootstrap interval " + report_number(b["interval"][0]) +
+                " .. " + report_number(b["interval"][1]);
+    else cell += "interval " + b.value("interval_undefined", std::string("-"));
+    return cell;
 }
 
 // Seed 002: eq. 7's average error and the accuracy per number of small bumps, and Fig. 6's
@@ -116,6 +141,7 @@ std::string write_experiment_report(const experiments::ResultsTable& table, cons
     std::ostringstream md;
     md << "# Experiment results\n\nSource: `" << a["source"].get<std::string>() << "`, " << a["rows"] << " rows, "
        << a["excluded"] << " left out (warm-up or invalid).\n\n";
+    limits_section(md, a);
     md << "| condition | n | proportion correct | IT_est (bits) | Cramer's phi | time (s, mean +- sd) | failures |\n";
     md << "| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n";
     for (const auto& [name, c] : a["conditions"].items()) {
@@ -141,8 +167,10 @@ std::string write_experiment_report(const experiments::ResultsTable& table, cons
     bump_section(md, a);
     threshold_section(md, a);
     if (!a["comparisons"].empty()) {
-        md << "\n## Comparisons (t tests)\n\nRule: " << experiments::kPairingRule << ".\n\n"
-           << "| measure | a - b | test | t | df | p | interval |\n| --- | --- | --- | ---: | ---: | ---: | --- |\n";
+        md << "\n## Comparisons (t tests, and tests for binary outcomes)\n\nRule: " << experiments::kPairingRule << ".\n\n"
+           << "Binary outcomes: " << experiments::kBinaryRule << ". The t test is the seeds' own analysis and is kept; on proportions its "
+              "interval can leave [-1, 1], these cannot.\n\n"
+           << "| measure | a - b | test | t | df | p | interval | binary outcome |\n| --- | --- | --- | ---: | ---: | ---: | --- | --- |\n";
         for (const auto& t : a["comparisons"]) {
             char ci[96];
             std::snprintf(ci, sizeof ci, "%.0f %%: %s .. %s", 100.0 * t["confidence"].get<double>(), report_number(t["ci_low"]).c_str(),
@@ -150,8 +178,9 @@ std::string write_experiment_report(const experiments::ResultsTable& table, cons
             md << "| " << t["measure"].get<std::string>() << " | " << t["a"].get<std::string>() << " - " << t["b"].get<std::string>()
                << " = " << report_number(t["mean_difference"]) << " | " << (t["test"]["kind"] == "paired" ? "paired" : "Welch") << " ("
                << t["test"]["because"].get<std::string>() << ") | ";
-            if (t["valid"].get<bool>()) md << report_number(t["t"]) << " | " << report_number(t["df"]) << " | " << report_number(t["p"]) << " | " << ci << " |\n";
-            else md << "undefined: " << t["undefined"].get<std::string>() << " | - | - | - |\n";
+            if (t["valid"].get<bool>()) md << report_number(t["t"]) << " | " << report_number(t["df"]) << " | " << report_number(t["p"]) << " | " << ci;
+            else md << "undefined: " << t["undefined"].get<std::string>() << " | - | - | -";
+            md << " | " << binary_cell(t) << " |\n";
         }
     }
     if (a.contains("warnings") && !a["warnings"].empty()) {

@@ -57,6 +57,7 @@ TEST_CASE("psychometric fit: 40 logistic 2AFC data sets, the 95 % bootstrap inte
         o.seed = static_cast<std::uint64_t>(i + 1);
         const PsyFit f = fit_psychometric(d, o);
         REQUIRE(f.ok);
+        CHECK(f.threshold_ci_unbounded.empty());  // the bounds rule leaves constant-stimuli intervals alone
         CHECK(f.lapse >= 0.0);
         CHECK(f.lapse <= 0.06);
         CHECK(f.threshold_ci[0] <= f.threshold);

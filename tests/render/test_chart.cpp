@@ -346,3 +346,48 @@ TEST_CASE("matrix chart: each cell is shaded by its share of the row, counts and
     CHECK_THROWS_AS(draw_matrix_chart(m, bad), ChartError);
     CHECK(lavapipe().validation_messages() == 0);
 }
+
+TEST_CASE("chart: labels never sit on each other or on the data, and those with no room are counted") {
+    // The issue's figure: every bin in one pixel column at the right of a wide axis, a label
+    // per bin, and two labelled reference lines close together near the plot's right edge.
+    Chart c;
+    c.title = "crowded";
+    c.x.title = "stimulus (mm)";
+    c.y.title = "proportion correct";
+    c.x.min = -8000.0, c.x.max = 1000.0;
+    c.y.min = 0.0, c.y.max = 1.0;
+    ChartSeries s;
+    s.name = "data (bins)";
+    s.connect = false;
+    for (int i = 0; i < 9; ++i) {
+        s.x.push_back(0.25 + i);
+        s.y.push_back(0.5 + 0.05 * i);
+        s.y_low.push_back(0.4 + 0.05 * i);
+        s.y_high.push_back(0.6 + 0.05 * i);
+        s.labels.push_back("n=" + std::to_string(10 * i + 3));
+    }
+    c.series.push_back(s);
+    c.references.push_back({"threshold 1.03", true, 1.03});
+    c.references.push_back({"95 % interval", true, 3.17});
+    DrawList out(c.width, c.height);
+    const ChartLayout l = draw_chart(c, out);
+    REQUIRE(l.mark_boxes.size() >= 9);
+    for (std::size_t i = 0; i < l.text_boxes.size(); ++i) {
+        for (std::size_t j = i + 1; j < l.text_boxes.size(); ++j) {
+            INFO("text ", i, " (", l.text_boxes[i].lo.x, ", ", l.text_boxes[i].lo.y, ")-(", l.text_boxes[i].hi.x, ", ", l.text_boxes[i].hi.y,
+                 ") and text ", j, " (", l.text_boxes[j].lo.x, ", ", l.text_boxes[j].lo.y, ")-(", l.text_boxes[j].hi.x, ", ",
+                 l.text_boxes[j].hi.y, ")");
+            CHECK_FALSE(l.text_boxes[i].intersects(l.text_boxes[j]));
+        }
+        for (const ChartBox& m : l.mark_boxes) CHECK_FALSE(l.text_boxes[i].intersects(m));
+    }
+    // Nine labels and two reference labels cannot all fit beside one column of bars: some are
+    // left out, and they are counted so the caption can give their values.
+    int in_plot = 0;  // glyphs inside the plot: the placed labels' only
+    for (const ChartBox& b : l.text_boxes)
+        in_plot += b.lo.x >= l.plot_lo.x && b.lo.y >= l.plot_lo.y && b.hi.x <= l.plot_hi.x && b.hi.y <= l.plot_hi.y;
+    CHECK(l.dropped_labels > 0);
+    CHECK(l.placed_labels >= 2);
+    CHECK(in_plot >= 3 * l.placed_labels);  // each label has at least 3 glyphs ("n=3")
+    CHECK(l.placed_labels + l.dropped_labels == 11);
+}

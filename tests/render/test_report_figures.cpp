@@ -7,7 +7,10 @@
 #include "snapshot.hpp"
 
 #include "engine/reports/experiment_figures.hpp"
+#include "engine/reports/threshold_figures.hpp"
 #include "engine/render/chart_image.hpp"
+
+#include <nlohmann/json.hpp>
 
 #include <doctest/doctest.h>
 
@@ -225,4 +228,46 @@ TEST_CASE("report figures: another protocol's results get no seed figure") {
     t.rows.push_back({"p1", "left", "1", "a", "a"});
     CHECK(seed_of(t).empty());
     CHECK(seed_figures(t).empty());
+}
+
+TEST_CASE("report figures: a staircase's fit with an unbounded interval fits its data, with no text on text or data") {
+    // The edge-sharpness force condition as a new user met it: nine levels, most trials at two
+    // of them, a threshold of 1.03 mm whose interval the data do not bound, three tracks.
+    nlohmann::json a = nlohmann::json::parse(R"({
+      "stimulus_unit": "mm",
+      "conditions": {"force": {
+        "psychometric": {"function": "logistic", "guess": 0.5, "lapse": 0.06, "lapse_at_bound": true,
+          "threshold": 1.03, "scale": null, "scale_undefined": "not bounded by these data: flat",
+          "threshold_ci": null, "threshold_ci_undefined": "not bounded by these data: its lower end (-7194): far below",
+          "ml": {"threshold": 1.03, "scale": 2.9, "lapse": 0.06},
+          "bins": [{"x": 0.25, "n": 3, "k": 2}, {"x": 0.5, "n": 5, "k": 3}, {"x": 1, "n": 9, "k": 6}, {"x": 1.5, "n": 12, "k": 8},
+                   {"x": 2, "n": 20, "k": 14}, {"x": 2.25, "n": 31, "k": 23}, {"x": 2.5, "n": 40, "k": 30}, {"x": 2.75, "n": 28, "k": 22},
+                   {"x": 3, "n": 25, "k": 21}, {"x": 4, "n": 6, "k": 5}, {"x": 6, "n": 6, "k": 6}]},
+        "adaptive": {"estimate": 3.23, "judged": 3, "converged": 0},
+        "participants": {}}}})");
+    for (int p = 1; p <= 3; ++p) {
+        nlohmann::json track = nlohmann::json::array();
+        for (int i = 0; i < 60; ++i) track.push_back({6.0 - 0.05 * i * p / 2.0, 1, i % 7 == 3 ? 1 : 0});
+        a["conditions"]["force"]["participants"]["sim" + std::to_string(p)]["adaptive"] = {{"track", track}};
+    }
+    const auto figures = contactlab::reports::threshold_figures(a);
+    REQUIRE(figures.size() == 2);
+    for (const ReportFigure& f : figures) {
+        CAPTURE(f.file);
+        contactlab::render::DrawList out(f.chart.width, f.chart.height);
+        const auto l = contactlab::render::draw_chart(f.chart, out);
+        for (std::size_t i = 0; i < l.text_boxes.size(); ++i) {
+            for (std::size_t j = i + 1; j < l.text_boxes.size(); ++j) CHECK_FALSE(l.text_boxes[i].intersects(l.text_boxes[j]));
+            for (const auto& m : l.mark_boxes) CHECK_FALSE(l.text_boxes[i].intersects(m));
+        }
+    }
+    const ReportFigure& fit = figure(figures, "psychometric_force.png");
+    // No line for the interval the data do not bound, and an x axis from the data: the bins
+    // span most of it, not one pixel column.
+    for (const auto& r : fit.chart.references) CHECK(r.label.find("interval") == std::string::npos);
+    contactlab::render::DrawList out(fit.chart.width, fit.chart.height);
+    const auto l = contactlab::render::draw_chart(fit.chart, out);
+    CHECK((6.0 - 0.25) / (l.x.hi - l.x.lo) > 0.8);
+    CHECK(fit.caption.find("not bounded by these data (") != std::string::npos);
+    CHECK(fit.caption.find("6: 6/6") != std::string::npos);  // the counts, for labels with no room
 }

@@ -1,6 +1,7 @@
 // analysis.cpp — results table -> the seeds' figures (analysis.hpp).
 #include "engine/experiments/analysis/analysis.hpp"
 
+#include "engine/experiments/analysis/binary_tests.hpp"
 #include "engine/experiments/analysis/statistics.hpp"
 
 #include <nlohmann/json.hpp>
@@ -8,6 +9,7 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <tuple>
 
 namespace contactlab::experiments {
 namespace {
@@ -177,6 +179,20 @@ json test_json(const TTest& r, const std::string& measure) {
             {"valid", r.valid},           {"undefined", r.valid ? json(nullptr) : json(r.undefined)}};
 }
 
+json binary_json(const BinaryComparison& r) {
+    json j = {{"rule", kBinaryRule}, {"participants", r.participants}};
+    if (!r.undefined.empty()) {
+        j["undefined"] = r.undefined;
+        return j;
+    }
+    j["mean_difference"] = r.mean_difference;
+    j["permutation"] = {{"p", r.p}, {"exact", r.exact}, {"assignments", r.assignments}, {"smallest_possible_p", r.min_p}};
+    j["confidence"] = r.confidence;
+    if (r.ci_undefined.empty()) j["interval"] = {r.ci_low, r.ci_high};
+    else j["interval"] = nullptr, j["interval_undefined"] = r.ci_undefined;
+    return j;
+}
+
 // A number from a figures object, NaN when absent or null.
 double get(const json& j, const char* a, const char* b = nullptr) {
     const json* p = &j;
@@ -306,7 +322,9 @@ json analyze_results(const ResultsTable& t, const AnalyzeOptions& o) {
             for (const auto& l : left_out)
                 warnings.push_back("participant " + l["participant"].get<std::string>() + " left out of the paired tests: " +
                                    l["reason"].get<std::string>());
-        auto compare = [&](const std::string& measure, auto participant_value, auto trial_value) {
+        // binary: the measure is a proportion of trials (trial_value 1 or 0, NaN for none):
+        // binary_tests.hpp's permutation test and participant bootstrap go beside the t test.
+        auto compare = [&](const std::string& measure, auto participant_value, auto trial_value, bool binary = false) {
             std::vector<double> va, vb;
             json out_here = paired ? left_out : json::array();
             TTest r;
@@ -336,6 +354,19 @@ json analyze_results(const ResultsTable& t, const AnalyzeOptions& o) {
                          {"because", paired ? std::to_string(va.size()) + " participants with a value in both conditions"
                                             : why_unpaired},
                          {"left_out", out_here}};
+            if (binary && paired) {
+                std::vector<BinaryPair> counts;
+                for (const std::string& p : pairs) {
+                    BinaryPair c;
+                    for (auto [cond, k, n] : {std::tuple{&a, &c.k_a, &c.n_a}, std::tuple{&bname, &c.k_b, &c.n_b}})
+                        for (std::size_t i : rows_of[*cond][p])
+                            if (const double v = trial_value(i); std::isfinite(v)) *k += v != 0.0, ++*n;
+                    counts.push_back(c);
+                }
+                j["binary"] = binary_json(compare_binary(counts, o.confidence));
+            } else if (binary) {
+                j["binary"] = {{"undefined", "not computed: the test pairs participants, and these rows are not paired (" + why_unpaired + ")"}};
+            }
             comparisons.push_back(std::move(j));
         };
         auto figure_of = [&](const char* key, const char* sub = nullptr) {
@@ -343,7 +374,7 @@ json analyze_results(const ResultsTable& t, const AnalyzeOptions& o) {
         };
         auto right_of = [&](std::size_t i) { return right(t, col, i); };
         if (col.stimulus && col.response && conditions[a].contains("proportion_correct")) {
-            compare("proportion_correct", figure_of("proportion_correct"), right_of);
+            compare("proportion_correct", figure_of("proportion_correct"), right_of, true);
             if (paired) compare("it_est_bits", figure_of("it_est_bits"), right_of);
         }
         if (bumps) {
@@ -353,7 +384,7 @@ json analyze_results(const ResultsTable& t, const AnalyzeOptions& o) {
                 compare(
                     measure,
                     [&, keep = keep](const std::string& c, const std::string& p) { return mean_of(b.where(rows_of[c][p], keep), right_of); },
-                    [&, keep = keep](std::size_t i) { return keep(b.small(i), b.large(i)) ? right_of(i) : NAN; });
+                    [&, keep = keep](std::size_t i) { return keep(b.small(i), b.large(i)) ? right_of(i) : NAN; }, true);
             }
         }
         if (col.time) {
@@ -365,7 +396,7 @@ json analyze_results(const ResultsTable& t, const AnalyzeOptions& o) {
         }
         if (col.failed) {
             auto failed = [&](std::size_t i) { return truthy(t, i, *col.failed) ? 1.0 : 0.0; };
-            compare("failure_proportion", figure_of("failure_proportion"), failed);
+            compare("failure_proportion", figure_of("failure_proportion"), failed, true);
         }
     }
     result["comparisons"] = comparisons;

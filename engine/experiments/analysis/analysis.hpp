@@ -17,10 +17,12 @@
 // the others left out and named in "warnings"; Welch over trials only without a participant
 // column or with fewer than two pairs, and then the comparison says so. A t test with no
 // variance, or variance at round-off level, is undefined ("undefined": the reason), never a p
-// value. Labels are bounded (a column of thousands of distinct stimuli is refused) and a label
+// value. A comparison of proportions (failures, answers correct) also gets, under "binary", the
+// tests made for binary outcomes (binary_tests.hpp, kBinaryRule) when its t test is paired.
+// Labels are bounded (a column of thousands of distinct stimuli is refused) and a label
 // that reads as a number out of a double's range is refused with its file and line.
 //
-// Room engine/experiments/analysis/: what the results say: `experiment analyze` (here), statistics, intervals,
+// Room engine/experiments/analysis/: what the results say: `experiment analyze` (here), statistics, binary-outcome tests, intervals,
 // psychometric fits and thresholds, pooling results files, power. Includes runs/ and below.
 // The rooms and their arrows: docs/ARCHITECTURE.md, "The experiments' rooms".
 #pragma once

@@ -6,6 +6,7 @@
 #include <boost/math/distributions/normal.hpp>
 #include <boost/math/distributions/students_t.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -39,6 +40,14 @@ Interval mean_interval(const std::vector<double>& x, double confidence) {
     if (!std::isfinite(se)) return {kNaN, kNaN};
     const double t = boost::math::quantile(boost::math::students_t(static_cast<double>(s.n - 1)), 0.5 + confidence / 2.0);
     return {s.mean - t * se, s.mean + t * se};
+}
+
+double quantile(std::vector<double> v, double q) {
+    std::sort(v.begin(), v.end());
+    const double pos = q * static_cast<double>(v.size() - 1);
+    const std::size_t i = static_cast<std::size_t>(pos);
+    if (i + 1 >= v.size()) return v.back();
+    return v[i] + (pos - static_cast<double>(i)) * (v[i + 1] - v[i]);
 }
 
 }  // namespace contactlab::experiments

@@ -21,6 +21,10 @@ Interval wilson_interval(long successes, long n, double confidence);
 // mean +- t_{(1+c)/2, n-1} sd / sqrt(n); NaN bounds for fewer than two values.
 Interval mean_interval(const std::vector<double>& x, double confidence);
 
+// The q-quantile of v (0 <= q <= 1), linear between order statistics (type 7, R's default):
+// the percentile intervals' ends. v must not be empty.
+double quantile(std::vector<double> v, double q);
+
 // sd / sqrt(n) (sample sd, n - 1); NaN for fewer than two values.
 double standard_error(const std::vector<double>& x);
 

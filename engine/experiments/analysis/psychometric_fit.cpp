@@ -1,6 +1,7 @@
 // psychometric_fit.cpp — ML fit and parametric bootstrap (psychometric_fit.hpp).
 #include "engine/experiments/analysis/psychometric_fit.hpp"
 
+#include "engine/experiments/analysis/intervals.hpp"
 #include "engine/experiments/analysis/nelder_mead.hpp"
 #include "engine/experiments/base/random_stream.hpp"
 
@@ -103,23 +104,128 @@ PsyFit fit_from(const PsyData& d, const PsyFitOptions& o, const P3* hint) {
     return f;
 }
 
-double quantile(std::vector<double> v, double q) {
-    std::sort(v.begin(), v.end());
-    const double pos = q * static_cast<double>(v.size() - 1);
-    const std::size_t i = static_cast<std::size_t>(pos);
-    if (i + 1 >= v.size()) return v.back();
-    return v[i] + (pos - static_cast<double>(i)) * (v[i + 1] - v[i]);
+
+// The stimuli in the function's own coordinate (x; ln x for the Weibull) and the limits of
+// kBoundsRule (psychometric_fit.hpp) measured against their range.
+struct Limits {
+    bool log = false;
+    double lo = 0.0, hi = 0.0, range = 0.0;  // in the function's coordinate
+    double max_lapse = 0.0;
+    std::string stimuli;  // "1 .. 5", for the reasons
+    static Limits of(const PsyData& d, const PsyFitOptions& o) {
+        Limits l;
+        l.log = o.function == PsyFunction::weibull;
+        l.max_lapse = o.max_lapse;
+        double lo = INFINITY, hi = -INFINITY;
+        for (double x : d.x)
+            if (!l.log || x > 0.0) lo = std::min(lo, x), hi = std::max(hi, x);
+        char buf[96];
+        std::snprintf(buf, sizeof buf, "%.4g .. %.4g", lo, hi);
+        l.stimuli = buf;
+        l.lo = l.u(lo), l.hi = l.u(hi), l.range = l.hi - l.lo;
+        return l;
+    }
+    double u(double x) const { return log ? std::log(x) : x; }
+    double width(double scale) const { return log ? 1.0 / scale : scale; }
+    // Each test: the reason when the value runs past its limit, else "".
+    std::string threshold(double t) const {
+        const double v = u(t);
+        // Half the range: beyond it the threshold is where the assumed shape of the function,
+        // extrapolated over more than half the tested span, puts it, not where the data do.
+        if (std::isfinite(v) && v >= lo - 0.5 * range && v <= hi + 0.5 * range && range > 0.0) return "";
+        return "it lies outside the stimuli (" + stimuli + ") by more than half their range";
+    }
+    std::string width_of(double s) const {
+        const double w = width(s);
+        if (!(w <= range)) return "the fitted function would rise less than a quarter of its span over all the stimuli (" + stimuli +
+                                  "): the data cannot tell it from a flat line";
+        if (!(w >= range / 1000.0)) return "the fitted function would be a step between two levels: the data cannot bound its slope";
+        return "";
+    }
+    bool lapse_at_bound(double lapse) const { return lapse >= 0.999 * max_lapse && max_lapse > 0.0; }
+    // The lapse is not among them: its bound is there by design (Wichmann & Hill 2001a), and
+    // on constant-stimuli data with a true lapse of 0.02 (test_psychometric_fit.cpp) 20-45 % of
+    // the resamples put it at 0.06 while their thresholds stay well inside the stimuli; the
+    // bound is what keeps threshold and slope estimable there. A fit whose own lapse is at the
+    // bound says so (lapse_at_bound) and the report names it as a limit.
+    bool ran_to_limit(const PsyFit& g) const { return !threshold(g.threshold).empty() || !width_of(g.scale).empty(); }
+};
+
+constexpr double kMaxAtLimitShare = 0.20;   // of converged resamples (kBoundsRule)
+constexpr double kMinConvergedShare = 0.90; // of resamples drawn
+
+const std::string kNotBounded = "not bounded by these data: ";
+
+// Every trial right, every trial wrong: the likelihood has no interior maximum (it keeps rising
+// as the function moves past the stimuli), so no estimate is supported; nor with fewer levels
+// than parameters.
+std::string not_identifiable(const PsyData& d, const PsyFitOptions& o) {
+    long n = 0, k = 0;
+    for (std::size_t i = 0; i < d.x.size(); ++i) n += d.n[i], k += d.k[i];
+    if (n > 0 && k == n) return "not identifiable: every trial was answered correctly, so the likelihood has no maximum (it rises as the function moves below the stimuli)";
+    if (n > 0 && k == 0) return "not identifiable: every trial was answered wrongly, so the likelihood has no maximum (it rises as the function moves above the stimuli)";
+    // Fewer levels than free parameters: curves through the levels' proportions form a family,
+    // all with the same likelihood (two levels gave a threshold of 1.5 or of 166, the lapse
+    // deciding which).
+    const std::size_t free = o.max_lapse > 0.0 ? 3 : 2;
+    if (d.x.size() < free)
+        return "not identifiable: " + std::to_string(d.x.size()) + " stimulus levels for " + std::to_string(free) +
+               " free parameters (threshold, scale" + (free == 3 ? ", lapse" : "") + "): curves through every level fit equally well";
+    return "";
+}
+
+// The ML fit and kBoundsRule's verdicts on its estimates.
+PsyFit fit_checked(const PsyData& d, const PsyFitOptions& o, Limits& lim) {
+    PsyFit f = fit_from(d, o, nullptr);
+    if (!f.ok) return f;
+    if (const std::string why = not_identifiable(d, o); !why.empty()) {
+        f.ok = false;
+        f.undefined = why;
+        return f;
+    }
+    lim = Limits::of(d, o);
+    if (const std::string why = lim.threshold(f.threshold); !why.empty()) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "the likelihood's maximum at %.4g ", f.threshold);
+        f.threshold_unbounded = kNotBounded + buf + why;
+        f.scale_unbounded = kNotBounded + "the threshold is not bounded, so neither is the slope";
+    } else if (const std::string w = lim.width_of(f.scale); !w.empty()) {
+        f.scale_unbounded = kNotBounded + w;
+        // A function flat over the stimuli crosses F = 0.5 wherever the noise puts it.
+        if (lim.width(f.scale) > lim.range)
+            f.threshold_unbounded = kNotBounded + "the fitted function is flat over the stimuli, so where it crosses F = 0.5 is not located";
+    }
+    f.lapse_at_bound = lim.lapse_at_bound(f.lapse);
+    return f;
 }
 
 }  // namespace
 
-PsyFit fit_psychometric_ml(const PsyData& d, const PsyFitOptions& o) { return fit_from(d, o, nullptr); }
+const char* const kBoundsRule =
+    "a value is not bounded by the data when the likelihood has no single maximum (every trial right or every trial "
+    "wrong, fewer stimulus levels than free parameters), when a threshold lies outside the stimuli by more than half "
+    "their range, or a fitted function's width (scale; 1 / beta in ln x for the Weibull) exceeds that range (flat over the "
+    "stimuli: then its threshold is not located either) or is below 1/1000 of it (a step); an interval is not bounded "
+    "when an end runs past those limits, when more than 20 % of the bootstrap fits ran past them, when fewer than 90 % "
+    "of the resamples converged, or when it misses the estimate or has no width; a lapse at its maximum is reported, not "
+    "counted (its bound is by design)";
+
+PsyFit fit_psychometric_ml(const PsyData& d, const PsyFitOptions& o) {
+    Limits lim;
+    return fit_checked(d, o, lim);
+}
 
 PsyFit fit_psychometric(const PsyData& d, const PsyFitOptions& o) {
-    PsyFit f = fit_from(d, o, nullptr);
+    Limits lim;
+    PsyFit f = fit_checked(d, o, lim);
     if (!f.ok || o.bootstrap <= 0) return f;
+    if (!f.threshold_unbounded.empty()) {
+        f.threshold_ci_unbounded = f.scale_ci_unbounded = kNotBounded + "the threshold itself is not";
+        return f;
+    }
     std::uint64_t rng = mix64(o.seed ^ 0xB0075Dull);
     std::vector<double> ts, ss;
+    int at_limit = 0;
     const bool log_t = o.function == PsyFunction::weibull;
     const P3 hint{log_t ? std::log(f.threshold) : f.threshold, std::log(f.scale),
                   std::log(std::max(f.lapse, 1e-6) / std::max(o.max_lapse - f.lapse, 1e-6))};
@@ -131,15 +237,46 @@ PsyFit fit_psychometric(const PsyData& d, const PsyFitOptions& o) {
             for (int j = 0; j < d.n[i]; ++j) k += uniform01(rng) < p;
             r.k[i] = k;
         }
+        // A resample's own flat likelihood is not refused here: its fit runs to a limit and is
+        // counted as one, which is what it says about the data.
         const PsyFit g = fit_from(r, o, &hint);
-        if (g.ok) ts.push_back(g.threshold), ss.push_back(g.scale);
+        if (!g.ok) continue;
+        ts.push_back(g.threshold), ss.push_back(g.scale);
+        at_limit += lim.ran_to_limit(g);
     }
     f.bootstrap = static_cast<int>(ts.size());
-    if (ts.size() >= 2) {
-        const double a = (1.0 - o.confidence) / 2.0;
-        f.threshold_ci[0] = quantile(ts, a), f.threshold_ci[1] = quantile(ts, 1.0 - a);
-        f.scale_ci[0] = quantile(ss, a), f.scale_ci[1] = quantile(ss, 1.0 - a);
+    f.at_limit_share = ts.empty() ? 0.0 : static_cast<double>(at_limit) / static_cast<double>(ts.size());
+    char share[160];
+    std::snprintf(share, sizeof share, "%d of %d bootstrap fits ran to a limit (more than %.0f %% do)", at_limit, f.bootstrap,
+                  100.0 * kMaxAtLimitShare);
+    std::string whole;  // a reason that holds for both intervals
+    if (f.bootstrap < 2 || f.bootstrap < kMinConvergedShare * o.bootstrap)
+        whole = kNotBounded + std::to_string(f.bootstrap) + " of " + std::to_string(o.bootstrap) + " resamples converged";
+    else if (f.at_limit_share > kMaxAtLimitShare)
+        whole = kNotBounded + share;
+    if (!whole.empty()) {
+        f.threshold_ci_unbounded = f.scale_ci_unbounded = whole;
+        return f;
     }
+    const double a = (1.0 - o.confidence) / 2.0;
+    f.threshold_ci[0] = quantile(ts, a), f.threshold_ci[1] = quantile(ts, 1.0 - a);
+    f.scale_ci[0] = quantile(ss, a), f.scale_ci[1] = quantile(ss, 1.0 - a);
+    // An interval's ends against the limits, then against its own estimate.
+    auto judge = [&](const double ci[2], double estimate, bool is_threshold) -> std::string {
+        for (int e = 0; e < 2; ++e) {
+            const std::string why = is_threshold ? lim.threshold(ci[e]) : lim.width_of(ci[e]);
+            if (!why.empty()) {
+                char buf[80];
+                std::snprintf(buf, sizeof buf, "its %s end (%.4g): ", e == 0 ? "lower" : "upper", ci[e]);
+                return kNotBounded + buf + why;
+            }
+        }
+        if (!(ci[0] < ci[1])) return kNotBounded + "the bootstrap fits do not vary (an interval of no width)";
+        if (!(ci[0] <= estimate && estimate <= ci[1])) return kNotBounded + "the bootstrap interval does not contain the estimate";
+        return "";
+    };
+    f.threshold_ci_unbounded = judge(f.threshold_ci, f.threshold, true);
+    f.scale_ci_unbounded = f.scale_unbounded.empty() ? judge(f.scale_ci, f.scale, false) : kNotBounded + "the scale itself is not";
     return f;
 }
 
