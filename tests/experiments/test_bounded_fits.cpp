@@ -136,3 +136,20 @@ TEST_CASE("bounded fits: constant stimuli, lapse 0: every interval reported, cov
     CHECK(reported == 30);
     CHECK(covered >= 25);
 }
+
+TEST_CASE("bounded fits: an interval end below zero on stimuli that are all magnitudes is not bounded, however near the stimuli") {
+    // 13, 15, 16, 17, 19 of 20 at 1..5 (2AFC): the estimate (2.27) is well inside the stimuli,
+    // but the bootstrap's lower end falls to about -0.66, within half the range of the lowest
+    // level (the old rule kept it) yet below zero, where no stimulus of this kind lies (the
+    // README's one-participant edge-sharpness run printed -1.13 mm that way).
+    const json f = fit_of(results_csv({1, 2, 3, 4, 5}, 20, {13, 15, 16, 17, 19}));
+    CHECK(f["threshold"].get<double>() == doctest::Approx(2.27).epsilon(0.02));
+    CHECK(f["threshold_ci"].is_null());
+    CHECK(starts(f["threshold_ci_undefined"], "not bounded by these data: its lower end ("));
+    CHECK(f["threshold_ci_undefined"].get<std::string>().find("below zero, and every stimulus (1 .. 5) is a magnitude above it") !=
+          std::string::npos);
+    // The same proportions on stimuli that straddle zero (-2..2) are a signed quantity: the rule
+    // is then half the range only, and the threshold moves with the stimuli.
+    const json g = fit_of(results_csv({-2, -1, 0, 1, 2}, 20, {13, 15, 16, 17, 19}));
+    CHECK(g["threshold"].get<double>() == doctest::Approx(f["threshold"].get<double>() - 3.0).epsilon(0.02));
+}

@@ -112,6 +112,7 @@ struct Limits {
     double lo = 0.0, hi = 0.0, range = 0.0;  // in the function's coordinate
     double max_lapse = 0.0;
     std::string stimuli;  // "1 .. 5", for the reasons
+    bool positive = false;  // every stimulus > 0 (not for the Weibull, whose ln x has no sign to keep)
     static Limits of(const PsyData& d, const PsyFitOptions& o) {
         Limits l;
         l.log = o.function == PsyFunction::weibull;
@@ -123,6 +124,10 @@ struct Limits {
         std::snprintf(buf, sizeof buf, "%.4g .. %.4g", lo, hi);
         l.stimuli = buf;
         l.lo = l.u(lo), l.hi = l.u(hi), l.range = l.hi - l.lo;
+        // Stimuli all above zero are magnitudes (a radius difference, a force): a threshold below
+        // zero is not one of them, however near the stimuli (1 participant's edge-sharpness
+        // force+cld interval ran to -1.13 mm).
+        l.positive = !l.log && lo > 0.0;
         return l;
     }
     double u(double x) const { return log ? std::log(x) : x; }
@@ -132,7 +137,10 @@ struct Limits {
         const double v = u(t);
         // Half the range: beyond it the threshold is where the assumed shape of the function,
         // extrapolated over more than half the tested span, puts it, not where the data do.
-        if (std::isfinite(v) && v >= lo - 0.5 * range && v <= hi + 0.5 * range && range > 0.0) return "";
+        if (std::isfinite(v) && v >= lo - 0.5 * range && v <= hi + 0.5 * range && range > 0.0) {
+            if (positive && v < 0.0) return "it lies below zero, and every stimulus (" + stimuli + ") is a magnitude above it";
+            return "";
+        }
         return "it lies outside the stimuli (" + stimuli + ") by more than half their range";
     }
     std::string width_of(double s) const {
@@ -204,7 +212,7 @@ PsyFit fit_checked(const PsyData& d, const PsyFitOptions& o, Limits& lim) {
 const char* const kBoundsRule =
     "a value is not bounded by the data when the likelihood has no single maximum (every trial right or every trial "
     "wrong, fewer stimulus levels than free parameters), when a threshold lies outside the stimuli by more than half "
-    "their range, or a fitted function's width (scale; 1 / beta in ln x for the Weibull) exceeds that range (flat over the "
+    "their range (or below zero when every stimulus is above it: a magnitude), or a fitted function's width (scale; 1 / beta in ln x for the Weibull) exceeds that range (flat over the "
     "stimuli: then its threshold is not located either) or is below 1/1000 of it (a step); an interval is not bounded "
     "when an end runs past those limits, when more than 20 % of the bootstrap fits ran past them, when fewer than 90 % "
     "of the resamples converged, or when it misses the estimate or has no width; a lapse at its maximum is reported, not "
