@@ -474,8 +474,11 @@ TEST_CASE("a press from far above (the free-space advance) lands the proxy as a 
         CAPTURE(contacts);
         CHECK(presses > 300);
         CHECK(contacts > presses / 4);
-        CHECK(advanced > presses / 2);  // most jumps start farther than R from every segment
         if (scene_index == 0) {
+            // Most jumps start farther than R from every segment. (The small scenes gather all
+            // their segments whenever the angle is unchanged, validation's reference build
+            // included: kProxySmallScene.)
+            CHECK(advanced > presses / 2);
             // The jump's own disc (3-12 cm plus R) holds a third or more of the 0.4 m contour;
             // what is left after the advance is the press's depth and the slide it causes.
             MESSAGE("dense sinusoid, mean segments on an advanced press: gathered " << advanced_segments / advanced
