@@ -373,12 +373,11 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
 // nothing (the proxy already within R of the contour).
 double Proxy::free_advance(Vec2 start, Vec2 finger, double max_push) const {
     const double R = def_.finger.radius;
-    const double reach = glm::length(start - finger) + max_push;  // m, as Proxy::update's
+    const double to_finger = glm::length(finger - start);  // m
     const double nearest = env_->tree.nearest_distance(
         start, [&](int i) { return distance_to_segment(env_->segments[static_cast<std::size_t>(i)], start); });
     const double free = nearest - R - kWarmStartMargin;  // m, no piece within it of start
-    if (!(free > max_push + kWarmStartMargin)) return reach;
-    const double to_finger = glm::length(finger - start);  // m
+    if (!(free > max_push + kWarmStartMargin)) return to_finger + max_push;  // Proxy::update's reach
     return std::max(0.0, to_finger - free) + max_push;
 }
 
@@ -1487,8 +1486,8 @@ void Proxy::anticipate(Vec2 finger, double phi) {
             search_started_ = ticks_;
         }
         if (continue_anticipation(budget)) {
-            const PadFrame& pad = pad_frame(search_phi_);
-            if constexpr (kValidation) validate_anticipation(search_.p, pad, search_best_segment_, search_best_foot_);
+            if constexpr (kValidation)
+                validate_anticipation(search_.p, pad_frame(search_phi_), search_best_segment_, search_best_foot_);
             anticipated_.valid = search_best_segment_ >= 0;
             anticipated_.searched_at = search_started_;
             if (anticipated_.valid) {
