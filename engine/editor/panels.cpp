@@ -326,6 +326,76 @@ void tuning_window(EditorState& s, const EditorLayout& layout, ImGuiCond cond) {
     ImGui::End();
 }
 
+// The Haptics panel's text (status_window), each item starting on a whole line of `line` px.
+void haptics_text(EditorState& s, const FrameInfo& info, float line) {
+    // Wrapped text is a few lines tall without their spacing: the next item goes to the next line.
+    auto next_row = [line] { ImGui::SetCursorPosY(std::ceil(ImGui::GetCursorPosY() / line - 1e-3f) * line); };
+    ImGui::PushTextWrapPos(0.0f);
+    if (s.servo) {
+        const ServoSnapshot snap = s.servo->snapshot();
+        const bool stopped = s.servo->stopped();
+        const bool fault = snap.state == ServoState::fault;
+        ImGui::TextColored(fault ? ImVec4(1, 0.35f, 0.3f, 1) : ImVec4(0.7f, 0.9f, 0.7f, 1), "servo: %s%s%s",
+                           stopped ? "STOPPED (idle)" : to_string(snap.state), fault ? " - " : "",
+                           fault ? to_string(snap.fault) : "");
+        next_row();
+        if (snap.fault_count) {
+            ImGui::Text("faults: %u, last: %s at %.1f s", snap.fault_count, to_string(s.last_fault), s.last_fault_t);
+            ImGui::SameLine();
+            if (ImGui::SmallButton("clear fault")) s.servo->clear_fault();
+            next_row();
+        }
+        ImGui::Text("x_f (%.2f, %.2f) mm  phi %.1f deg", snap.finger.x * 1e3, snap.finger.y * 1e3, snap.phi * 180.0 / kPi);
+        next_row();
+        ImGui::Text("%s  |F| %.3f N  depth %.3f mm", snap.contact ? "CONTACT" : "free",
+                    std::hypot(snap.force.x, snap.force.y), snap.depth * 1e3);
+        next_row();
+        ImGui::Text("l_d %.2f mm  roller %.2f mm", snap.l_d * 1e3, snap.roller_l * 1e3);
+        next_row();
+        ImGui::Text("Ke in effect %.0f N/m, max %.2f N", snap.stiffness, snap.max_force);
+        next_row();
+        // The passivity observer's budget (haptics/safety.hpp): the energy the loop generated, net
+        // of what the device dissipated, against the threshold of a report. A user raising Ke sees
+        // the margin shrink here before anything faults.
+        const double used = std::max(0.0, snap.observer_used);
+        ImGui::TextColored(used > 0.5 ? ImVec4(1, 0.6f, 0.3f, 1) : ImVec4(0.7f, 0.9f, 0.7f, 1),
+                           "passivity budget used %.0f %% (%.0f of %.0f uJ)%s", 100.0 * used,
+                           snap.observer_used * snap.observer_threshold * 1e6, snap.observer_threshold * 1e6,
+                           snap.passivity_damping > 0.0 ? ", damping added" : "");
+        next_row();
+        const auto ps = s.history.period_stats(s.servo->period());
+        ImGui::Text("servo %.0f Hz (T = %.0f us)", s.servo->rate(), s.servo->period() * 1e6);
+        next_row();
+        ImGui::Text("period p50 %.0f us  p99 %.0f us  max %.0f us", ps.p50 * 1e6, ps.p99 * 1e6, ps.max * 1e6);
+        next_row();
+        ImGui::Text("late ticks (>1.5 T) %zu / %zu (5 s), overruns %llu", ps.late, ps.count,
+                    static_cast<unsigned long long>(s.servo->overruns()));
+        next_row();
+        ImGui::TextDisabled("%s", s.servo->scheduling().c_str());
+        next_row();
+    }
+    ImGui::SetCursorPosY(ImGui::GetCursorPosY() + line);  // a blank line between the servo and the frame
+    ImGui::Text("%s, %dx%d, %.1f ms/frame, %.0f fps", info.present_mode.c_str(), info.width, info.height, info.frame_ms,
+                info.fps);
+    next_row();
+    ImGui::TextDisabled("%s", info.gpu.c_str());
+    next_row();
+    if (info.validation_messages) {
+        ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "validation messages: %d", info.validation_messages);
+        next_row();
+    }
+    ImGui::Text("%d contours, %d segments, undo %zu", static_cast<int>(s.doc.scene().contours.size()),
+                segment_count(s.doc.scene()), s.doc.undo_depth());
+    next_row();
+    if (!s.doc.valid()) {
+        ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "Invalid geometry (not sent to the servo, not saved): %s",
+                           s.doc.problem().c_str());
+        next_row();
+    }
+    ImGui::Dummy(ImVec2(0.0f, 0.0f));  // the content ends on a line: the last scroll is whole lines too
+    ImGui::PopTextWrapPos();
+}
+
 void status_window(EditorState& s, const FrameInfo& info, const EditorLayout& layout, ImGuiCond cond) {
     ImGui::SetNextWindowPos(ImVec2(layout.haptics.x, layout.haptics.y), cond);
     ImGui::SetNextWindowSize(ImVec2(layout.haptics.w, layout.haptics.h), cond);
@@ -344,48 +414,20 @@ void status_window(EditorState& s, const FrameInfo& info, const EditorLayout& la
         if (ImGui::IsItemVisible()) note_panel_part("Haptics > emergency stop", Rect{a.x, a.y, b.x - a.x, b.y - a.y});
     }
     device_controls(s);
-    if (s.servo) {
-        const ServoSnapshot snap = s.servo->snapshot();
-        const bool stopped = s.servo->stopped();
-        const bool fault = snap.state == ServoState::fault;
-        ImGui::TextColored(fault ? ImVec4(1, 0.35f, 0.3f, 1) : ImVec4(0.7f, 0.9f, 0.7f, 1), "servo: %s%s%s",
-                           stopped ? "STOPPED (idle)" : to_string(snap.state), fault ? " - " : "",
-                           fault ? to_string(snap.fault) : "");
-        if (snap.fault_count) {
-            ImGui::Text("faults: %u, last: %s at %.1f s", snap.fault_count, to_string(s.last_fault), s.last_fault_t);
-            ImGui::SameLine();
-            if (ImGui::SmallButton("clear fault")) s.servo->clear_fault();
-        }
-        ImGui::Text("x_f (%.2f, %.2f) mm  phi %.1f deg", snap.finger.x * 1e3, snap.finger.y * 1e3, snap.phi * 180.0 / kPi);
-        ImGui::Text("%s  |F| %.3f N  depth %.3f mm", snap.contact ? "CONTACT" : "free",
-                    std::hypot(snap.force.x, snap.force.y), snap.depth * 1e3);
-        ImGui::Text("l_d %.2f mm  roller %.2f mm", snap.l_d * 1e3, snap.roller_l * 1e3);
-        ImGui::Text("Ke in effect %.0f N/m, max %.2f N", snap.stiffness, snap.max_force);
-        // The passivity observer's budget (haptics/safety.hpp): the energy the loop generated, net
-        // of what the device dissipated, against the threshold of a report. A user raising Ke sees
-        // the margin shrink here before anything faults.
-        const double used = std::max(0.0, snap.observer_used);
-        ImGui::TextColored(used > 0.5 ? ImVec4(1, 0.6f, 0.3f, 1) : ImVec4(0.7f, 0.9f, 0.7f, 1),
-                           "passivity budget used %.0f %% (%.0f of %.0f uJ)%s", 100.0 * used,
-                           snap.observer_used * snap.observer_threshold * 1e6, snap.observer_threshold * 1e6,
-                           snap.passivity_damping > 0.0 ? ", damping added" : "");
-        const auto ps = s.history.period_stats(s.servo->period());
-        ImGui::Text("servo %.0f Hz (T = %.0f us)", s.servo->rate(), s.servo->period() * 1e6);
-        ImGui::Text("period p50 %.0f us  p99 %.0f us  max %.0f us", ps.p50 * 1e6, ps.p99 * 1e6, ps.max * 1e6);
-        ImGui::Text("late ticks (>1.5 T) %zu / %zu (5 s), overruns %llu", ps.late, ps.count,
-                    static_cast<unsigned long long>(s.servo->overruns()));
-        ImGui::TextDisabled("%s", s.servo->scheduling().c_str());
+    // The text below scrolls in whole lines: a child as tall as the lines that fit, each item
+    // starting on a line, its scroll snapped to a line. So no line is ever cut by the panel's
+    // edge (at 1280x720 the Plots panel below cut the last one in half).
+    const float line = ImGui::GetTextLineHeightWithSpacing();  // px
+    const int rows = static_cast<int>(std::floor(ImGui::GetContentRegionAvail().y / line));
+    if (rows >= 1 && ImGui::BeginChild("##haptics text", ImVec2(0.0f, static_cast<float>(rows) * line), false)) {
+        haptics_text(s, info, line);
+        const ImVec2 a = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+        note_panel_part("Haptics > text", Rect{a.x, a.y, size.x, size.y});
+        note_panel_part("Haptics > text row", Rect{a.x, a.y, size.x, line});
+        const float sy = ImGui::GetScrollY(), snapped = std::round(sy / line) * line;
+        if (std::abs(snapped - sy) > 0.5f) ImGui::SetScrollY(std::min(snapped, ImGui::GetScrollMaxY()));
     }
-    ImGui::Separator();
-    ImGui::Text("%s, %dx%d, %.1f ms/frame, %.0f fps", info.present_mode.c_str(), info.width, info.height, info.frame_ms,
-                info.fps);
-    ImGui::TextDisabled("%s", info.gpu.c_str());
-    if (info.validation_messages) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "validation messages: %d", info.validation_messages);
-    ImGui::Text("%d contours, %d segments, undo %zu", static_cast<int>(s.doc.scene().contours.size()),
-                segment_count(s.doc.scene()), s.doc.undo_depth());
-    if (!s.doc.valid())
-        ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "Invalid geometry (not sent to the servo, not saved): %s",
-                           s.doc.problem().c_str());
+    if (rows >= 1) ImGui::EndChild();
     ImGui::PopTextWrapPos();
     ImGui::End();
 }

@@ -59,21 +59,36 @@ void build_scene_layer(const FrameContent& content, const View& view, const Them
     if (content.scene) parts::draw_solids(*content.scene, view, theme, m, out);
 }
 
-void build_overlay_layer(const FrameContent& content, const View& view, const Theme& theme, DrawList& out) {
+void build_overlay_layer(const FrameContent& content, const View& view, const Theme& theme, DrawList& out,
+                         LabelMarks* placed) {
     const parts::Metrics m = parts::metrics_for(view);
     if (content.overlays.cspace && content.finger && content.env) parts::draw_cspace(content, view, theme, m, out);
-    if (content.finger) parts::draw_proxy_state(content, view, theme, m, out);
+    // The labels' room: the canvas less the insets (the editor's panels), less the legend's boxes
+    // and the status line, which keep their fixed places.
+    LabelMarks marks;
+    marks.area = {{content.left_inset_px, content.top_inset_px},
+                  {static_cast<float>(view.width) - content.right_inset_px,
+                   static_cast<float>(view.height) - content.bottom_inset_px}};
+    const LegendLayout legend = legend_layout(content, view);
+    auto box_of = [](const PxBox& b) { return LabelBox{{b.x, b.y}, {b.x + b.w, b.y + b.h}}; };
+    marks.texts.push_back(box_of(legend.scale_bar));
+    if (legend.force_bar) marks.texts.push_back(box_of(*legend.force_bar));
+    if (legend.platform_key) marks.texts.push_back(box_of(*legend.platform_key));
+    if (const auto status = parts::status_line_box(content, view)) marks.texts.push_back(*status);
+    if (content.finger) parts::draw_proxy_state(content, view, theme, m, out, marks);
     parts::draw_legend(content, view, theme, m, out);
+    if (placed) *placed = std::move(marks);
 }
 
 bool scene_layer_follows_finger(const FrameContent& content) {
     return content.overlays.zones && content.finger && content.env;
 }
 
-void build_frame(const FrameContent& content, const View& view, const Theme& theme, DrawList& out) {
+void build_frame(const FrameContent& content, const View& view, const Theme& theme, DrawList& out,
+                 LabelMarks* placed) {
     out.clear();
     build_scene_layer(content, view, theme, out);
-    build_overlay_layer(content, view, theme, out);
+    build_overlay_layer(content, view, theme, out, placed);
 }
 
 }  // namespace contactlab::render

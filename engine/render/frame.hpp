@@ -6,6 +6,7 @@
 #pragma once
 
 #include "engine/render/draw_list.hpp"
+#include "engine/render/label_place.hpp"
 #include "engine/render/theme.hpp"
 #include "engine/render/view.hpp"
 #include "haptics/environment.hpp"
@@ -89,7 +90,9 @@ Aabb fingertip_box(Vec2 finger, double phi, double radius);
 View fingertip_view(const FrameContent& content, int width, int height);
 
 // Fills `out` (its size is the view's) with the frame: build_scene_layer, then build_overlay_layer.
-void build_frame(const FrameContent& content, const View& view, const Theme& theme, DrawList& out);
+// `placed`, when given, receives where the overlay's labels went and the marks they avoided.
+void build_frame(const FrameContent& content, const View& view, const Theme& theme, DrawList& out,
+                 LabelMarks* placed = nullptr);
 
 // The frame in two layers, so that a caller drawing many frames (the editor) can keep the first
 // while only the finger moves: drawn in this order into one target they give build_frame's pixels.
@@ -98,7 +101,8 @@ void build_frame(const FrameContent& content, const View& view, const Theme& the
 // scene_layer_follows_finger). The overlay layer is the rest: c-space overlay, proxy ghost,
 // finger, force, contacts and the legend. Both append to `out` (build_frame clears it first).
 void build_scene_layer(const FrameContent& content, const View& view, const Theme& theme, DrawList& out);
-void build_overlay_layer(const FrameContent& content, const View& view, const Theme& theme, DrawList& out);
+void build_overlay_layer(const FrameContent& content, const View& view, const Theme& theme, DrawList& out,
+                         LabelMarks* placed = nullptr);
 // True when the scene layer also depends on the finger (the zones overlay is on).
 bool scene_layer_follows_finger(const FrameContent& content);
 

@@ -6,12 +6,17 @@
 // straight body 2.5 R long back toward the hand.
 #include "engine/render/frame_parts.hpp"
 
+#include "engine/render/label_place.hpp"
 #include "engine/render/text.hpp"
 #include "haptics/finger.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <tuple>
+#include <utility>
+#include <vector>
 
 namespace contactlab::render::parts {
 namespace {
@@ -40,10 +45,53 @@ void arrow(P2 from, P2 to, float width, Color color, DrawList& out) {
     out.fill_convex(tri, color);
 }
 
+// The environment's pieces inside `region` (px) as strokes of the contour's width. Runs of
+// pieces shorter than 1.5 px (a dense outline) are joined into one stroke per 1.5 px of path, so
+// the count stays near the region's path length in px, not the contour's density.
+void add_contour_marks(const Environment& env, const View& view, const LabelBox& region, float width, LabelMarks& marks) {
+    const Vec2 w0 = view.to_world(region.lo.x, region.hi.y), w1 = view.to_world(region.hi.x, region.lo.y);
+    Aabb box;
+    box.grow(w0);
+    box.grow(w1);
+    std::vector<int> hits;
+    env.tree.query(box, hits);
+    std::sort(hits.begin(), hits.end());  // chain order within a contour
+    std::vector<P2> pts;
+    P2 run_start{0.0f}, run_end{0.0f};
+    int last = -1;
+    auto flush = [&] {
+        if (last >= 0 && run_end != run_start) marks.add_stroke(run_start, run_end, width);
+    };
+    for (const int i : hits) {
+        const EnvSegment& s = env.segments[i];
+        pts.clear();
+        if (s.kind == EnvSegment::Kind::line) {
+            pts = {view.to_px(s.start), view.to_px(s.end)};
+        } else {
+            const int n = arc_chord_count(s.radius * view.px_per_m, s.angles.width, 0.5);
+            for (int k = 0; k <= n; ++k) pts.push_back(view.to_px(s.center + s.radius * unit_at(s.angles.start + s.angles.width * k / n)));
+        }
+        const bool joined = last >= 0 && env.segments[last].next == i && glm::length(pts.front() - run_end) < 0.01f;
+        if (!joined) {
+            flush();
+            run_start = run_end = pts.front();
+        }
+        for (std::size_t k = 1; k < pts.size(); ++k) {
+            run_end = pts[k];
+            if (glm::length(run_end - run_start) >= 1.5f) {
+                marks.add_stroke(run_start, run_end, width);
+                run_start = run_end;
+            }
+        }
+        last = i;
+    }
+    flush();
+}
+
 }  // namespace
 
 void draw_finger_body(Vec2 center, double phi, const FingerShape& shape, const View& view, Color fill, Color outline,
-                      Color pad, const Metrics& m, DrawList& out) {
+                      Color pad, const Metrics& m, DrawList& out, LabelMarks* marks) {
     const double R = shape.radius, h = pad_half_angle(shape);
     const Vec2 a = unit_at(phi), up = unit_at(phi + 0.5 * kPi);
     std::vector<P2> body;
@@ -55,22 +103,44 @@ void draw_finger_body(Vec2 center, double phi, const FingerShape& shape, const V
     std::vector<P2> pad_arc;
     world_arc(center, R, pad_mid_angle(phi) - h, pad_mid_angle(phi) + h, view, pad_arc);
     out.stroke(pad_arc, false, m.pad_width, pad);
+    if (marks) {
+        marks->add_polyline(body, true, m.outline_width);
+        marks->add_polyline(pad_arc, false, m.pad_width);
+    }
 }
 
-void draw_proxy_state(const FrameContent& c, const View& view, const Theme& theme, const Metrics& m, DrawList& out) {
+void draw_proxy_state(const FrameContent& c, const View& view, const Theme& theme, const Metrics& m, DrawList& out,
+                      LabelMarks& marks) {
     const ProxyOutput& o = *c.finger;
+    // Labels wait until every mark is drawn (label_place.hpp): placed in this order, each in the
+    // first free place around its anchor, first toward `toward`.
+    struct PendingLabel {
+        std::string text;
+        Color color;
+        P2 anchor, toward;
+        float gap;
+    };
+    std::vector<PendingLabel> labels;
+
     // Ghost finger at the proxy (only when it differs from the finger: in contact).
     if (o.contact)
         draw_finger_body(o.proxy, o.phi, c.shape, view, Color{}.with_alpha(0), theme.proxy, theme.proxy.with_alpha(110),
-                         m, out);
+                         m, out, &marks);
     // The finger as measured.
-    draw_finger_body(o.finger, o.phi, c.shape, view, theme.finger_fill, theme.finger_outline, theme.pad, m, out);
+    draw_finger_body(o.finger, o.phi, c.shape, view, theme.finger_fill, theme.finger_outline, theme.pad, m, out, &marks);
 
     // Target contact location l_d on the finger's pad: a ring (where the roller is driven).
     const P2 target = view.to_px(pad_point(o.finger, o.phi, c.shape, o.l_d));
-    if (o.contact || o.anticipating) out.stroke_circle(target, m.dot_radius * 1.4f, m.outline_width, theme.target);
+    if (o.contact || o.anticipating) {
+        out.stroke_circle(target, m.dot_radius * 1.4f, m.outline_width, theme.target);
+        marks.add_disc(target, m.dot_radius * 1.4f + 0.5f * m.outline_width);
+    }
     // The roller where the device says it is: a filled dot on the pad.
-    if (c.roller_l) out.fill_disc(view.to_px(pad_point(o.finger, o.phi, c.shape, *c.roller_l)), m.dot_radius * 0.8f, theme.target);
+    if (c.roller_l) {
+        const P2 roller = view.to_px(pad_point(o.finger, o.phi, c.shape, *c.roller_l));
+        out.fill_disc(roller, m.dot_radius * 0.8f, theme.target);
+        marks.add_disc(roller, m.dot_radius * 0.8f);
+    }
 
     // Seed 003's platform under the pad (side view): Table 2's B_i lie 4 mm behind and 8 mm ahead of
     // its centre along the finger, the A_i on the nail side 11 mm behind and 15 mm ahead of the
@@ -87,9 +157,13 @@ void draw_proxy_state(const FrameContent& c, const View& view, const Theme& them
         const Vec2 top = o.finger + c.shape.radius * n_in;
         const Vec2 a_prox = top - 0.011 * t, a_dist = top + 0.015 * t;
         const Color cable = theme.cable.with_alpha(170);
-        out.line(view.to_px(b_prox), view.to_px(a_prox), m.outline_width * 0.75f, cable);
-        out.line(view.to_px(b_dist), view.to_px(a_dist), m.outline_width * 0.75f, cable);
-        out.line(view.to_px(centre - 0.006 * dir), view.to_px(centre + 0.008 * dir), m.pad_width * 1.5f, theme.target);
+        for (const auto& [b, a] : {std::pair{b_prox, a_prox}, std::pair{b_dist, a_dist}}) {
+            out.line(view.to_px(b), view.to_px(a), m.outline_width * 0.75f, cable);
+            marks.add_stroke(view.to_px(b), view.to_px(a), m.outline_width * 0.75f);
+        }
+        const P2 bar0 = view.to_px(centre - 0.006 * dir), bar1 = view.to_px(centre + 0.008 * dir);
+        out.line(bar0, bar1, m.pad_width * 1.5f, theme.target);
+        marks.add_stroke(bar0, bar1, m.pad_width * 1.5f);
         const double prox = pd.tension[0] + pd.tension[1], dist = pd.tension[2];  // N
         for (const auto& [b, a, q] : {std::tuple{b_prox, a_prox, prox}, std::tuple{b_dist, a_dist, dist}}) {
             if (!(q > 0.0) || !(pd.full_tension > 0.0)) continue;
@@ -98,12 +172,12 @@ void draw_proxy_state(const FrameContent& c, const View& view, const Theme& them
             const float dl = glm::length(d);
             if (dl < 0.5f) continue;
             const float len = static_cast<float>(std::min(q / pd.full_tension, 1.0)) * m.arrow_full;
-            arrow(from, from + d / dl * len, m.arrow_width * 0.75f, theme.cable, out);
-            if (c.text) {
-                char label[32];
-                std::snprintf(label, sizeof label, "%.2f N", q);
-                draw_text(out, from + d / dl * len + P2(4.0f, 0.0f), label, theme.cable, m.text_scale);
-            }
+            const P2 tip = from + d / dl * len;
+            arrow(from, tip, m.arrow_width * 0.75f, theme.cable, out);
+            marks.add_stroke(from, tip, m.arrow_width * 0.75f * 4.0f * 0.9f);  // the head's width
+            char label[32];
+            std::snprintf(label, sizeof label, "%.2f N", q);
+            labels.push_back({label, theme.cable, tip, d / dl, 4.0f});
         }
         // The contact frame at the platform's centre: t along the platform (toward the
         // fingertip), n into the finger; labelled with the text.
@@ -113,15 +187,12 @@ void draw_proxy_state(const FrameContent& c, const View& view, const Theme& them
         const P2 t_end = o_px + t_px / glm::length(t_px) * axis, n_end = o_px + n_px / glm::length(n_px) * axis;
         arrow(o_px, t_end, m.outline_width, theme.legend, out);
         arrow(o_px, n_end, m.outline_width, theme.legend, out);
-        if (c.text) {
-            draw_text(out, t_end + P2(3.0f, 3.0f), "t", theme.legend, m.text_scale);
-            draw_text(out, n_end + P2(3.0f, -3.0f), "n", theme.legend, m.text_scale);
-            // Under the origin, on the side away from the finger (n points into it).
-            const P2 size = text_size("contact frame", m.text_scale);
-            const P2 away = -n_px / glm::length(n_px);
-            const P2 at = o_px + away * (2.5f * m.dot_radius + 0.5f * size.y) - 0.5f * size;
-            draw_text(out, at, "contact frame", theme.legend, m.text_scale);
-        }
+        marks.add_stroke(o_px, t_end, m.outline_width * 4.0f * 0.9f);
+        marks.add_stroke(o_px, n_end, m.outline_width * 4.0f * 0.9f);
+        // The axes' letters first (one character, beside their arrow's tip), then the tensions.
+        labels.insert(labels.begin(), {{"n", theme.legend, n_end, n_px, 3.0f}, {"t", theme.legend, t_end, t_px, 3.0f}});
+        // Away from the finger (n points into it), below the origin if there is room.
+        labels.push_back({"contact frame", theme.legend, o_px, -n_px, 2.5f * m.dot_radius});
     }
 
     // Force on the finger, from the target site, full length at max force.
@@ -131,17 +202,41 @@ void draw_proxy_state(const FrameContent& c, const View& view, const Theme& them
         const float len = static_cast<float>(std::min(f / c.max_force, 1.0)) * m.arrow_full;
         const P2 to = target + P2(static_cast<float>(dir.x), static_cast<float>(-dir.y)) * len;
         arrow(target, to, m.arrow_width, theme.force, out);
+        marks.add_stroke(target, to, m.arrow_width * 4.0f * 0.9f);
     }
 
     // Contacts on the contour, over the arrow.
-    for (int i = 0; i < o.contact_count && i < static_cast<int>(o.contacts.size()); ++i)
+    for (int i = 0; i < o.contact_count && i < static_cast<int>(o.contacts.size()); ++i) {
         out.fill_disc(view.to_px(o.contacts[i].point), m.dot_radius, theme.contact);
+        marks.add_disc(view.to_px(o.contacts[i].point), m.dot_radius);
+    }
 
     // Anticipation (free space): the expected contact on the contour, joined to the pad target.
     if (!o.contact && o.anticipating) {
         const P2 p = view.to_px(o.anticipated_point);
         out.line(target, p, m.outline_width * 0.75f, theme.anticipation.with_alpha(120));
         out.stroke_circle(p, m.dot_radius, m.outline_width, theme.anticipation);
+        marks.add_stroke(target, p, m.outline_width * 0.75f);
+        marks.add_disc(p, m.dot_radius + 0.5f * m.outline_width);
+    }
+
+    if (!c.text || labels.empty()) return;
+    // The contour near the labels is data too: the environment's pieces within reach of the
+    // candidates (the tree's box query), as px strokes.
+    float reach = 0.0f;
+    for (const PendingLabel& l : labels) {
+        const P2 size = text_size(l.text, m.text_scale);
+        reach = std::max(reach, 13.0f * l.gap + std::max(size.x, size.y));
+    }
+    LabelBox region{labels.front().anchor, labels.front().anchor};
+    for (const PendingLabel& l : labels) region.lo = glm::min(region.lo, l.anchor), region.hi = glm::max(region.hi, l.anchor);
+    region.lo -= P2(reach), region.hi += P2(reach);
+    if (c.env) add_contour_marks(*c.env, view, region, m.contour_width, marks);
+    for (const PendingLabel& l : labels) {
+        const P2 size = text_size(l.text, m.text_scale);
+        P2 at;
+        if (place_label(marks, l.text, size, label_candidates(l.anchor, size, l.toward, l.gap), at))
+            draw_text(out, at, l.text, l.color, m.text_scale);
     }
 }
 

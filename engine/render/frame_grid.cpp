@@ -75,10 +75,16 @@ void draw_legend(const FrameContent& c, const View& view, const Theme& theme, co
     }
     draw_platform_key(c, view, theme, out);  // the wearable's colours, with the text
     // Status line, top left: the proxy's state in the UI's units (mm, N, degrees).
+    if (const auto box = status_line_box(c, view))
+        draw_text(out, box->lo, proxy_status_text(*c.finger).c_str(), theme.legend, m.text_scale);
+}
+
+std::optional<LabelBox> status_line_box(const FrameContent& c, const View& view) {
+    if (!(c.text && c.finger && c.status_line)) return std::nullopt;
+    const Metrics m = metrics_for(view);
     const float pad = std::round(m.dot_radius * 2.0f);
-    if (c.text && c.finger && c.status_line)
-        draw_text(out, {c.left_inset_px + pad, pad + c.top_inset_px}, proxy_status_text(*c.finger).c_str(), theme.legend,
-                  m.text_scale);
+    const P2 at{c.left_inset_px + pad, pad + c.top_inset_px};
+    return LabelBox{at, at + text_size(proxy_status_text(*c.finger), m.text_scale)};
 }
 
 }  // namespace contactlab::render::parts

@@ -2,7 +2,9 @@
 #pragma once
 
 #include "engine/render/frame.hpp"
+#include "engine/render/label_place.hpp"
 
+#include <optional>
 #include <vector>
 
 namespace contactlab::render::parts {
@@ -22,16 +24,21 @@ void flatten_segment(const Segment& segment, const View& view, bool skip_first, 
 void draw_grid(const View& view, const Theme& theme, DrawList& out);                        // frame_grid.cpp
 void draw_solids(const Scene& scene, const View& view, const Theme& theme, const Metrics& m,
                  DrawList& out);                                                             // frame_contours.cpp
-// The finger body at (center, phi): filled body, outline and highlighted pad (frame_finger.cpp).
+// The finger body at (center, phi): filled body, outline and highlighted pad (frame_finger.cpp);
+// its outline and pad registered in `marks` when given.
 void draw_finger_body(Vec2 center, double phi, const FingerShape& shape, const View& view, Color fill,
-                      Color outline, Color pad, const Metrics& m, DrawList& out);
+                      Color outline, Color pad, const Metrics& m, DrawList& out, LabelMarks* marks = nullptr);
+// The finger, proxy, contacts, force and platform; every mark registered in `marks`, then their
+// labels (with c.text) placed where they cover nothing (label_place.hpp).
 void draw_proxy_state(const FrameContent& c, const View& view, const Theme& theme, const Metrics& m,
-                      DrawList& out);                                                        // frame_finger.cpp
+                      DrawList& out, LabelMarks& marks);                                      // frame_finger.cpp
 void draw_cspace(const FrameContent& c, const View& view, const Theme& theme, const Metrics& m,
                  DrawList& out);                                                             // frame_overlays.cpp
 void draw_zones(const FrameContent& c, const View& view, const Theme& theme, DrawList& out); // frame_overlays.cpp
 void draw_legend(const FrameContent& c, const View& view, const Theme& theme, const Metrics& m,
                  DrawList& out);                                                             // frame_grid.cpp
+// The status line's box (top left, with text, a finger and status_line), else nothing.
+std::optional<LabelBox> status_line_box(const FrameContent& c, const View& view);             // frame_grid.cpp
 // The wearable platform's key (cable tension and force colours), top right, with the text.
 void draw_platform_key(const FrameContent& c, const View& view, const Theme& theme, DrawList& out);  // frame_grid.cpp
 

@@ -19,6 +19,10 @@ RenderResult render_scene(const VulkanContext& ctx, const Scene& scene, const Re
     content.max_force = def.max_force;
     content.overlays = request.overlays;
     content.text = request.text;
+    content.top_inset_px = request.top_inset_px;
+    content.left_inset_px = request.left_inset_px;
+    content.bottom_inset_px = request.bottom_inset_px;
+    content.right_inset_px = request.right_inset_px;
     if (request.wearable) {
         const ProxyOutput& o = *content.finger;
         const wearable::PlatformDisplayState st = wearable::platform_display_state(o.force.x, o.force.y, o.phi);
@@ -35,7 +39,7 @@ RenderResult render_scene(const VulkanContext& ctx, const Scene& scene, const Re
                                      : default_view(content, request.width, request.height);
     result.proxy = *content.finger;
     DrawList list(request.width, request.height);
-    build_frame(content, result.view, request.theme, list);
+    build_frame(content, result.view, request.theme, list, &result.labels);
     OffscreenTarget target(ctx, request.width, request.height);
     result.image = target.render(list, request.theme.background);
     return result;

@@ -24,6 +24,9 @@ struct RenderRequest {
     // The part of the world to show (m, x right, y up), fitted to the image; else the default
     // view (or the fingertip's with `wearable`). `contactlab render --view X Y W H` (mm).
     std::optional<Aabb> view_box;
+    // px of each edge covered by something else (FrameContent's insets: the editor's panels);
+    // labels stay clear of them. 0 for a picture of its own.
+    float top_inset_px = 0.0f, left_inset_px = 0.0f, bottom_inset_px = 0.0f, right_inset_px = 0.0f;
 };
 
 // What the frame showed besides the pixels (for messages and tests).
@@ -31,6 +34,7 @@ struct RenderResult {
     Image image;
     View view;
     ProxyOutput proxy;
+    LabelMarks labels;  // where the canvas's labels went, what they avoided, what was left out
 };
 
 RenderResult render_scene(const VulkanContext& ctx, const Scene& scene, const RenderRequest& request);

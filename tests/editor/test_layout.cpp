@@ -12,6 +12,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <sstream>
 #include <string>
@@ -107,6 +108,21 @@ void check_block(const std::vector<Part>& parts, double width, double height, bo
     const Part* haptics = named(parts, "Haptics");
     const Part* stop = named(parts, "Haptics > emergency stop");
     if (haptics && stop) CHECK(stop->y + stop->h <= haptics->y + haptics->h + in_eps);
+    // The Haptics panel's text scrolls in whole lines: its box is a whole number of rows tall and
+    // inside the panel, so no line is cut by the panel's edge (the Plots panel below used to cut
+    // the last one in half at 1280x720).
+    const Part* text = named(parts, "Haptics > text");
+    const Part* row = named(parts, "Haptics > text row");
+    CHECK(text != nullptr);
+    CHECK(row != nullptr);
+    if (haptics && text && row) {
+        REQUIRE(row->h > 10.0);
+        const double rows = text->h / row->h;
+        CHECK(rows >= 1.0);
+        CHECK(std::abs(rows - std::round(rows)) < 1e-3);
+        CHECK(text->y >= haptics->y - in_eps);
+        CHECK(text->y + text->h <= haptics->y + haptics->h + in_eps);
+    }
     const double eps = 0.5;  // px: shared edges are fine
     for (std::size_t i = 0; i < parts.size(); ++i) {
         const Part& a = parts[i];
