@@ -9,6 +9,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace contactlab::reports {
 namespace {
@@ -22,6 +25,24 @@ std::string slug(const std::string& s) {
     std::string out;
     for (char ch : s) out += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
     return out;
+}
+
+// The object's keys in natural order (sim2 before sim10): the legend reads as people count.
+std::vector<std::string> natural_order(const json& object) {
+    std::vector<std::string> keys;
+    for (const auto& [k, v] : object.items()) keys.push_back(k);
+    auto split = [](const std::string& k) {
+        std::size_t i = k.size();
+        while (i > 0 && std::isdigit(static_cast<unsigned char>(k[i - 1]))) --i;
+        const std::string digits = k.substr(i);
+        return std::pair{k.substr(0, i), digits.empty() || digits.size() > 9 ? -1L : std::stol(digits)};
+    };
+    std::stable_sort(keys.begin(), keys.end(), [&](const std::string& a, const std::string& b) {
+        const auto [pa, na] = split(a);
+        const auto [pb, nb] = split(b);
+        return pa != pb ? pa < pb : na != nb ? na < nb : a < b;
+    });
+    return keys;
 }
 
 }  // namespace
@@ -194,14 +215,19 @@ std::vector<ReportFigure> threshold_figures(const json& a) {
         if (c.contains("participants")) {
             Chart ch = report_chart("Adaptive tracks: " + name, "trial (analysed, in order)", stimulus);
             int pi = 0;
-            for (const auto& [p, f] : c["participants"].items()) {
+            for (const std::string& p : natural_order(c["participants"])) {
+                const nlohmann::json& f = c["participants"][p];
                 if (!f.contains("adaptive")) continue;
+                // The palette's 8 colours repeat: from the 9th participant on the line is dashed
+                // and the reversal marker one shape further, so no two of 32 tracks look alike.
                 ChartSeries s;
                 s.name = p;
                 s.color = render::chart_color(pi % 8);
                 s.marker = render::Marker::none;
                 s.line_width = 1.5f;
+                s.dashed = (pi / 8) % 2 == 1;
                 ChartSeries rev = marker_series("", pi % 8);
+                rev.marker = marker_series("", pi + pi / 8).marker;
                 int k = 0;
                 for (const auto& row : f["adaptive"]["track"]) {
                     ++k;
