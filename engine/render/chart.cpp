@@ -131,7 +131,9 @@ bool place(const ChartLayout& l, const std::string& s, const std::vector<P2>& ca
     for (const P2& p : candidates) {
         const ChartBox b = text_box(p, s);
         if (b.lo.x < l.plot_lo.x || b.lo.y < l.plot_lo.y || b.hi.x > l.plot_hi.x || b.hi.y > l.plot_hi.y) continue;
-        auto hit = [&](const ChartBox& o) { return b.intersects(o); };
+        // 1 px clear of other text and marks.
+        const ChartBox g{b.lo - P2(1.f), b.hi + P2(1.f)};
+        auto hit = [&](const ChartBox& o) { return g.intersects(o); };
         if (std::any_of(l.text_boxes.begin(), l.text_boxes.end(), hit) || std::any_of(l.mark_boxes.begin(), l.mark_boxes.end(), hit))
             continue;
         at = p;
@@ -249,8 +251,13 @@ void add_marks(ChartLayout& l, const ChartSeries& s) {
         if (s.marker != Marker::none && inside(p, l.plot_lo, l.plot_hi)) l.mark_boxes.push_back({p - P2(kHalf), p + P2(kHalf)});
         if (i < s.y_low.size() && l.x.accepts(s.x[i]) && l.y.accepts(s.y_low[i]) && l.y.accepts(s.y_high[i])) {
             P2 a = px(l, s.x[i], s.y_low[i]), b = px(l, s.x[i], s.y_high[i]);
-            if (clip(a, b, l.plot_lo, l.plot_hi))
-                l.mark_boxes.push_back({P2(a.x - kCap, std::min(a.y, b.y) - 1.f), P2(a.x + kCap, std::max(a.y, b.y) + 1.f)});
+            if (clip(a, b, l.plot_lo, l.plot_hi)) {
+                // The bar (2 px wide) and each cap with a pixel beyond its ink: text touching a
+                // cap's end read as one glyph with it ("Tn=24").
+                const float y0 = std::min(a.y, b.y), y1 = std::max(a.y, b.y);
+                l.mark_boxes.push_back({P2(a.x - 2.f, y0 - 1.f), P2(a.x + 2.f, y1 + 1.f)});
+                for (const float y : {y0, y1}) l.mark_boxes.push_back({P2(a.x - kCap - 2.f, y - 2.f), P2(a.x + kCap + 2.f, y + 2.f)});
+            }
         }
     }
 }

@@ -21,6 +21,10 @@ float label_width(const std::vector<std::string>& labels) {
     return w;
 }
 
+// px per cell side: the requested size, or wider when a column label needs it ("second" at text
+// scale 2 is 56 px: two such labels side by side ran together).
+float cell_of(const MatrixChart& m) { return std::max(static_cast<float>(m.cell), label_width(m.columns) + 10.0f); }
+
 // Left and top space before the first cell.
 P2 origin(const MatrixChart& m) {
     const float line = text_size("Ag", kScale).y;
@@ -32,8 +36,8 @@ P2 origin(const MatrixChart& m) {
 
 P2 matrix_chart_size(const MatrixChart& m) {
     const P2 o = origin(m);
-    const float w = o.x + static_cast<float>(m.columns.size() * m.cell) + kMargin;
-    const float h = o.y + static_cast<float>(m.rows.size() * m.cell) + kMargin;
+    const float w = o.x + static_cast<float>(m.columns.size()) * cell_of(m) + kMargin;
+    const float h = o.y + static_cast<float>(m.rows.size()) * cell_of(m) + kMargin;
     return {std::max(w, text_size(m.title, kScale).x + 2.0f * kMargin), h};
 }
 
@@ -43,7 +47,7 @@ void draw_matrix_chart(const MatrixChart& m, DrawList& out) {
     for (const auto& r : m.counts)
         if (r.size() != m.columns.size()) throw ChartError(m.title + ": a row of counts is not as long as the column labels");
     const P2 o = origin(m);
-    const float line = text_size("Ag", kScale).y, cell = static_cast<float>(m.cell);
+    const float line = text_size("Ag", kScale).y, cell = cell_of(m);
     draw_text(out, {kMargin, kMargin}, m.title, kInk, kScale);
     // Column title and labels above the cells; row title down the left, labels beside the rows.
     draw_text(out, {o.x, kMargin + line + 8.0f}, m.column_title, kInk, kScale);
