@@ -213,7 +213,13 @@ TEST_CASE("edge protocol, 10 model observers: the 1-up-2-down median is within 1
         CHECK(s["conditions"][c]["adaptive"]["procedure"] == "staircase 1-up-2-down");
         CHECK(s["conditions"][c]["adaptive"]["target_p"].get<double>() == doctest::Approx(0.7071).epsilon(1e-3));
         CHECK(s["conditions"][c]["participants"]["obs1"]["adaptive"]["reversals"].get<int>() >= 1);
+        // A model observer records no time: no time figure at all (the report printed "- +- 0").
+        CHECK_FALSE(s["conditions"][c].contains("time_s"));
     }
+    // ... and no comparison of times, said once in the limits instead of once per participant.
+    for (const auto& t : s["comparisons"]) CHECK(t["measure"] != "time_s");
+    REQUIRE(s.contains("not_compared"));
+    CHECK(s["not_compared"][0]["measure"] == "time_s");
     MESSAGE("runtime ", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), " s");
 }
 

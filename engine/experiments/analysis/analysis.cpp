@@ -109,8 +109,9 @@ json figures(const ResultsTable& t, const Columns& col, const RowSet& rows, bool
             failures += failed;
             if (!failed && !t.rows[i][*col.time].empty()) times.push_back(t.number(i, *col.time));
         }
+        // No time at all (a model observer records none): no figure, rather than "- +- 0".
         const Summary s = summarize(times);
-        out["time_s"] = {{"n", s.n}, {"mean", num(s.mean)}, {"sd", num(s.sd)}};
+        if (s.n > 0) out["time_s"] = {{"n", s.n}, {"mean", num(s.mean)}, {"sd", num(s.sd)}};
         if (col.failed) out["failure_proportion"] = num(rows.empty() ? NAN : static_cast<double>(failures) / rows.size());
     }
     return out;
@@ -296,6 +297,7 @@ json analyze_results(const ResultsTable& t, const AnalyzeOptions& o) {
 
     // Two conditions: t tests on what the seeds compare, paired or not by kPairingRule.
     json comparisons = json::array();
+    json not_compared = json::array();  // measures with no values to compare, and why
     if (by_condition.size() == 2) {
         const std::string a = by_condition.begin()->first, bname = std::next(by_condition.begin())->first;
         const RowSet& ra = by_condition.begin()->second;
@@ -392,7 +394,11 @@ json analyze_results(const ResultsTable& t, const AnalyzeOptions& o) {
                 if ((col.failed && truthy(t, i, *col.failed)) || t.rows[i][*col.time].empty()) return static_cast<double>(NAN);
                 return t.number(i, *col.time);
             };
-            compare("time_s", figure_of("time_s", "mean"), time);
+            bool any = false;
+            for (const RowSet* rs : {&ra, &rb})
+                for (std::size_t i : *rs) any = any || std::isfinite(time(i));
+            if (any) compare("time_s", figure_of("time_s", "mean"), time);
+            else not_compared.push_back({{"measure", "time_s"}, {"reason", "no kept trial records a time (a model observer records none)"}});
         }
         if (col.failed) {
             auto failed = [&](std::size_t i) { return truthy(t, i, *col.failed) ? 1.0 : 0.0; };
@@ -400,6 +406,7 @@ json analyze_results(const ResultsTable& t, const AnalyzeOptions& o) {
         }
     }
     result["comparisons"] = comparisons;
+    if (!not_compared.empty()) result["not_compared"] = not_compared;
     result["warnings"] = warnings;
     return result;
 }

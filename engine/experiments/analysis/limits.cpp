@@ -64,6 +64,8 @@ void add_limits(json& result) {
             out.push_back("condition " + name + ": the fit cannot be read at the staircase's target p: " +
                           c["thresholds_compared"]["fit_at_target_p_undefined"].get<std::string>());
     }
+    for (const auto& n : result.value("not_compared", json::array()))
+        out.push_back(n["measure"].get<std::string>() + ": not compared: " + n["reason"].get<std::string>());
     for (const auto& t : result.value("comparisons", json::array())) {
         const std::string what = t["measure"].get<std::string>() + " (" + t["a"].get<std::string>() + " - " + t["b"].get<std::string>() + ")";
         if (!t["valid"].get<bool>()) out.push_back(what + ": t test " + t["undefined"].get<std::string>());
