@@ -74,7 +74,8 @@ void build_overlay_layer(const FrameContent& content, const View& view, const Th
     marks.texts.push_back(box_of(legend.scale_bar));
     if (legend.force_bar) marks.texts.push_back(box_of(*legend.force_bar));
     if (legend.platform_key) marks.texts.push_back(box_of(*legend.platform_key));
-    if (const auto status = parts::status_line_box(content, view)) marks.texts.push_back(*status);
+    if (legend.status_line) marks.texts.push_back(box_of(*legend.status_line));
+    else if (content.text && content.finger && content.status_line) marks.dropped.push_back("status line");
     if (content.finger) parts::draw_proxy_state(content, view, theme, m, out, marks);
     parts::draw_legend(content, view, theme, m, out);
     if (placed) *placed = std::move(marks);

@@ -68,7 +68,10 @@ struct PxBox {
 struct LegendLayout {
     PxBox scale_bar;
     std::optional<PxBox> force_bar;  // with a finger only
-    std::optional<PxBox> platform_key;  // with the wearable platform and text: its colours, top right
+    std::optional<PxBox> platform_key;  // with the wearable platform and text: its colours, in the
+                                        // first corner that covers no mark (top right first)
+    std::optional<PxBox> status_line;   // with text, a finger and status_line: top left, or the
+                                        // first free place at the edges; none when none is free
     double scale_bar_m = 0.01;       // m the scale bar stands for
 };
 LegendLayout legend_layout(const FrameContent& content, const View& view);

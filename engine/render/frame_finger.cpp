@@ -45,6 +45,8 @@ void arrow(P2 from, P2 to, float width, Color color, DrawList& out) {
     out.fill_convex(tri, color);
 }
 
+}  // namespace
+
 // The environment's pieces inside `region` (px) as strokes of the contour's width. Runs of
 // pieces shorter than 1.5 px (a dense outline) are joined into one stroke per 1.5 px of path, so
 // the count stays near the region's path length in px, not the contour's density.
@@ -87,8 +89,6 @@ void add_contour_marks(const Environment& env, const View& view, const LabelBox&
     }
     flush();
 }
-
-}  // namespace
 
 void draw_finger_body(Vec2 center, double phi, const FingerShape& shape, const View& view, Color fill, Color outline,
                       Color pad, const Metrics& m, DrawList& out, LabelMarks* marks) {

@@ -75,16 +75,7 @@ void draw_legend(const FrameContent& c, const View& view, const Theme& theme, co
     }
     draw_platform_key(c, view, theme, out);  // the wearable's colours, with the text
     // Status line, top left: the proxy's state in the UI's units (mm, N, degrees).
-    if (const auto box = status_line_box(c, view))
-        draw_text(out, box->lo, proxy_status_text(*c.finger).c_str(), theme.legend, m.text_scale);
-}
-
-std::optional<LabelBox> status_line_box(const FrameContent& c, const View& view) {
-    if (!(c.text && c.finger && c.status_line)) return std::nullopt;
-    const Metrics m = metrics_for(view);
-    const float pad = std::round(m.dot_radius * 2.0f);
-    const P2 at{c.left_inset_px + pad, pad + c.top_inset_px};
-    return LabelBox{at, at + text_size(proxy_status_text(*c.finger), m.text_scale)};
+    if (l.status_line) draw_text(out, {l.status_line->x, l.status_line->y}, proxy_status_text(*c.finger).c_str(), theme.legend, m.text_scale);
 }
 
 }  // namespace contactlab::render::parts
@@ -147,6 +138,30 @@ LegendLayout legend_layout(const FrameContent& c, const View& view) {
         const float xr = static_cast<float>(view.width) - c.right_inset_px - pad;
         l.force_bar = PxBox{xr - w, top, w, y - top};
     }
+    // What the status line and the key must not cover: the finger's marks (outline, pad, cables,
+    // arrows, platform), drawn into a scratch list with the text off (no labels, no legend: no
+    // recursion back here).
+    const bool status_wanted = c.text && c.finger && c.status_line;
+    LabelMarks marks;
+    marks.area = {{c.left_inset_px, c.top_inset_px},
+                  {static_cast<float>(view.width) - c.right_inset_px, static_cast<float>(view.height) - c.bottom_inset_px}};
+    if (c.finger && (status_wanted || (c.platform && c.text))) {
+        FrameContent bare = c;
+        bare.text = false;
+        DrawList scratch(view.width, view.height);
+        parts::draw_proxy_state(bare, view, dark_theme(), m, scratch, marks);
+    }
+    // Free of the finger's marks, the text placed so far and the contour under the box (the
+    // environment's pieces there, asked of its tree: a dense scene costs only what lies under it).
+    auto is_free = [&](const LabelBox& box) {
+        if (!marks.free(box, kLabelClearance)) return false;
+        if (!c.env) return true;
+        LabelMarks contour;
+        const float reach = kLabelClearance + m.contour_width;
+        parts::add_contour_marks(*c.env, view, LabelBox{box.lo - P2(reach), box.hi + P2(reach)}, m.contour_width, contour);
+        contour.area = marks.area;
+        return contour.free(box, kLabelClearance);
+    };
     if (c.platform && c.text) {
         float w = 0.0f, h = 0.0f;
         for (const std::string& line : platform_key_lines(c)) {
@@ -155,8 +170,44 @@ LegendLayout legend_layout(const FrameContent& c, const View& view) {
             h += sz.y + 4.0f * static_cast<float>(m.text_scale);
         }
         w += kKeySwatch * static_cast<float>(m.text_scale) + 2.0f * pad;
+        h += pad;
         const float xr = static_cast<float>(view.width) - c.right_inset_px - pad;
-        l.platform_key = PxBox{xr - w, c.top_inset_px + pad, w, h + pad};
+        // The key sits on no data and no text: the first corner of the canvas whose box crosses
+        // none of the finger's marks (the cables run up to the nail side, often through the top
+        // right): top right, top left, bottom left above the scale bar,
+        // bottom right above the force bar; else the top right. A canvas narrower than the key
+        // (the editor's, between its panels) gets it across.
+        const float x_right = xr - w, x_left = std::min(c.left_inset_px + pad, x_right);
+        marks.area.lo.x = std::min(marks.area.lo.x, x_right);
+        const float top_y = c.top_inset_px + pad;
+        const P2 corners[] = {{x_right, top_y}, {x_left, top_y}, {x_left, l.scale_bar.y - pad - h},
+                              {x_right, (l.force_bar ? l.force_bar->y : l.scale_bar.y) - pad - h}};
+        P2 at = corners[0];
+        for (const P2& t : corners)
+            if (is_free(LabelBox{t, t + P2(w, h)})) {
+                at = t;
+                break;
+            }
+        l.platform_key = PxBox{at.x, at.y, w, h};
+        marks.texts.push_back(LabelBox{at, at + P2(w, h)});
+    }
+    // The status line, after the key: top left, else above the scale bar, else above the force
+    // bar, else top right, else above the key and the scale bar; else it is left out (the CLI
+    // prints the same state; the zoomed wearable's cables run up through the top of the picture).
+    if (status_wanted) {
+        const P2 size = text_size(proxy_status_text(*c.finger), m.text_scale);
+        const float xr = static_cast<float>(view.width) - c.right_inset_px - pad;
+        const float above_left = (l.platform_key ? std::min(l.platform_key->y, l.scale_bar.y) : l.scale_bar.y) - pad - size.y;
+        const P2 tries[] = {{c.left_inset_px + pad, c.top_inset_px + pad},
+                            {c.left_inset_px + pad, l.scale_bar.y - pad - size.y},
+                            {xr - size.x, (l.force_bar ? l.force_bar->y : l.scale_bar.y) - pad - size.y},
+                            {xr - size.x, c.top_inset_px + pad},
+                            {c.left_inset_px + pad, above_left}};
+        for (const P2& t : tries)
+            if (is_free(LabelBox{t, t + size})) {
+                l.status_line = PxBox{t.x, t.y, size.x, size.y};
+                break;
+            }
     }
     return l;
 }

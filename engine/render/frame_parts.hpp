@@ -32,13 +32,14 @@ void draw_finger_body(Vec2 center, double phi, const FingerShape& shape, const V
 // labels (with c.text) placed where they cover nothing (label_place.hpp).
 void draw_proxy_state(const FrameContent& c, const View& view, const Theme& theme, const Metrics& m,
                       DrawList& out, LabelMarks& marks);                                      // frame_finger.cpp
+// The environment's pieces inside `region` (px) added to `marks` as strokes of `width` px.
+void add_contour_marks(const Environment& env, const View& view, const LabelBox& region, float width,
+                       LabelMarks& marks);                                                   // frame_finger.cpp
 void draw_cspace(const FrameContent& c, const View& view, const Theme& theme, const Metrics& m,
                  DrawList& out);                                                             // frame_overlays.cpp
 void draw_zones(const FrameContent& c, const View& view, const Theme& theme, DrawList& out); // frame_overlays.cpp
 void draw_legend(const FrameContent& c, const View& view, const Theme& theme, const Metrics& m,
                  DrawList& out);                                                             // frame_grid.cpp
-// The status line's box (top left, with text, a finger and status_line), else nothing.
-std::optional<LabelBox> status_line_box(const FrameContent& c, const View& view);             // frame_grid.cpp
 // The wearable platform's key (cable tension and force colours), top right, with the text.
 void draw_platform_key(const FrameContent& c, const View& view, const Theme& theme, DrawList& out);  // frame_grid.cpp
 

@@ -23,6 +23,7 @@ RenderResult render_scene(const VulkanContext& ctx, const Scene& scene, const Re
     content.left_inset_px = request.left_inset_px;
     content.bottom_inset_px = request.bottom_inset_px;
     content.right_inset_px = request.right_inset_px;
+    content.status_line = request.status_line;
     if (request.wearable) {
         const ProxyOutput& o = *content.finger;
         const wearable::PlatformDisplayState st = wearable::platform_display_state(o.force.x, o.force.y, o.phi);

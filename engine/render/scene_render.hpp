@@ -27,6 +27,7 @@ struct RenderRequest {
     // px of each edge covered by something else (FrameContent's insets: the editor's panels);
     // labels stay clear of them. 0 for a picture of its own.
     float top_inset_px = 0.0f, left_inset_px = 0.0f, bottom_inset_px = 0.0f, right_inset_px = 0.0f;
+    bool status_line = true;  // with text: the proxy's state on the canvas (the editor has a row for it)
 };
 
 // What the frame showed besides the pixels (for messages and tests).

@@ -196,9 +196,11 @@ TEST_CASE("frame: labels are drawn only when asked (goldens carry no text), the 
     c.shape = def.finger;
     c.max_force = def.max_force;
     c.finger = settle_proxy(env, def, FingerPose{{0.0, def.finger.radius - 0.001}, 0.0});
-    const View view = default_view(c, 321, 181);
-    OffscreenTarget target(lavapipe(), 321, 181);
-    DrawList list(321, 181);
+    // 641 px wide: the status line (about 420 px at this text scale) fits; in a narrower picture it
+    // is left out rather than cut at the edge.
+    const View view = default_view(c, 641, 181);
+    OffscreenTarget target(lavapipe(), 641, 181);
+    DrawList list(641, 181);
     build_frame(c, view, dark_theme(), list);
     const Image plain = target.render(list, dark_theme().background);
     c.text = true;

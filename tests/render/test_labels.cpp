@@ -40,9 +40,14 @@ float box_segment_distance(const LabelBox& box, P2 a, P2 b) {
     return best;
 }
 
-// Every placed label inside the area, on no other text, clear of every stroke (sampled).
+// Every placed label inside the area, on no other text, clear of every stroke (sampled); the
+// legend's boxes (scale and force bars, the key, the status line) clear of every stroke too.
 void check_labels_clear(const LabelMarks& marks) {
     const std::size_t legend = marks.texts.size() - marks.placed.size();  // the fixed boxes come first
+    for (std::size_t i = 0; i < legend; ++i) {
+        CAPTURE(i);
+        for (const LabelStroke& s : marks.strokes) CHECK(box_segment_distance(marks.texts[i], s.a, s.b) > s.half_width);
+    }
     for (std::size_t i = legend; i < marks.texts.size(); ++i) {
         const LabelBox& b = marks.texts[i];
         CAPTURE(marks.placed[i - legend]);
@@ -77,9 +82,10 @@ LabelMarks check_wearable_frame(RenderRequest req, const Scene& scene) {
     check_labels_clear(with_text.labels);
     req.text = false;
     const RenderResult bare = render_scene(lavapipe(), scene, req);
-    const std::size_t legend = with_text.labels.texts.size() - with_text.labels.placed.size();
-    for (std::size_t i = legend; i < with_text.labels.texts.size(); ++i) {
-        CAPTURE(with_text.labels.placed[i - legend]);
+    // Every label, the key and the status line (the boxes after the scale and force bars, which
+    // hold the bars' own lines) cover no mark's pixel.
+    for (std::size_t i = 2; i < with_text.labels.texts.size(); ++i) {
+        CAPTURE(i);
         CHECK(mark_pixels_in(bare.image, with_text.labels.texts[i], req.theme) == 0);
     }
     CHECK(lavapipe().validation_messages() == 0);
@@ -161,6 +167,7 @@ TEST_CASE("labels: the editor's view (whole scene, panels over both sides) keeps
         req.right_inset_px = 372.0f;
         req.top_inset_px = 58.0f;
         req.bottom_inset_px = 19.0f;
+        req.status_line = false;  // the editor shows the proxy's state in a row of its own
         const LabelMarks m = check_wearable_frame(req, load_scene("flat.json"));
         // n, t, the frame's name and one label per cable pulling (at phi 0.6 the distal one is slack).
         CHECK(m.placed.size() + m.dropped.size() >= 4 - (phi > 0.5));
@@ -177,6 +184,7 @@ TEST_CASE("labels: zoomed under the editor's right column, the distal tension la
     req.right_inset_px = 372.0f;
     req.top_inset_px = 58.0f;
     req.bottom_inset_px = 19.0f;
+    req.status_line = false;
     const LabelMarks m = check_wearable_frame(req, load_scene("flat.json"));
     CHECK(m.dropped.empty());
     CHECK(m.placed.size() == 5);
@@ -191,4 +199,18 @@ TEST_CASE("labels: pressing the block's edge, the contour beside the pad is a ma
         req.height = 360;
         check_wearable_frame(req, load_scene("block.json"));
     }
+}
+
+TEST_CASE("labels: a status line wider than the picture is left out and named, not cut at the edge") {
+    RenderRequest req;
+    req.width = 321;
+    req.height = 181;
+    req.text = true;
+    const RenderResult r = render_scene(lavapipe(), load_scene("flat.json"), req);
+    REQUIRE(r.labels.dropped.size() == 1);
+    CHECK(r.labels.dropped[0] == "status line");
+    req.width = 641;
+    const RenderResult wide = render_scene(lavapipe(), load_scene("flat.json"), req);
+    CHECK(wide.labels.dropped.empty());
+    CHECK(lavapipe().validation_messages() == 0);
 }
