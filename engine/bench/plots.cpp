@@ -1,6 +1,8 @@
 // plots.cpp — bench results -> charts -> PNG files (plots.hpp).
 #include "engine/bench/plots.hpp"
 
+#include "engine/bench/anticipation_spread.hpp"
+
 #include "engine/render/chart_image.hpp"
 #include "engine/render/context.hpp"
 
@@ -253,13 +255,19 @@ Chart tail_chart(const BenchResults& r) {
     for (const SegmentKind kind : {SegmentKind::lines, SegmentKind::arcs, SegmentKind::curves}) {
         ChartSeries contact = series(std::string(kind_name(kind)) + ", in contact", colour, Marker::disc);
         ChartSeries hover = series(std::string(kind_name(kind)) + ", hovering", colour, Marker::square, true);
+        // The spread anticipation (an option, kBenchAnticipationBudget segments a tick), measured
+        // at the largest size only: a lone marker under the exact hover's last point.
+        ChartSeries spread = series(std::string(kind_name(kind)) + ", hovering, spread " + std::to_string(kBenchAnticipationBudget),
+                                    colour, Marker::diamond);
+        spread.connect = false;
         for (const CostRow& row : r.cost) {
             if (row.scene.kind != kind || row.scene.growth != Growth::dense) continue;
             const double n = row.scene.segments;
             contact.x.push_back(n), contact.y.push_back(row.proxy.p999_ns);
             hover.x.push_back(n), hover.y.push_back(row.hover.p999_ns);
+            if (row.hover_spread) spread.x.push_back(n), spread.y.push_back(row.hover_spread->p999_ns);
         }
-        for (ChartSeries* s : {&contact, &hover})
+        for (ChartSeries* s : {&contact, &hover, &spread})
             if (!s->x.empty()) c.series.push_back(std::move(*s));
         ++colour;
     }
