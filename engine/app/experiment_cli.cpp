@@ -149,6 +149,9 @@ int run_analyze(const AnalyzeArgs& a) {
         if (c.contains("time_s"))
             std::printf("  time %s s  failures %s", figure(c["time_s"], "mean", "%.3f").c_str(),
                         figure(c, "failure_proportion", "%.3f").c_str());
+        if (c.contains("contact_fraction") && c.contains("contact_breaks"))
+            std::printf("  in contact %s  breaks %s", figure(c["contact_fraction"], "mean", "%.3f").c_str(),
+                        figure(c["contact_breaks"], "mean", "%.2f").c_str());
         std::printf("\n");
         if (c.contains("adaptive") && c["adaptive"].contains("estimate"))
             std::printf("  %-24s %s: estimate %s (target p %s)\n", "", c["adaptive"]["procedure"].get<std::string>().c_str(),

@@ -79,6 +79,17 @@ void common_measures(const TrialTrace& tr, TrialOutcome& o, double t_end = 1e300
     for (std::size_t i = 0; i < tr.ticks.size(); i += 10) o.shown.push_back(tr.ticks[i]);
 }
 
+// Share (0..1) of the ticks in [t0, t1] (s) in contact: the row's contact_fraction over the window
+// its time_s measures. NaN when no tick lies there.
+double contact_share(const TrialTrace& tr, double t0, double t1, long* in = nullptr, long* all = nullptr) {
+    long n = 0, c = 0;
+    for (const TickRecord& r : tr.ticks)
+        if (r.t >= t0 && r.t <= t1) ++n, c += r.contact;
+    if (in) *in += c;
+    if (all) *all += n;
+    return n > 0 ? static_cast<double>(c) / static_cast<double>(n) : NAN;
+}
+
 // Where rise-and-fall excursions of `s` beyond +-h complete (sample indices), counted either way
 // round (a bump is + then - for one cue and may be - then + for another): the family with more.
 // `felt(i)` says whether the person attended at sample i: an excursion completed during a lapse
@@ -188,6 +199,8 @@ TrialOutcome contour_following(const Protocol& p, const Condition& c, const Plan
     }
     common_measures(tr, o, t_finish >= 0.0 ? t_finish : 1e300);
     o.time_s = t_start >= 0.0 && t_finish >= 0.0 ? t_finish - t_start : std::nan("");
+    // From the start line to the finish line, or to the trial's end when the finish was missed.
+    if (t_start >= 0.0) o.contact_fraction = contact_share(tr, t_start, t_finish >= 0.0 ? t_finish : 1e300);
     o.failed = o.contact_breaks > 0 || t_finish < 0.0;
     return o;
 }
@@ -256,6 +269,7 @@ TrialOutcome bump_counting(const Protocol& p, const Condition& c, const PlannedT
     // The answers are the counts 0..N (parse_protocol checks it): a larger count is answered N.
     o.response = std::to_string(std::clamp(count, 0, static_cast<int>(p.answers.size()) - 1));
     o.time_s = st.slide_end - st.slide_start;
+    o.contact_fraction = contact_share(tr, st.slide_start, st.slide_end);
     return o;
 }
 
@@ -280,6 +294,7 @@ TrialOutcome curvature(const Protocol& p, const Condition& c, const PlannedTrial
     common_measures(tr, o);
     o.response = stimulus_label(p, answer);
     o.time_s = st.slide_end - st.slide_start;
+    o.contact_fraction = contact_share(tr, st.slide_start, st.slide_end);
     return o;
 }
 
@@ -310,6 +325,7 @@ TrialOutcome surface_orientation(const Protocol& p, const Condition& c, const Pl
     // a1 at 45 deg runs up-right/down-left: pressing down-left is the soft way (template A).
     o.response = down_left < down_right ? p.answers.front() : p.answers.back();
     o.time_s = st.path.end() - st.path.start();
+    o.contact_fraction = contact_share(tr, st.path.start(), st.path.end());
     return o;
 }
 
@@ -372,6 +388,10 @@ TrialOutcome edge_sharpness(const Protocol& p, const Condition& c, const Planned
                 std::any_of(second.trace.ticks.begin(), second.trace.ticks.end(), [](const TickRecord& r) { return r.contact; });
     o.response = d > 0.0 ? p.answers[0] : p.answers[1];
     o.time_s = (first.st.slide_end - first.st.slide_start) + (second.st.slide_end - second.st.slide_start);
+    long in = 0, all = 0;  // ticks in contact, ticks, over both slides
+    contact_share(first.trace, first.st.slide_start, first.st.slide_end, &in, &all);
+    contact_share(second.trace, second.st.slide_start, second.st.slide_end, &in, &all);
+    if (all > 0) o.contact_fraction = static_cast<double>(in) / static_cast<double>(all);
     return o;
 }
 
