@@ -161,9 +161,10 @@ TEST_CASE("protocols: hand.model names the hand, scripted or feel, and anything 
 TEST_CASE("simulated participant by feel: seed 000 without noise, the edge is felt in time with contact location, and time rises with d") {
     // A noiseless person (exact thresholds, no lapses, one reaction time): with contact
     // location the element's 1.5 mm move is felt with the pad's reach past the edge still ahead,
-    // and the speed leaves the reaction (0.1 s) and 1.5 feedback delays (about 0.18 s) of it to
-    // tip: at the pace of participant 1 (below 1.3) the hand tips before the pad leaves the top,
-    // and no trial fails. Each trial's time from the start line grows with d at the top's speed.
+    // and the speed leaves the reaction (0.1 s) and one feedback delay (about 0.12 s) of it,
+    // shortened by their pace, to tip: at the pace of participant 1 (below 1.3) the hand tips
+    // before the pad leaves the top, and no trial fails. Each trial's time from the start line
+    // grows with d at the top's speed.
     Protocol p = load_protocol(protocol_path("000-contour-following.json"));
     p.hand_model = HandModel::feel;
     p.repetitions = 1;
@@ -191,10 +192,10 @@ TEST_CASE("simulated participant by feel: seed 000 without noise, the edge is fe
     }
     std::sort(times.begin(), times.end());
     // From d = 4 to 10 cm the top adds 6 cm at the person's speed: the pad left past the 1.5 mm
-    // cue over 0.1 s + 1.5 delays, the pad being L/2 = 10 mm or, pressing lightly, the
+    // cue over (0.1 s + a delay) / pace, the pad being L/2 = 10 mm or, pressing lightly, the
     // sqrt(2 R F* / k) past the edge where the hand's intended point leaves the corner's circle
-    // (k = 240 N/m), capped at the hand speed of 50 mm/s, times their pace.
+    // (k = 240 N/m), capped at the hand speed of 50 mm/s.
     const double reach = std::min(0.01, std::sqrt(2.0 * 0.026 * person.press_force_n / 240.0));
-    const double v = std::min((reach - 0.0015) / (0.1 + 1.5 * person.delay_s), 0.05) * person.pace;
+    const double v = std::min((reach - 0.0015) * person.pace / (0.1 + person.delay_s), 0.05);
     CHECK(times.back().second - times.front().second == doctest::Approx(0.06 / v).epsilon(0.15));
 }

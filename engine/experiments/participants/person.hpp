@@ -18,7 +18,7 @@ struct Person {
     // corrections of a moving arm 100-150 ms (Johansson & Flanagan 2009).
     double delay_s = 0.12;
     // The normal force the person presses with while exploring (N).
-    double press_force_n = 0.6;
+    double press_force_n = 0.7;
     // Their own pace: multiplies the speeds their strategy chooses.
     double pace = 1.0;
     // Signal-dependent motor noise: sd of the force as a share of the force pressed, and of the
@@ -30,7 +30,7 @@ struct Person {
 // The population the people are drawn from: each parameter's mean (or median) and spread.
 struct PersonPopulation {
     double delay_mean_s = 0.12, delay_sd_s = 0.02, delay_min_s = 0.08, delay_max_s = 0.20;  // normal, clipped
-    double press_median_n = 0.6, press_log_sd = 0.3;                                        // log-normal
+    double press_median_n = 0.7, press_log_sd = 0.2;                                        // log-normal
     double pace_log_sd = 0.3;                                                               // log-normal, median 1
     double force_noise_cv_mean = 0.1, force_noise_cv_sd = 0.02;                             // normal, at least 0.02
     double speed_noise_cv_mean = 0.15, speed_noise_cv_sd = 0.03;                            // normal, at least 0.03
