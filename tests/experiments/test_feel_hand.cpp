@@ -199,3 +199,24 @@ TEST_CASE("simulated participant by feel: seed 000 without noise, the edge is fe
     const double v = std::min((reach - 0.0015) * person.pace / (0.1 + person.delay_s), 0.05);
     CHECK(times.back().second - times.front().second == doctest::Approx(0.06 / v).epsilon(0.15));
 }
+
+TEST_CASE("experiment run --hand: feel is recorded in the meta, a bad name exits 2 naming the option") {
+    TempDir dir;
+    const std::string proto = protocol_path("000-contour-following.json");
+    const auto bad = cli_test::run_contactlab({"experiment", "run", proto, "--participant", "sim", "--hand", "fel", "-o", dir.file("b.csv")});
+    CHECK(bad.exit_code == 2);
+    CHECK(bad.err.find("--hand: expected scripted or feel, got \"fel\"") != std::string::npos);
+    const auto p = cli_test::run_contactlab(
+        {"experiment", "run", proto, "--participant", "sim", "--hand", "feel", "--no-traces", "--jobs", "1", "-o", dir.file("r.csv")});
+    INFO(p.err);
+    REQUIRE(p.exit_code == 0);
+    const auto meta = nlohmann::json::parse(cli_test::read_text(dir.file("r.csv.meta.json")));
+    CHECK(meta["hand"] == "feel");
+    const ResultsTable t = read_results_csv(dir.file("r.csv"));
+    CHECK(t.rows.size() == 70);
+    // The same run again with the scripted hand is another study: refused, not resumed.
+    const auto other = cli_test::run_contactlab(
+        {"experiment", "run", proto, "--participant", "sim", "--hand", "scripted", "--no-traces", "--jobs", "1", "-o", dir.file("r.csv")});
+    CHECK(other.exit_code == 2);
+    CHECK(other.err.find("another hand") != std::string::npos);
+}

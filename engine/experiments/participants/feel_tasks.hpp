@@ -12,7 +12,8 @@
 //   seed 002  reach down onto the contour's start and slide along the felt tangent to its end,
 //             pressing, the finger turned with the felt normal, at their free speed slowed
 //             where the felt contour turns (the two-thirds power law of drawing movements,
-//             Lacquaniti, Terzuolo & Viviani 1983: speed falls as curvature^(-1/3)).
+//             Lacquaniti, Terzuolo & Viviani 1983: speed falls as curvature^(-1/3)) beyond
+//             1 / 20 mm.
 #pragma once
 
 #include "engine/experiments/participants/servo_trial.hpp"
