@@ -17,6 +17,12 @@ HandPath::HandPath(std::vector<PathSample> samples) : samples_(std::move(samples
     }
 }
 
+void HandPath::append(const PathSample& s) {
+    if (!samples_.empty() && !(s.t > samples_.back().t)) throw HandPathError("hand path: times must strictly increase");
+    if (!samples_.empty()) slopes_.push_back((s.x - samples_.back().x) / (s.t - samples_.back().t));
+    samples_.push_back(s);
+}
+
 bool HandPath::interval(double t, double& u) const noexcept {
     const std::size_t n = samples_.size();
     if (n == 0 || !(t > samples_.front().t) || t >= samples_.back().t) return false;

@@ -38,6 +38,14 @@ public:
     PathPoint at(double t) const noexcept;
     // at(t).phi alone, the same bits (a simulated finger's angle asks for it every substep).
     double phi_at(double t) const noexcept;
+    // A hand that steers by feel (a closed loop, not a script) writes its path as it goes: one
+    // sample after the last (its t later than the last's), amortised O(1). Reserve what a trial
+    // needs first to keep the servo-rate appends free of reallocation.
+    void append(const PathSample& s);
+    void reserve(std::size_t n) {
+        samples_.reserve(n);
+        slopes_.reserve(n);
+    }
     double start() const { return samples_.front().t; }
     double end() const { return samples_.back().t; }
     const std::vector<PathSample>& samples() const { return samples_; }

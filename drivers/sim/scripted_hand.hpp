@@ -34,6 +34,10 @@ public:
         phi_ += (goal - phi_) * gain_;
     }
     void reset(double t) noexcept { phi_ = path_.phi_at(t); }
+    // A hand steering by feel: a new path before the device opens (its first sample is where the
+    // finger starts), then one sample ahead every servo tick (HandPath::append).
+    void set_path(HandPath path) { path_ = std::move(path); }
+    void steer(const PathSample& next) { path_.append(next); }
     double phi() const noexcept { return phi_; }
     const HandPath& path() const noexcept { return path_; }
     const HandParams& params() const noexcept { return p_; }

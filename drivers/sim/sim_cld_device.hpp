@@ -50,6 +50,9 @@ public:
     const PlanarArm& arm() const { return arm_; }
     const CldRoller& roller() const { return roller_; }
     const ScriptedHand& hand() const { return hand_; }
+    // The hand, to steer it tick by tick (a closed-loop hand); the arm's base and the limits stay
+    // where the path given at construction put them.
+    ScriptedHand& hand() { return hand_; }
     Vec2 applied_force() const { return motors_on_ ? arm_.applied_force() : Vec2{0.0}; }
     bool watchdog_tripped() const { return watchdog_trips_ > 0; }
     int watchdog_trips() const { return watchdog_trips_; }

@@ -36,6 +36,7 @@ namespace {
 
 struct RunArgs {
     std::string protocol, participant, participants, output;
+    std::string hand;  // "" keeps the protocol's hand.model
     unsigned long long seed = 1;
     int jobs = 0;  // 0: every core
     bool no_traces = false, overwrite = false, profile = false;
@@ -60,7 +61,9 @@ int run_protocol(const RunArgs& a) {
     o.jobs = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     o.progress = print_progress;
     try {
-        const experiments::Protocol p = experiments::load_protocol(a.protocol);
+        experiments::Protocol p = experiments::load_protocol(a.protocol);
+        if (!a.hand.empty() && !experiments::parse_hand_model(a.hand, p.hand_model))
+            throw BadInput("--hand: expected scripted or feel, got \"" + a.hand + "\"");
         const auto t0 = std::chrono::steady_clock::now();
         const experiments::RunSummary s = experiments::run_experiment(p, o);
         const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -149,6 +152,9 @@ int run_analyze(const AnalyzeArgs& a) {
         if (c.contains("time_s"))
             std::printf("  time %s s  failures %s", figure(c["time_s"], "mean", "%.3f").c_str(),
                         figure(c, "failure_proportion", "%.3f").c_str());
+        if (c.contains("contact_fraction") && c.contains("contact_breaks"))
+            std::printf("  in contact %s  breaks %s", figure(c["contact_fraction"], "mean", "%.3f").c_str(),
+                        figure(c["contact_breaks"], "mean", "%.2f").c_str());
         std::printf("\n");
         if (c.contains("adaptive") && c["adaptive"].contains("estimate"))
             std::printf("  %-24s %s: estimate %s (target p %s)\n", "", c["adaptive"]["procedure"].get<std::string>().c_str(),
@@ -213,6 +219,9 @@ void register_experiment_command(CLI::App& app, int& rc) {
     add_whole_option(r, "--seed", run->seed, 0, kMaxSeed, "Seed of the trial orders and the perceptual noise");
     r->add_option("-o,--output", run->output, "Results CSV (one row per trial)")->required();
     add_whole_option(r, "--jobs", run->jobs, 0, kMaxJobs, "Participants run in parallel (0: every core); the results do not depend on it");
+    r->add_option("--hand", run->hand,
+                  "The simulated person's hand: scripted (a path made from the contour) or feel (closing its loop on what it "
+                  "feels); default: the protocol's hand.model, else scripted");
     r->add_flag("--no-traces", run->no_traces, "Skip the per-trial traces (RESULTS.csv.traces/)");
     r->add_flag("--profile", run->profile,
                 "Print where the wall time went, by stage (servo tick, simulated rig, hand paths, perception, files), in ms "

@@ -40,6 +40,7 @@ void start_trial(ExperimentState& e) {
     e.trial_start = -1.0;
     e.touched = e.in_contact = e.faulted = false;
     e.contact_breaks = 0;
+    e.ticks = e.contact_ticks = 0;
     e.peak_force = 0.0;
 }
 
@@ -143,6 +144,8 @@ void experiment_on_record(EditorState& s, const drivers::TickRecord& r) {
     if (e->touched && e->in_contact && !r.contact) ++e->contact_breaks;
     e->touched |= r.contact;
     e->in_contact = r.contact;
+    ++e->ticks;
+    e->contact_ticks += r.contact;
     e->faulted |= r.fault != ServoFault::none;
 }
 
@@ -160,6 +163,7 @@ bool cmd_experiment_answer(EditorState& s, const std::string& response, double n
     r.response = response;
     r.time_s = now - e->trial_start;
     r.contact_breaks = e->contact_breaks;
+    if (e->ticks > 0) r.contact_fraction = static_cast<double>(e->contact_ticks) / static_cast<double>(e->ticks);
     r.peak_force = e->peak_force;
     r.valid = !e->faulted;
     r.touched = e->touched;

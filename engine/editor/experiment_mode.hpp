@@ -33,6 +33,7 @@ struct ExperimentState {
     // passing over the still arc, LiveSession::sweep()).
     bool sweeping = false;
     int contact_breaks = 0;
+    long ticks = 0, contact_ticks = 0;  // servo ticks recorded in the trial, and those in contact
     double peak_force = 0.0;  // N
     // "spec serial" last written to the results' meta: the meta is read and rewritten only when
     // the device (or its serial) changes, not after every answer.

@@ -103,3 +103,54 @@ TEST_CASE("analyze: a bad results file names the line and column") {
     CHECK_THROWS_AS(parse_results_csv("a,a\n1,2\n", "twice.csv"), ExperimentError);
     CHECK_THROWS_AS(parse_results_csv("a,b\n\"1,2\n", "quote.csv"), ExperimentError);
 }
+
+TEST_CASE("analyze: the movement's measures, contact share and breaks, per condition and per stimulus with t intervals") {
+    // Two participants, two conditions, two block lengths. Force: contact shares 0.9, 0.7 (d 0.04)
+    // and 0.8, 0.6 (d 0.06), breaks 1, 3, 2, 2; force+cld: shares 1, 1, 0.9, 0.9, breaks 0, 0, 1, 1.
+    // Failed trials count: a broken contact is part of how the finger moved.
+    const std::string csv =
+        "participant,condition,trial,stimulus,response,time_s,failed,contact_breaks,contact_fraction\n"
+        "a,force,1,0.04,,4,0,1,0.9\nb,force,1,0.04,,,1,3,0.7\n"
+        "a,force,2,0.06,,5,0,2,0.8\nb,force,2,0.06,,,1,2,0.6\n"
+        "a,force+cld,1,0.04,,2,0,0,1\nb,force+cld,1,0.04,,3,0,0,1\n"
+        "a,force+cld,2,0.06,,2,0,1,0.9\nb,force+cld,2,0.06,,3,0,1,0.9\n";
+    const json r = analyze_results(parse_results_csv(csv, "moves.csv"), AnalyzeOptions{0.95});
+    const json& f = r["conditions"]["force"];
+    CHECK(f["contact_fraction"]["n"] == 4);
+    CHECK(f["contact_fraction"]["mean"].get<double>() == doctest::Approx(0.75));
+    // sd of 0.9 0.7 0.8 0.6 = sqrt(0.05 / 3); t(3) at 0.975 = 3.182446
+    const double sd = std::sqrt(0.05 / 3.0), half = 3.182446 * sd / 2.0;
+    CHECK(f["contact_fraction"]["sd"].get<double>() == doctest::Approx(sd).epsilon(1e-9));
+    CHECK(f["contact_fraction"]["ci_low"].get<double>() == doctest::Approx(0.75 - half).epsilon(1e-6));
+    CHECK(f["contact_fraction"]["ci_high"].get<double>() == doctest::Approx(0.75 + half).epsilon(1e-6));
+    CHECK(f["contact_breaks"]["mean"].get<double>() == doctest::Approx(2.0));
+    // Per block length (seed 000's d): 0.04 has 0.9 and 0.7.
+    CHECK(f["per_stimulus"]["0.04"]["contact_fraction"]["mean"].get<double>() == doctest::Approx(0.8));
+    CHECK(f["per_stimulus"]["0.06"]["contact_breaks"]["mean"].get<double>() == doctest::Approx(2.0));
+    // The time of the successful trials gets its interval too (one here: no interval).
+    CHECK(f["per_stimulus"]["0.04"]["time_s"]["ci_low"].is_null());
+    CHECK(r["conditions"]["force+cld"]["time_s"]["ci_low"].is_number());
+    // Participant means: a 0.85 and 0.65 -> 0.75.
+    CHECK(f["participant_means"]["contact_fraction"].get<double>() == doctest::Approx(0.75));
+    // Paired comparisons of both measures follow time and failures.
+    bool share = false, breaks = false;
+    for (const json& c : r["comparisons"]) {
+        if (c["measure"] == "contact_fraction") {
+            share = true;
+            CHECK(c["paired"] == true);
+            CHECK(c["mean_difference"].get<double>() == doctest::Approx(-0.2));  // a: 0.85 - 0.95, b: 0.65 - 0.95
+        }
+        breaks |= c["measure"] == "contact_breaks";
+    }
+    CHECK(share);
+    CHECK(breaks);
+}
+
+TEST_CASE("analyze: a results file from before the movement's measures reads as before, without them") {
+    const std::string csv = "participant,condition,trial,stimulus,response,time_s,failed,contact_breaks\n"
+                            "a,force,1,0.04,,4,0,0\nb,force,1,0.04,,5,0,1\n";
+    const json r = analyze_results(parse_results_csv(csv, "old.csv"));
+    CHECK_FALSE(r["conditions"]["force"].contains("contact_fraction"));
+    CHECK(r["conditions"]["force"]["contact_breaks"]["mean"].get<double>() == doctest::Approx(0.5));
+    CHECK(r["conditions"]["force"]["time_s"]["mean"].get<double>() == doctest::Approx(4.5));
+}

@@ -224,7 +224,7 @@ TEST_CASE("experiment run: the meta names version, protocol (its sha256 as sha25
     // Each row: the stimulus's unit, the device, whether the finger touched, seed 002's bumps.
     const std::string csv = read_text(out);
     CHECK(csv.rfind("participant,condition,trial,stimulus,stimulus_unit,response,correct,valid,warmup,time_s,failed,"
-                    "contact_breaks,peak_force_n,touched,contact_location,device,small_bumps,large_bumps\n", 0) == 0);
+                    "contact_breaks,contact_fraction,peak_force_n,touched,contact_location,device,small_bumps,large_bumps\n", 0) == 0);
     std::istringstream lines(csv);
     std::string line;
     std::getline(lines, line);
@@ -366,7 +366,7 @@ TEST_CASE("issue 49: a resume refuses a changed digit, a flipped correct, and a 
         REQUIRE(fs::exists(out + ".parts/sim1.sums"));
         auto rows = cells(read_text(part));
         REQUIRE(rows.size() >= 5);
-        const std::size_t col_correct = 6, col_peak = 12;
+        const std::size_t col_correct = 6, col_peak = 13;
         REQUIRE(rows[0][col_correct] == "correct");
         REQUIRE(rows[0][col_peak] == "peak_force_n");
         if (std::string(c.name) == "digit") {

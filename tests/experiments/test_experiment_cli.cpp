@@ -69,7 +69,7 @@ TEST_CASE("experiment run: seed 003's protocol with two simulated participants, 
     CHECK(contains(p.err, "2 participant(s), 48 trials"));
     const std::string csv = read_text(out);
     CHECK(csv.rfind("participant,condition,trial,stimulus,stimulus_unit,response,correct,valid,warmup,time_s,failed,"
-                    "contact_breaks,peak_force_n,touched,contact_location,device,motion\n", 0) == 0);
+                    "contact_breaks,contact_fraction,peak_force_n,touched,contact_location,device,motion\n", 0) == 0);
     CHECK(contains(csv, "sim2,B,"));
     // One trace per trial beside the results, at 100 Hz.
     CHECK(std::filesystem::exists(out + ".traces/sim1-A-1.csv"));
@@ -166,7 +166,7 @@ TEST_CASE("experiment run: the simulated participant feels the edge protocol thr
     CHECK(contains(p.err, " 0 invalid"));
     const std::string csv = read_text(out);
     CHECK(csv.rfind("participant,condition,trial,stimulus,stimulus_unit,response,correct,valid,warmup,time_s,failed,"
-                    "contact_breaks,peak_force_n,touched,contact_location,device,reference_mm,comparison_interval,procedure,"
+                    "contact_breaks,contact_fraction,peak_force_n,touched,contact_location,device,reference_mm,comparison_interval,procedure,"
                     "target_p,reversal,estimate\n", 0) == 0);
     CHECK(contains(csv, ",mm,"));
     CHECK(contains(csv, ",sim-cld,2.5,"));

@@ -199,6 +199,8 @@ TEST_CASE("simulated participant: without contact location the person slides slo
         CAPTURE(row[*t.column("condition")]);
         CAPTURE(d);
         CHECK(row[*t.column("failed")] == "0");
+        // No break between the start and the finish line: in contact all the timed window.
+        CHECK(std::stod(row[*t.column("contact_fraction")]) == 1.0);
         // The cue reaches its threshold up to 1 mm from the nominal x (the finger lags the hand
         // through the grip and the spring), which moves the corner's start by as much.
         CHECK(std::abs(std::stod(row[*t.column("time_s")]) - expected) < 1e-3 / v + 1e-3 / p.hand_speed + 0.01);

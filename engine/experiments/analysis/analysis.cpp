@@ -2,6 +2,7 @@
 #include "engine/experiments/analysis/analysis.hpp"
 
 #include "engine/experiments/analysis/binary_tests.hpp"
+#include "engine/experiments/analysis/intervals.hpp"
 #include "engine/experiments/analysis/statistics.hpp"
 
 #include <nlohmann/json.hpp>
@@ -22,6 +23,7 @@ json num(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 struct Columns {
     std::optional<std::size_t> condition, participant, stimulus, response, correct, valid, warmup, time, failed, small, large;
+    std::optional<std::size_t> breaks, fraction;  // contact_breaks, contact_fraction (the movement's measures)
 };
 
 bool truthy(const ResultsTable& t, std::size_t row, std::size_t col) { return t.number(row, col) != 0.0; }
@@ -79,8 +81,25 @@ json confusion_json(const Confusion& c) {
     return m;
 }
 
+// n, mean, sd and the mean's t interval over `x` (trials taken as independent: the interval
+// says how well these trials bound the mean, not how a new participant would do); null bounds
+// for fewer than two values.
+json mean_json(const std::vector<double>& x, double confidence) {
+    const Summary s = summarize(x);
+    const Interval ci = mean_interval(x, confidence);
+    return {{"n", s.n}, {"mean", num(s.n ? s.mean : NAN)}, {"sd", num(s.sd)}, {"ci_low", num(ci.low)}, {"ci_high", num(ci.high)}};
+}
+
+// The non-empty cells of column `c` over `rows`, as numbers.
+std::vector<double> cells(const ResultsTable& t, std::size_t c, const RowSet& rows) {
+    std::vector<double> out;
+    for (std::size_t i : rows)
+        if (!t.rows[i][c].empty()) out.push_back(t.number(i, c));
+    return out;
+}
+
 // The figures for one set of rows (a condition, a participant within it, a stimulus).
-json figures(const ResultsTable& t, const Columns& col, const RowSet& rows, bool with_confusion) {
+json figures(const ResultsTable& t, const Columns& col, const RowSet& rows, bool with_confusion, double confidence) {
     json out;
     out["n"] = rows.size();
     if (col.stimulus && col.response) {
@@ -110,10 +129,16 @@ json figures(const ResultsTable& t, const Columns& col, const RowSet& rows, bool
             if (!failed && !t.rows[i][*col.time].empty()) times.push_back(t.number(i, *col.time));
         }
         // No time at all (a model observer records none): no figure, rather than "- +- 0".
-        const Summary s = summarize(times);
-        if (s.n > 0) out["time_s"] = {{"n", s.n}, {"mean", num(s.mean)}, {"sd", num(s.sd)}};
+        if (!times.empty()) out["time_s"] = mean_json(times, confidence);
         if (col.failed) out["failure_proportion"] = num(rows.empty() ? NAN : static_cast<double>(failures) / rows.size());
     }
+    // How the finger moved, over every kept trial (failed ones too: a broken contact is part of
+    // how people move), each with the mean's interval.
+    // (Not for rows that record neither: a model observer's.)
+    if (col.fraction)
+        if (const auto v = cells(t, *col.fraction, rows); !v.empty()) out["contact_fraction"] = mean_json(v, confidence);
+    if (col.breaks)
+        if (const auto v = cells(t, *col.breaks, rows); !v.empty()) out["contact_breaks"] = mean_json(v, confidence);
     return out;
 }
 
@@ -226,6 +251,8 @@ json analyze_results(const ResultsTable& t, const AnalyzeOptions& o) {
     col.failed = t.column("failed");
     col.small = t.column("small_bumps");
     col.large = t.column("large_bumps");
+    col.breaks = t.column("contact_breaks");
+    col.fraction = t.column("contact_fraction");
     check_labels(t, col);
 
     RowSet kept;
@@ -250,27 +277,30 @@ json analyze_results(const ResultsTable& t, const AnalyzeOptions& o) {
     std::map<std::string, std::map<std::string, RowSet>> rows_of;
     std::map<std::string, std::map<std::string, json>> per_participant;
     for (const auto& [name, rows] : by_condition) {
-        json c = figures(t, col, rows, true);
+        json c = figures(t, col, rows, true, o.confidence);
         if (col.stimulus) {
             json per = json::object();
-            for (const auto& [s, srows] : group(t, col.stimulus, rows, "")) per[s] = figures(t, col, srows, false);
+            for (const auto& [s, srows] : group(t, col.stimulus, rows, "")) per[s] = figures(t, col, srows, false, o.confidence);
             c["per_stimulus"] = per;
         }
         if (col.participant) {
             json parts = json::object();
-            std::vector<double> pc, it, tm;
+            std::vector<double> pc, it, tm, cf, cb;
             for (const auto& [p, prows] : group(t, col.participant, rows, "")) {
-                json f = figures(t, col, prows, true);
+                json f = figures(t, col, prows, true, o.confidence);
                 rows_of[name][p] = prows;
                 per_participant[name][p] = f;
                 pc.push_back(get(f, "proportion_correct"));
                 it.push_back(get(f, "it_est_bits"));
                 tm.push_back(get(f, "time_s", "mean"));
+                cf.push_back(get(f, "contact_fraction", "mean"));
+                cb.push_back(get(f, "contact_breaks", "mean"));
                 parts[p] = std::move(f);
             }
             c["participants"] = parts;
             json means = json::object();
-            for (const auto& [key, v] : {std::pair{"proportion_correct", pc}, std::pair{"it_est_bits", it}, std::pair{"time_s", tm}}) {
+            for (const auto& [key, v] : {std::pair{"proportion_correct", pc}, std::pair{"it_est_bits", it}, std::pair{"time_s", tm},
+                                         std::pair{"contact_fraction", cf}, std::pair{"contact_breaks", cb}}) {
                 std::vector<double> finite;
                 for (double x : v)
                     if (std::isfinite(x)) finite.push_back(x);
@@ -403,6 +433,16 @@ json analyze_results(const ResultsTable& t, const AnalyzeOptions& o) {
         if (col.failed) {
             auto failed = [&](std::size_t i) { return truthy(t, i, *col.failed) ? 1.0 : 0.0; };
             compare("failure_proportion", figure_of("failure_proportion"), failed, true);
+        }
+        // The movement's measures (seed 002 found neither differing between its conditions).
+        for (const auto& [measure, c] : {std::pair{"contact_fraction", col.fraction}, std::pair{"contact_breaks", col.breaks}}) {
+            if (!c) continue;
+            auto cell = [&, c = *c](std::size_t i) { return t.rows[i][c].empty() ? static_cast<double>(NAN) : t.number(i, c); };
+            bool any = false;
+            for (const RowSet* rs : {&ra, &rb})
+                for (std::size_t i : *rs) any = any || std::isfinite(cell(i));
+            if (any) compare(measure, figure_of(measure, "mean"), cell);
+            else not_compared.push_back({{"measure", measure}, {"reason", "no kept trial records it (a model observer records none)"}});
         }
     }
     result["comparisons"] = comparisons;

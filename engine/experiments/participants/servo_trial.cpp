@@ -80,4 +80,64 @@ TrialTrace run_servo_trial(const Scene& scene, const drivers::HandPath& path, bo
     return trace;
 }
 
+TrialTrace run_steered_trial(const Scene& scene, const drivers::HandPath& envelope, const drivers::PathSample& start,
+                             bool contact_location, const Steer& steer, double max_s) {
+    TrialProfile* const profile = thread_profile();
+    auto setup = std::make_optional<StageTimer>(&TrialProfile::servo_scene);
+    drivers::sim::SimCldParams sp;
+    sp.max_force = scene.force.max_force;
+    drivers::sim::SimCldDevice dev(sp, envelope);
+    // From here the hand's path is what it steers: the start, then a sample a tick.
+    const auto ticks = static_cast<std::uint64_t>(std::llround(max_s * kTrialRate));
+    drivers::HandPath path(std::vector<drivers::PathSample>{start});
+    path.reserve(ticks + 2);
+    dev.hand().set_path(std::move(path));
+    ServoParams params;
+    params.stiffness = scene.force.stiffness;
+    params.max_force = scene.force.max_force;
+    params.passivity = scene.force.passivity;
+    if (!contact_location) params.roller_travel = 1e-9;  // m: the element held at the pad's centre
+    const ServoConfig config = drivers::servo_config_for(dev, kTrialRate);
+    ServoTick tick(config, params);
+    tick.scenes().publish(std::make_unique<ServoScene>(scene));
+    SpscRing<drivers::TickRecord> ring(16);
+    drivers::ServoLoop loop(dev, tick, 1.0 / kTrialRate, &ring);
+    TrialTrace trace;
+    trace.ticks.swap(spare_ticks());
+    trace.ticks.clear();
+    if (!loop.start()) {
+        trace.faulted = true;
+        return trace;
+    }
+    trace.ticks.reserve(ticks);
+    setup.reset();
+    drivers::ServoLoopStages stages;
+    if (profile) loop.set_profile(&stages);
+    StageClock clock;
+    clock.start(profile != nullptr);
+    std::uint64_t k = 0;
+    for (bool going = true; going && k < ticks; ++k) {
+        loop.step(1.0 / kTrialRate, true);
+        for (drivers::TickRecord r; ring.try_pop(r);) {
+            trace.faulted |= r.fault != ServoFault::none;
+            trace.ticks.push_back(r);
+            drivers::PathSample next;
+            going = steer(r, next);
+            if (!going) break;
+            // The sample is for the next tick; a later one than the path's last, always.
+            next.t = std::max(next.t, dev.hand().path().end() + 1e-9);
+            dev.hand().steer(next);
+        }
+    }
+    if (profile) {
+        double all = 0.0;
+        clock.lap(all);
+        profile->device += stages.device * 1e-9;
+        profile->tick += stages.tick * 1e-9;
+        profile->records += (all - stages.device - stages.tick) * 1e-9;
+        profile->virtual_s += static_cast<double>(k) / kTrialRate;
+    }
+    return trace;
+}
+
 }  // namespace contactlab::experiments

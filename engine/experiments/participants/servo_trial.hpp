@@ -11,6 +11,7 @@
 #include "drivers/tick_record.hpp"
 #include "haptics/scene.hpp"
 
+#include <functional>
 #include <vector>
 
 namespace contactlab::experiments {
@@ -35,5 +36,16 @@ struct TrialTrace {
 };
 
 TrialTrace run_servo_trial(const Scene& scene, const drivers::HandPath& path, bool contact_location);
+
+// A hand steering tick by tick (feel_hand.hpp): given the tick just recorded, sets the hand's
+// intended sample one period later and returns true, or returns false when the trial is over.
+using Steer = std::function<bool(const drivers::TickRecord& now, drivers::PathSample& next)>;
+
+// A trial whose hand closes its loop: the rig is placed for `envelope` (the scripted path over
+// the same stimulus, so the arm's base, reach and limits are those of the scripted trial), the
+// finger starts at `start`, and `steer` writes the path as the trial goes, for at most `max_s`
+// seconds of virtual time.
+TrialTrace run_steered_trial(const Scene& scene, const drivers::HandPath& envelope, const drivers::PathSample& start,
+                             bool contact_location, const Steer& steer, double max_s);
 
 }  // namespace contactlab::experiments

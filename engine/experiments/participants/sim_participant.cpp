@@ -3,6 +3,8 @@
 
 #include "engine/experiments/protocol/grading.hpp"
 #include "engine/experiments/base/random_stream.hpp"
+#include "engine/experiments/participants/cues.hpp"
+#include "engine/experiments/participants/feel_tasks.hpp"
 #include "engine/experiments/participants/servo_trial.hpp"
 #include "engine/experiments/protocol/stimulus.hpp"
 #include "engine/experiments/participants/wearable_trial.hpp"
@@ -15,53 +17,7 @@ namespace contactlab::experiments {
 namespace {
 
 using drivers::TickRecord;
-
-constexpr double kDeg = 180.0 / kPi;
-
-// The force's direction from the vertical (deg), positive when it pushes back (-x) as on a
-// rising slope under a finger moving +x.
-double force_angle_deg(const TickRecord& r) { return std::atan2(-r.force.x, r.force.y) * kDeg; }
-
-// A threshold with perceptual noise, never below a tenth of itself.
-double noisy(double threshold, double noise, std::uint64_t& rng) {
-    return std::max(0.1 * threshold, threshold + noise * normal01(rng));
-}
-
-// Attention lapses over [t0, t1] s (ParticipantModel::lapse_rate_hz): start times of a Poisson
-// process, each lapse `lapse_duration_s` long. Draws nothing when the rate is 0, so a model
-// without lapses keeps its random stream as before.
-struct Lapses {
-    std::vector<double> starts;  // s
-    double duration = 0.0;       // s
-    bool at(double t) const {
-        for (double s : starts)
-            if (t >= s && t < s + duration) return true;
-        return false;
-    }
-};
-
-Lapses draw_lapses(const ParticipantModel& m, double t0, double t1, std::uint64_t& rng) {
-    Lapses l;
-    l.duration = m.lapse_duration_s;
-    if (m.lapse_rate_hz <= 0.0 || m.lapse_duration_s <= 0.0) return l;
-    for (double t = t0 - m.lapse_duration_s;;) {
-        t += -std::log(1.0 - uniform01(rng)) / m.lapse_rate_hz;  // exponential gaps
-        if (t >= t1) break;
-        l.starts.push_back(t);
-    }
-    return l;
-}
-
-// The speed (m/s) along seed 000's top: what lets the person stop within the pad after their
-// first cue (ParticipantModel::stop_time_s), from their usual thresholds, not this trial's draw.
-double exploration_speed(const Protocol& p, const Condition& c) {
-    const ParticipantModel& m = p.participant;
-    if (m.stop_time_s <= 0.0) return p.hand_speed;
-    double cue = p.finger_radius * std::sin(std::min(90.0, m.force_angle_threshold_deg) / kDeg);  // m past the edge
-    if (c.contact_location) cue = std::min(cue, m.location_threshold_mm * 1e-3);
-    const double left = std::max(0.0, 0.5 * p.pad_length - cue);  // m of pad beyond the cue
-    return std::clamp(left / m.stop_time_s, 0.002, p.hand_speed);  // never slower than 2 mm/s
-}
+using namespace cues;
 
 void common_measures(const TrialTrace& tr, TrialOutcome& o, double t_end = 1e300) {
     bool touched = false, prev = false;
@@ -77,6 +33,17 @@ void common_measures(const TrialTrace& tr, TrialOutcome& o, double t_end = 1e300
     // still touched the stimulus.
     o.touched = std::any_of(tr.ticks.begin(), tr.ticks.end(), [](const TickRecord& r) { return r.contact; });
     for (std::size_t i = 0; i < tr.ticks.size(); i += 10) o.shown.push_back(tr.ticks[i]);
+}
+
+// Share (0..1) of the ticks in [t0, t1] (s) in contact: the row's contact_fraction over the window
+// its time_s measures. NaN when no tick lies there.
+double contact_share(const TrialTrace& tr, double t0, double t1, long* in = nullptr, long* all = nullptr) {
+    long n = 0, c = 0;
+    for (const TickRecord& r : tr.ticks)
+        if (r.t >= t0 && r.t <= t1) ++n, c += r.contact;
+    if (in) *in += c;
+    if (all) *all += n;
+    return n > 0 ? static_cast<double>(c) / static_cast<double>(n) : NAN;
 }
 
 // Where rise-and-fall excursions of `s` beyond +-h complete (sample indices), counted either way
@@ -188,19 +155,57 @@ TrialOutcome contour_following(const Protocol& p, const Condition& c, const Plan
     }
     common_measures(tr, o, t_finish >= 0.0 ? t_finish : 1e300);
     o.time_s = t_start >= 0.0 && t_finish >= 0.0 ? t_finish - t_start : std::nan("");
+    // From the start line to the finish line, or to the trial's end when the finish was missed.
+    if (t_start >= 0.0) o.contact_fraction = contact_share(tr, t_start, t_finish >= 0.0 ? t_finish : 1e300);
     o.failed = o.contact_breaks > 0 || t_finish < 0.0;
     return o;
+}
+
+// Seed 000 with the hand that moves by feel (feel_tasks.hpp): timed and failed as the scripted
+// trial is, from the start line to the finish line.
+TrialOutcome contour_following_by_feel(const Protocol& p, const Condition& c, const PlannedTrial& t, std::uint64_t& rng) {
+    const FeelTrial f = feel_contour_following(p, c, t, rng);
+    TrialOutcome o;
+    common_measures(f.trace, o, f.end >= 0.0 ? f.end : 1e300);
+    o.time_s = f.start >= 0.0 && f.end >= 0.0 ? f.end - f.start : std::nan("");
+    if (f.start >= 0.0) o.contact_fraction = contact_share(f.trace, f.start, f.end >= 0.0 ? f.end : 1e300);
+    o.failed = o.contact_breaks > 0 || f.end < 0.0;
+    return o;
+}
+
+// The ticks of [t0, t1] a count reads, in order: every tick for the scripted hand (constant
+// speed), or for a hand whose speed varies, one per `step` m of the finger's travel in x (the
+// tick where it first reaches each step; none while it goes back), so that the counting's
+// windows, in samples, stay windows in mm.
+std::vector<std::size_t> slide_ticks(const TrialTrace& tr, double t0, double t1, double step, bool by_travel) {
+    std::vector<std::size_t> out;
+    double next = -1e300;
+    for (std::size_t i = 0; i < tr.ticks.size(); ++i) {
+        const TickRecord& r = tr.ticks[i];
+        if (r.t < t0 || r.t > t1) continue;
+        if (!by_travel) {
+            out.push_back(i);
+            continue;
+        }
+        if (next < -1e299) next = r.finger.x;
+        for (; r.finger.x >= next; next += step) out.push_back(i);
+    }
+    return out;
 }
 
 TrialOutcome bump_counting(const Protocol& p, const Condition& c, const PlannedTrial& t, std::uint64_t& rng) {
     const ParticipantModel& m = p.participant;
     const Stimulus st = make_stimulus(p, c, t);
-    const TrialTrace tr = run_servo_trial(st.scene, st.path, c.contact_location);
+    const bool feel = p.hand_model == HandModel::feel;
+    FeelTrial f;
+    if (feel) f = feel_slide(c, t, st);
+    else f.trace = run_servo_trial(st.scene, st.path, c.contact_location), f.start = st.slide_start, f.end = st.slide_end;
+    const TrialTrace& tr = f.trace;
     std::vector<double> angle, location, height, travel, when;
     double last_angle = 0.0, last_loc = 0.0;
-    const Lapses lapses = draw_lapses(m, st.slide_start, st.slide_end, rng);
-    for (const TickRecord& r : tr.ticks) {
-        if (r.t < st.slide_start || r.t > st.slide_end) continue;
+    const Lapses lapses = draw_lapses(m, f.start, f.end, rng);
+    for (const std::size_t i : slide_ticks(tr, f.start, f.end, p.hand_speed / kTrialRate, feel)) {
+        const TickRecord& r = tr.ticks[i];
         when.push_back(r.t);
         if (r.contact) {  // out of contact the finger feels nothing new: the last cue stays
             last_angle = force_angle_deg(r);
@@ -255,7 +260,8 @@ TrialOutcome bump_counting(const Protocol& p, const Condition& c, const PlannedT
     o.large_bumps = st.large_bumps;
     // The answers are the counts 0..N (parse_protocol checks it): a larger count is answered N.
     o.response = std::to_string(std::clamp(count, 0, static_cast<int>(p.answers.size()) - 1));
-    o.time_s = st.slide_end - st.slide_start;
+    o.time_s = f.end - f.start;
+    o.contact_fraction = contact_share(tr, f.start, f.end);
     return o;
 }
 
@@ -280,6 +286,7 @@ TrialOutcome curvature(const Protocol& p, const Condition& c, const PlannedTrial
     common_measures(tr, o);
     o.response = stimulus_label(p, answer);
     o.time_s = st.slide_end - st.slide_start;
+    o.contact_fraction = contact_share(tr, st.slide_start, st.slide_end);
     return o;
 }
 
@@ -310,6 +317,7 @@ TrialOutcome surface_orientation(const Protocol& p, const Condition& c, const Pl
     // a1 at 45 deg runs up-right/down-left: pressing down-left is the soft way (template A).
     o.response = down_left < down_right ? p.answers.front() : p.answers.back();
     o.time_s = st.path.end() - st.path.start();
+    o.contact_fraction = contact_share(tr, st.path.start(), st.path.end());
     return o;
 }
 
@@ -372,6 +380,10 @@ TrialOutcome edge_sharpness(const Protocol& p, const Condition& c, const Planned
                 std::any_of(second.trace.ticks.begin(), second.trace.ticks.end(), [](const TickRecord& r) { return r.contact; });
     o.response = d > 0.0 ? p.answers[0] : p.answers[1];
     o.time_s = (first.st.slide_end - first.st.slide_start) + (second.st.slide_end - second.st.slide_start);
+    long in = 0, all = 0;  // ticks in contact, ticks, over both slides
+    contact_share(first.trace, first.st.slide_start, first.st.slide_end, &in, &all);
+    contact_share(second.trace, second.st.slide_start, second.st.slide_end, &in, &all);
+    if (all > 0) o.contact_fraction = static_cast<double>(in) / static_cast<double>(all);
     return o;
 }
 
@@ -382,7 +394,9 @@ TrialOutcome perform_sim_trial(const Protocol& p, const PlannedTrial& t) {
     std::uint64_t rng = mix64(t.seed ^ 0x5EEDull);
     TrialOutcome o;
     switch (p.task) {
-        case Task::contour_following: o = contour_following(p, c, t, rng); break;
+        case Task::contour_following:
+            o = p.hand_model == HandModel::feel ? contour_following_by_feel(p, c, t, rng) : contour_following(p, c, t, rng);
+            break;
         case Task::bump_counting: o = bump_counting(p, c, t, rng); break;
         case Task::curvature:
             o = p.device == "sim-wearable" ? wearable_curvature_trial(p, c, t, rng) : curvature(p, c, t, rng);

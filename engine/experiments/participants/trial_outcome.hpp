@@ -7,6 +7,7 @@
 #include "drivers/sim/wearable_tasks.hpp"
 #include "drivers/tick_record.hpp"
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,9 @@ struct TrialOutcome {
     double time_s = 0.0;     // seed 000: start line to finish line; others: the slide's duration
     bool failed = false;     // seed 000: contact broken, or the finish line not reached
     int contact_breaks = 0;  // contact lost after it was first made
+    // Share of the timed part of the trial (the window time_s measures) spent in contact, 0..1;
+    // NaN where nothing was timed against a contour (a model observer).
+    double contact_fraction = NAN;
     bool touched = false;    // the finger contacted the stimulus at any tick of the trial
     int small_bumps = 0, large_bumps = 0;  // seed 002: the stimulus's bumps by size
     double peak_force = 0.0; // N

@@ -40,6 +40,11 @@ TrialOutcome wearable_curvature_trial(const Protocol& p, const Condition& c, con
         o.peak_force = std::max(o.peak_force, s.platform_force);
     }
     o.touched = first >= 0.0;
+    // The share of the sweep's samples (one per link period) with the finger on the arc.
+    if (!run.samples.empty())
+        o.contact_fraction = static_cast<double>(std::count_if(run.samples.begin(), run.samples.end(),
+                                                               [](const drivers::sim::CurvatureSample& s) { return s.contact; })) /
+                             static_cast<double>(run.samples.size());
     o.time_s = o.touched ? last - first : 0.0;
     // The swept range, felt with relative noise; the answer is the height whose range is nearest
     // as a ratio (the ideal observer for relative noise).

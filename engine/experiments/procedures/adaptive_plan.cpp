@@ -10,7 +10,7 @@ bool AdaptivePlan::Track::finished() const {
 }
 
 AdaptivePlan::AdaptivePlan(const Protocol& p, std::uint64_t seed, std::uint64_t participant)
-    : p_(p), state_(mix64(seed ^ mix64(participant) ^ 0xADA9ull)), base_(mix64(state_)) {
+    : p_(p), state_(mix64(seed ^ mix64(participant) ^ 0xADA9ull)), base_(mix64(state_)), person_(person_seed(seed, participant)) {
     for (std::size_t c = 0; c < p.conditions.size(); ++c) {
         Track t;
         if (p.procedure.type == ProcedureType::staircase) t.stair = std::make_unique<Staircase>(p.procedure), t.max_trials = p.procedure.max_trials;
@@ -38,6 +38,7 @@ const PlannedTrial& AdaptivePlan::next() {
     pending_.warmup = t.practised < p_.warmup;
     pending_.stimulus = pending_.warmup ? p_.procedure.hi : t.next();
     pending_.seed = mix64(base_ ^ (static_cast<std::uint64_t>(c) << 32) ^ static_cast<std::uint64_t>(pending_.trial));
+    pending_.person = person_;
     have_pending_ = true;
     return pending_;
 }

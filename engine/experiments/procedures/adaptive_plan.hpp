@@ -52,6 +52,7 @@ private:
     };
     const Protocol& p_;
     std::uint64_t state_, base_;
+    std::uint64_t person_;  // PlannedTrial::person for every trial of this participant
     std::vector<Track> tracks_;
     PlannedTrial pending_;
     bool have_pending_ = false;

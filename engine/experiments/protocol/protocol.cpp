@@ -296,6 +296,15 @@ const char* stimulus_unit(Task t) {
 
 int comparison_interval(std::uint64_t trial_seed) { return static_cast<int>(mix64(trial_seed ^ 0x2AFC2AFCull) & 1u) + 1; }
 
+const char* to_string(HandModel h) { return h == HandModel::feel ? "feel" : "scripted"; }
+
+bool parse_hand_model(const std::string& name, HandModel& out) {
+    if (name == "scripted") out = HandModel::scripted;
+    else if (name == "feel") out = HandModel::feel;
+    else return false;
+    return true;
+}
+
 const char* to_string(ProcedureType t) {
     switch (t) {
         case ProcedureType::constant: return "constant";
@@ -448,7 +457,10 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
     check_answers(r, p);
 
     if (root.contains("hand")) {
-        r.only(root["hand"], "hand", {"speed", "press"});
+        r.only(root["hand"], "hand", {"speed", "press", "model"});
+        if (root["hand"].contains("model") &&
+            !parse_hand_model(r.text(root["hand"]["model"], "hand.model"), p.hand_model))
+            r.fail("hand.model", "expected \"scripted\" or \"feel\"");
         p.hand_speed = r.number(root["hand"], "hand", "speed", 0.005, 1.0, "m/s", p.hand_speed);
         p.hand_press = r.number(root["hand"], "hand", "press", 0.0, 0.02, "m", p.hand_press);
     }

@@ -43,6 +43,11 @@ struct Condition {
     double eccentricity = 1.0, total_stiffness = 1000.0;
 };
 
+enum class HandModel { scripted, feel };
+const char* to_string(HandModel h);
+// "scripted" or "feel"; false for anything else.
+bool parse_hand_model(const std::string& name, HandModel& out);
+
 // The simulated participant (sim_participant.hpp): one model of a person for every task. The
 // thresholds of the cues it reads from what the device displayed and the Gaussian noise on each,
 // in the units given, how it explores and how its attention lapses. The defaults are the person;
@@ -167,6 +172,12 @@ struct Protocol {
     std::vector<std::string> answers;  // the response set; empty for timed tasks
     // The hand: speed along the surface (m/s), press depth below it (m).
     double hand_speed = 0.05, hand_press = 0.003;
+    // How the simulated person's hand moves (`hand.model`, or `experiment run --hand`):
+    //   scripted  along a path made in advance from the contour (it knows the surface ahead)
+    //   feel      closing its loop on what it feels, through a sensorimotor delay, with motor
+    //             noise (participants/feel_hand.hpp); seed 000 and 002's tasks, the others keep
+    //             their scripted slide or press
+    HandModel hand_model = HandModel::scripted;
     // Seed 002's stimuli: bump heights (m) and the traced length (m); the base shape's vertical
     // span over that length (m). The default is the seed's text, 20 cm: its turns are then as
     // sharp as a small bump's top. The shipped 002-bump-counting.json sets 20 mm, a slowly-varying

@@ -22,6 +22,8 @@ void shuffle(std::vector<T>& v, std::uint64_t& state) {
 
 }  // namespace
 
+std::uint64_t person_seed(std::uint64_t seed, std::uint64_t participant) { return mix64(seed ^ mix64(participant) ^ 0x9E450Aull); }
+
 std::vector<std::vector<PlannedTrial>> plan_trials(const Protocol& p, std::uint64_t seed, std::uint64_t participant) {
     std::uint64_t state = mix64(seed ^ mix64(participant));
     std::vector<int> order(p.conditions.size());
@@ -48,6 +50,7 @@ std::vector<std::vector<PlannedTrial>> plan_trials(const Protocol& p, std::uint6
             t.stimulus = stimuli[i];
             t.warmup = static_cast<int>(i) < p.warmup;
             t.seed = mix64(state ^ (static_cast<std::uint64_t>(c) << 32) ^ i);
+            t.person = person_seed(seed, participant);
             block.push_back(t);
         }
         blocks.push_back(std::move(block));

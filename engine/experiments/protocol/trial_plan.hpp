@@ -23,7 +23,13 @@ struct PlannedTrial {
     double stimulus = 0.0;    // the judged quantity (protocol units)
     bool warmup = false;
     std::uint64_t seed = 0;   // for this trial's stimulus details and perceptual noise
+    // The same for all of a participant's trials: draws who the simulated person is (the feel
+    // hand's own parameters, participants/person.hpp), apart from the trials' noise.
+    std::uint64_t person = 0;
 };
+
+// A participant's `person` seed under the run's seed (plan_trials and the adaptive plans).
+std::uint64_t person_seed(std::uint64_t seed, std::uint64_t participant);
 
 // `participant` numbers participants 1, 2, ... (simulated) or hashes a human's id.
 std::vector<std::vector<PlannedTrial>> plan_trials(const Protocol& p, std::uint64_t seed, std::uint64_t participant);

@@ -172,6 +172,7 @@ TrialRecord record_of(const Protocol& p, const RunOptions& o, const std::string&
     rec.failed = r.failed;
     rec.time_s = r.time_s;
     rec.contact_breaks = r.contact_breaks;
+    rec.contact_fraction = r.contact_fraction;
     rec.peak_force = r.peak_force;
     rec.touched = r.touched;
     rec.device = o.observer ? kObserverDevice : p.device.c_str();

@@ -148,6 +148,7 @@ void LiveSession::answer(const LiveTrialResult& r) {
     rec.failed = protocol_.task == Task::contour_following && r.contact_breaks > 0;
     rec.time_s = r.time_s;
     rec.contact_breaks = r.contact_breaks;
+    rec.contact_fraction = r.contact_fraction;
     rec.peak_force = r.peak_force;
     rec.device = r.device;
     rec.small_bumps = small_bumps_;

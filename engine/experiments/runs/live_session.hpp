@@ -22,6 +22,7 @@
 #include "drivers/finger_sweep.hpp"
 #include "haptics/scene.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -40,6 +41,8 @@ struct LiveTrialResult {
     // trial with a peak force above zero touched (the servo renders force only in contact).
     std::optional<bool> touched;
     std::string device;       // the device the trial was felt on ("" when not known)
+    // Last, so the brace-initialised results written before it still mean what they meant.
+    double contact_fraction = NAN;  // share of the trial's ticks in contact, 0..1; NaN: not known
 };
 
 class LiveSession {

@@ -27,7 +27,7 @@ std::string study_difference(const Source& a, const Source& b) {
     if (a.meta.value("protocol_sha256", json()) != b.meta.value("protocol_sha256", json()))
         return "another protocol (sha256 " + sha(b.meta.value("protocol_sha256", json())) + " against " +
                sha(a.meta.value("protocol_sha256", json())) + " in " + a.path + ")";
-    for (const char* key : {"seed", "device", "servo_rate_hz", "traces", "contactlab_version", "commit"})
+    for (const char* key : {"seed", "hand", "device", "servo_rate_hz", "traces", "contactlab_version", "commit"})
         if (a.meta.value(key, json()) != b.meta.value(key, json()))
             return std::string("another ") + key + " (" + b.meta.value(key, json()).dump() + " against " +
                    a.meta.value(key, json()).dump() + " in " + a.path + ")";

@@ -27,8 +27,8 @@ std::vector<std::string> with(std::vector<std::string> v, std::initializer_list<
 const std::vector<std::string>& results_columns(const Protocol& p) {
     static const std::vector<std::string> base = {
         "participant", "condition", "trial",        "stimulus",     "stimulus_unit", "response", "correct", "valid",
-        "warmup",      "time_s",    "failed",       "contact_breaks", "peak_force_n", "touched", "contact_location",
-        "device"};
+        "warmup",      "time_s",    "failed",       "contact_breaks", "contact_fraction", "peak_force_n", "touched",
+        "contact_location", "device"};
     static const std::vector<std::string> orientation = with(base, {"e", "k"});
     static const std::vector<std::string> curvature = with(base, {"motion"});
     static const std::vector<std::string> bumps = with(base, {"small_bumps", "large_bumps"});
@@ -68,6 +68,7 @@ std::vector<std::string> results_row(const Protocol& p, const TrialRecord& r) {
                                     fmt(r.time_s, "%.4f"),
                                     r.failed ? "1" : "0",
                                     std::to_string(r.contact_breaks),
+                                    fmt(r.contact_fraction, "%.4f"),
                                     fmt(r.peak_force, "%.4f"),
                                     r.touched ? "1" : "0",
                                     c.contact_location ? "1" : "0",

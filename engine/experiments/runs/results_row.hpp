@@ -20,6 +20,7 @@ struct TrialRecord {
     bool failed = false;
     double time_s = 0.0;         // NaN: not measured (an empty cell)
     int contact_breaks = 0;
+    double contact_fraction = NAN;  // share of the timed window in contact, 0..1; NaN: not measured (empty cell)
     double peak_force = 0.0;     // N
     bool touched = false;        // the finger contacted the stimulus during the trial
     std::string device;          // the device's name ("sim-cld"); "" when not known

@@ -49,6 +49,9 @@ json make_meta(const RunIdentity& id, const std::string& command) {
     // at hand for a reader that does not open it.
     m["protocol"] = json::parse(id.protocol->text);
     m["task"] = to_string(id.protocol->task);
+    // The simulated person's hand (the protocol's hand.model, or experiment run --hand): the same
+    // protocol file run with another hand is another study.
+    m["hand"] = to_string(id.protocol->hand_model);
     m["seed"] = id.seed;
     m["participants"] = id.participants;
     m["device"] = id.device;
@@ -104,7 +107,7 @@ std::string identity_difference(const json& old_meta, const json& now) {
                " in the file)";
     // A rebuilt program may perform the same trials differently: a run is resumed by the build
     // that started it.
-    for (const char* key : {"device", "servo_rate_hz", "traces", "contactlab_version", "commit"})
+    for (const char* key : {"hand", "device", "servo_rate_hz", "traces", "contactlab_version", "commit"})
         if (old_meta.value(key, json()) != now[key])
             return std::string("another ") + key + " (" + now[key].dump() + " now, " + old_meta.value(key, json()).dump() + " in the file)";
     return "";

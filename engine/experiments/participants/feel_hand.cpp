@@ -1,0 +1,86 @@
+// feel_hand.cpp — the hand's loop on what it feels (feel_hand.hpp).
+#include "engine/experiments/participants/feel_hand.hpp"
+
+#include "engine/experiments/base/random_stream.hpp"
+#include "haptics/vec2.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace contactlab::experiments {
+namespace {
+
+// The hand's stiffness in series with a rendered surface (N/m): 300 N/m of the rig's hand
+// (drivers/sim/scripted_hand.hpp) with seed 000's 1000 N/m or seed 002's 1300: 231-244. What the
+// press loop's gain is tuned against, as a person's is by practice.
+constexpr double kSeriesStiffness = 240.0;
+// The press loop's gain times the delay times that stiffness (rad of the delayed integrator's
+// phase margin used: pi / 2 is the limit; 0.4 settles in about 2.5 delays without overshoot).
+constexpr double kLoopGain = 0.4;
+constexpr double kNoiseTau = 0.05;   // s, the low-pass of the motor noise
+constexpr double kSpeedTau = 0.15;   // s, how fast the speed follows its command
+constexpr double kTouch = 0.02;      // N: a force below this is not felt as contact
+
+// An Ornstein-Uhlenbeck step of unit stationary variance over dt.
+double ou(double x, double dt, std::uint64_t& rng) {
+    const double a = std::exp(-dt / kNoiseTau);
+    return a * x + std::sqrt(1.0 - a * a) * normal01(rng);
+}
+
+// The finger angle that puts the pad's middle on a contact whose normal (toward the finger's
+// centre) is n: the pad's middle lies at phi - pi/2 from the centre (DESIGN.md).
+double angle_facing(Vec2 n) {
+    double phi = std::atan2(-n.y, -n.x) + 0.5 * kPi;
+    if (phi > kPi) phi -= 2.0 * kPi;
+    return phi;
+}
+
+}  // namespace
+
+FeelHand::FeelHand(const Person& person, drivers::PathSample start, double dt, std::uint64_t noise_seed)
+    : person_(person), dt_(dt), rng_(mix64(noise_seed ^ 0x4A4Dull)), plan_(start.x), phi_(start.phi),
+      phi_goal_(start.phi) {
+    const std::size_t n = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(person_.delay_s / dt_)));
+    line_.resize(n);
+    gain_ = kLoopGain / (person_.delay_s * kSeriesStiffness);
+}
+
+drivers::PathSample FeelHand::step(const drivers::TickRecord& now) {
+    // The delay line: what was displayed delay_s ago reaches the hand now.
+    const drivers::TickRecord felt = line_[head_];
+    const bool have = filled_ >= line_.size();
+    line_[head_] = now;
+    head_ = (head_ + 1) % line_.size();
+    filled_ = std::min(filled_ + 1, line_.size());
+    if (have) {
+        const double f = std::hypot(felt.force.x, felt.force.y);
+        felt_contact_ = felt.contact && f > kTouch;
+        felt_force_ = felt_contact_ ? f : 0.0;
+        if (felt_contact_) normal_ = felt.force / f;
+    }
+    // Speed: toward the command, with signal-dependent noise.
+    speed_ += (speed_goal_ - speed_) * (1.0 - std::exp(-dt_ / kSpeedTau));
+    noise_speed_ = ou(noise_speed_, dt_, rng_);
+    noise_force_ = ou(noise_force_, dt_, rng_);
+    const double v = std::max(0.0, speed_ * (1.0 + person_.speed_noise_cv * noise_speed_));
+    // The felt tangent turned clockwise by turn_ (toward the surface for travel along +tangent).
+    const Vec2 tan = felt_tangent();
+    const double ca = std::cos(turn_), sa = std::sin(turn_);
+    const Vec2 dir{tan.x * ca + tan.y * sa, -tan.x * sa + tan.y * ca};
+    // Press: into the surface along the felt normal at gain (F* - F); before the first touch the
+    // strategy's approach speed, when it set one.
+    double press = gain_ * (person_.press_force_n - felt_force_);  // m/s into the surface
+    if (!felt_contact_ && approach_ > 0.0) press = std::max(press, approach_);
+    plan_ += (v * dir - press * normal_) * dt_;
+    // The press's own noise: a force of sd force_noise_cv F* through the series stiffness.
+    const Vec2 intended = plan_ - normal_ * (person_.force_noise_cv * person_.press_force_n / kSeriesStiffness * noise_force_);
+    // The finger's angle: held, or turned with the felt normal and `lead` further round, never
+    // past pointing straight down (the wrist's reach in a plane: -pi/2).
+    if (follow_) phi_goal_ = std::max(-0.5 * kPi, angle_facing(normal_) - lead_);
+    phi_ = phi_goal_;
+    // For the end of the device's next advance: the record was read at now.t, the device is at
+    // now.t + dt and advances to now.t + 2 dt under this sample.
+    return {now.t + 2.0 * dt_, intended, phi_};
+}
+
+}  // namespace contactlab::experiments

@@ -1,0 +1,23 @@
+// person.cpp — drawing a simulated person (person.hpp).
+#include "engine/experiments/participants/person.hpp"
+
+#include "engine/experiments/base/random_stream.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace contactlab::experiments {
+
+Person draw_person(std::uint64_t person_seed, const PersonPopulation& q) {
+    std::uint64_t rng = mix64(person_seed ^ 0xFEE1ull);
+    Person p;
+    // Always five draws in this order, so adding a parameter at the end keeps these people.
+    p.delay_s = std::clamp(q.delay_mean_s + q.delay_sd_s * normal01(rng), q.delay_min_s, q.delay_max_s);
+    p.press_force_n = q.press_median_n * std::exp(q.press_log_sd * normal01(rng));
+    p.pace = std::exp(q.pace_log_sd * normal01(rng));
+    p.force_noise_cv = std::max(0.02, q.force_noise_cv_mean + q.force_noise_cv_sd * normal01(rng));
+    p.speed_noise_cv = std::max(0.03, q.speed_noise_cv_mean + q.speed_noise_cv_sd * normal01(rng));
+    return p;
+}
+
+}  // namespace contactlab::experiments

@@ -1,0 +1,222 @@
+// test_feel_hand.cpp — the hand that moves by feel (participants/feel_hand.hpp, feel_tasks.hpp)
+// and the people it belongs to (person.hpp): its press loop settles on the person's force, it
+// slides at the speed it is told, it feels late by the person's delay, and seed 000 by feel
+// behaves as its cues predict; people are drawn from the documented population.
+#include "engine/experiments/analysis/analysis.hpp"
+#include "engine/experiments/base/results_table.hpp"
+#include "engine/experiments/participants/feel_hand.hpp"
+#include "engine/experiments/participants/person.hpp"
+#include "engine/experiments/participants/servo_trial.hpp"
+#include "engine/experiments/protocol/protocol.hpp"
+#include "engine/experiments/protocol/trial_plan.hpp"
+#include "engine/experiments/runs/experiment_run.hpp"
+#include "drivers/sim/sim_rig.hpp"
+#include "process.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+using namespace contactlab;
+using namespace contactlab::experiments;
+using cli_test::TempDir;
+
+namespace {
+
+std::string protocol_path(const char* name) { return (cli_test::source_dir() / "scenes" / "experiments" / name).string(); }
+
+// A person without motor noise, to check the loop's own behaviour.
+Person quiet_person(double delay = 0.12, double force = 0.6) {
+    Person p;
+    p.delay_s = delay;
+    p.press_force_n = force;
+    p.force_noise_cv = 0.0;
+    p.speed_noise_cv = 0.0;
+    return p;
+}
+
+// The hand over seed 000's rendering of a flat floor (y = 0, 1000 N/m, 1.5 N), starting 1 cm
+// above it; `speed` (m/s) set once contact has been felt for 0.3 s; `seconds` of virtual time.
+TrialTrace press_floor(const Person& person, double speed, double seconds) {
+    Scene scene = drivers::sim::floor_scene(1000.0);
+    scene.finger.radius = 0.026;
+    scene.finger.length = 0.020;
+    scene.force.max_force = 1.5;
+    const drivers::PathSample start{0.0, Vec2{-0.05, 0.026 + 0.01}, 0.0};
+    const drivers::HandPath envelope(std::vector<drivers::PathSample>{start, {1.0, Vec2{0.05, 0.023}, 0.0}});
+    FeelHand hand(person, start, 1e-3, 7);
+    hand.set_approach(0.03);
+    double felt_since = -1.0;
+    const Steer steer = [&](const drivers::TickRecord& r, drivers::PathSample& next) {
+        if (hand.felt_contact() && felt_since < 0.0) felt_since = r.t;
+        if (felt_since >= 0.0 && r.t - felt_since >= 0.3) hand.set_speed(speed);
+        next = hand.step(r);
+        return true;
+    };
+    return run_steered_trial(scene, envelope, start, false, steer, seconds);
+}
+
+double mean_force(const TrialTrace& tr, double from, double to) {
+    double sum = 0.0;
+    int n = 0;
+    for (const auto& r : tr.ticks)
+        if (r.t >= from && r.t <= to) sum += std::hypot(r.force.x, r.force.y), ++n;
+    return n ? sum / n : NAN;
+}
+
+}  // namespace
+
+TEST_CASE("feel hand: pressing a floor, the force settles on the person's press force") {
+    // An integral force loop with gain 0.4 / (delay x 240 N/m): it settles in a few delays with
+    // no overshoot left; after 2 s the force is the target to within the rig's own ripple.
+    for (const double target : {0.4, 0.9}) {
+        CAPTURE(target);
+        const TrialTrace tr = press_floor(quiet_person(0.12, target), 0.0, 3.0);
+        REQUIRE_FALSE(tr.faulted);
+        CHECK(mean_force(tr, 2.0, 3.0) == doctest::Approx(target).epsilon(0.03));
+        int breaks = 0;
+        bool touched = false, prev = false;
+        for (const auto& r : tr.ticks) {
+            if (touched && prev && !r.contact) ++breaks;
+            touched |= r.contact;
+            prev = r.contact;
+        }
+        CHECK(breaks == 0);
+    }
+}
+
+TEST_CASE("feel hand: it reaches later and presses harder on touching the longer its delay") {
+    // Reaching down at 30 mm/s, the hand learns of the contact `delay` late and has pushed on by
+    // 30 mm/s x delay: through the hand (300 N/m) in series with the floor (1000 N/m), 231 N/m,
+    // the force at that moment is 6.9 N/s x delay, the first peak's bulk. Both peaks stay under
+    // the 1.5 N limit.
+    auto peak = [](double delay) {
+        const TrialTrace tr = press_floor(quiet_person(delay, 0.3), 0.0, 1.5);
+        double p = 0.0;
+        for (const auto& r : tr.ticks) p = std::max(p, std::hypot(r.force.x, r.force.y));
+        return p;
+    };
+    const double fast = peak(0.08), slow = peak(0.14);
+    CHECK(slow < 1.5);
+    CHECK(slow > fast);
+    CHECK(slow - fast == doctest::Approx(6.9 * (0.14 - 0.08)).epsilon(0.5));
+}
+
+TEST_CASE("feel hand: sliding along a floor at the speed it is told, in contact throughout") {
+    const double v = 0.03;  // m/s
+    const TrialTrace tr = press_floor(quiet_person(), v, 3.0);
+    // Over the last second: x advances at v (the speed's 0.15 s lag long settled).
+    const auto at = [&](double t) {
+        const auto it = std::find_if(tr.ticks.begin(), tr.ticks.end(), [&](const auto& r) { return r.t >= t; });
+        return it->finger.x;
+    };
+    CHECK((at(2.9) - at(1.9)) / 1.0 == doctest::Approx(v).epsilon(0.02));
+    for (const auto& r : tr.ticks)
+        if (r.t > 1.0) REQUIRE(r.contact);
+}
+
+TEST_CASE("people: drawn from the documented population, the same person for the same seed") {
+    const Person a = draw_person(42), b = draw_person(42), c = draw_person(43);
+    CHECK(a.delay_s == b.delay_s);
+    CHECK(a.pace == b.pace);
+    CHECK(a.pace != c.pace);
+    // 4000 people: each mean within 5 standard errors of the population's.
+    const int n = 4000;
+    double delay = 0.0, log_press = 0.0, log_pace = 0.0, log_pace2 = 0.0;
+    double lo = 1.0, hi = 0.0;
+    for (int i = 0; i < n; ++i) {
+        const Person p = draw_person(static_cast<std::uint64_t>(i) * 7919u + 1u);
+        delay += p.delay_s;
+        lo = std::min(lo, p.delay_s);
+        hi = std::max(hi, p.delay_s);
+        log_press += std::log(p.press_force_n);
+        log_pace += std::log(p.pace);
+        log_pace2 += std::log(p.pace) * std::log(p.pace);
+    }
+    const PersonPopulation& q = kPopulation;
+    CHECK(delay / n == doctest::Approx(q.delay_mean_s).epsilon(5.0 * q.delay_sd_s / std::sqrt(n) / q.delay_mean_s));
+    CHECK(lo >= q.delay_min_s);
+    CHECK(hi <= q.delay_max_s);
+    CHECK(std::exp(log_press / n) == doctest::Approx(q.press_median_n).epsilon(5.0 * q.press_log_sd / std::sqrt(n)));
+    const double m = log_pace / n, sd = std::sqrt(log_pace2 / n - m * m);
+    CHECK(std::abs(m) < 5.0 * q.pace_log_sd / std::sqrt(n));
+    CHECK(sd == doctest::Approx(q.pace_log_sd).epsilon(0.05));
+}
+
+TEST_CASE("protocols: hand.model names the hand, scripted or feel, and anything else is refused") {
+    Protocol p = load_protocol(protocol_path("000-contour-following.json"));
+    CHECK(p.hand_model == HandModel::scripted);
+    HandModel h = HandModel::scripted;
+    CHECK(parse_hand_model("feel", h));
+    CHECK(h == HandModel::feel);
+    CHECK_FALSE(parse_hand_model("Feel", h));
+    CHECK(std::string(to_string(HandModel::feel)) == "feel");
+}
+
+TEST_CASE("simulated participant by feel: seed 000 without noise, the edge is felt in time with contact location, and time rises with d") {
+    // A noiseless person (exact thresholds, no lapses, one reaction time): with contact
+    // location the element's 1.5 mm move is felt with the pad's reach past the edge still ahead,
+    // and the speed leaves the reaction (0.1 s) and one feedback delay (about 0.12 s) of it,
+    // shortened by their pace, to tip: at the pace of participant 1 (below 1.3) the hand tips
+    // before the pad leaves the top, and no trial fails. Each trial's time from the start line
+    // grows with d at the top's speed.
+    Protocol p = load_protocol(protocol_path("000-contour-following.json"));
+    p.hand_model = HandModel::feel;
+    p.repetitions = 1;
+    p.conditions.erase(p.conditions.begin());  // force+cld only
+    p.participant.force_angle_noise_deg = 0.0;
+    p.participant.location_noise_mm = 0.0;
+    p.participant.reaction_time_sd_s = 0.0;
+    p.participant.lapse_rate_hz = 0.0;
+    TempDir dir;
+    RunOptions o;
+    o.participants = {1};
+    o.traces = false;
+    o.output = dir.file("r.csv");
+    run_experiment(p, o);
+    const ResultsTable t = read_results_csv(o.output);
+    REQUIRE(t.rows.size() == p.stimuli.size());
+    const Person person = draw_person(person_seed(o.seed, 1));
+    REQUIRE(person.pace < 1.3);
+    std::vector<std::pair<double, double>> times;  // d (m), time (s)
+    for (std::size_t i = 0; i < t.rows.size(); ++i) {
+        CAPTURE(t.rows[i][*t.column("stimulus")]);
+        CHECK(t.rows[i][*t.column("failed")] == "0");
+        CHECK(std::stod(t.rows[i][*t.column("contact_fraction")]) == 1.0);
+        times.emplace_back(std::stod(t.rows[i][*t.column("stimulus")]), std::stod(t.rows[i][*t.column("time_s")]));
+    }
+    std::sort(times.begin(), times.end());
+    // From d = 4 to 10 cm the top adds 6 cm at the person's speed: the pad left past the 1.5 mm
+    // cue over (0.1 s + a delay) / pace, the pad being L/2 = 10 mm or, pressing lightly, the
+    // sqrt(2 R F* / k) past the edge where the hand's intended point leaves the corner's circle
+    // (k = 240 N/m), capped at the hand speed of 50 mm/s.
+    const double reach = std::min(0.01, std::sqrt(2.0 * 0.026 * person.press_force_n / 240.0));
+    const double v = std::min((reach - 0.0015) * person.pace / (0.1 + person.delay_s), 0.05);
+    CHECK(times.back().second - times.front().second == doctest::Approx(0.06 / v).epsilon(0.15));
+}
+
+TEST_CASE("experiment run --hand: feel is recorded in the meta, a bad name exits 2 naming the option") {
+    TempDir dir;
+    const std::string proto = protocol_path("000-contour-following.json");
+    const auto bad = cli_test::run_contactlab({"experiment", "run", proto, "--participant", "sim", "--hand", "fel", "-o", dir.file("b.csv")});
+    CHECK(bad.exit_code == 2);
+    CHECK(bad.err.find("--hand: expected scripted or feel, got \"fel\"") != std::string::npos);
+    const auto p = cli_test::run_contactlab(
+        {"experiment", "run", proto, "--participant", "sim", "--hand", "feel", "--no-traces", "--jobs", "1", "-o", dir.file("r.csv")});
+    INFO(p.err);
+    REQUIRE(p.exit_code == 0);
+    const auto meta = nlohmann::json::parse(cli_test::read_text(dir.file("r.csv.meta.json")));
+    CHECK(meta["hand"] == "feel");
+    const ResultsTable t = read_results_csv(dir.file("r.csv"));
+    CHECK(t.rows.size() == 70);
+    // The same run again with the scripted hand is another study: refused, not resumed.
+    const auto other = cli_test::run_contactlab(
+        {"experiment", "run", proto, "--participant", "sim", "--hand", "scripted", "--no-traces", "--jobs", "1", "-o", dir.file("r.csv")});
+    CHECK(other.exit_code == 2);
+    CHECK(other.err.find("another hand") != std::string::npos);
+}
