@@ -16,6 +16,7 @@
 #include "drivers/tasks.hpp"
 #include "drivers/usb/falcon_device.hpp"
 #include "drivers/usb/hapio_device.hpp"
+#include "drivers/usb/haply_device.hpp"
 #include "haptics/scene_io.hpp"
 
 #include <algorithm>
@@ -46,7 +47,16 @@ std::unique_ptr<Device> make_device(const SimulateOptions& o, const Scene& scene
             fo.firmware = o.firmware;
             return std::make_unique<falcon::FalconDevice>(fo);
         }
-        throw BadInput("--device: unknown USB device \"" + o.device + "\" (usb:hapio, usb:falcon; see contactlab devices)");
+        if (o.device == "usb:haply") {
+            if (o.haply_hardware != 2 && o.haply_hardware != 3)
+                throw BadInput("--haply-hardware must be 2 or 3 (the 2DIY's board generation), got " +
+                               std::to_string(o.haply_hardware));
+            haply::HaplyOptions ho;
+            ho.generation = o.haply_hardware;
+            ho.port = o.haply_port;
+            return std::make_unique<haply::HaplyDevice>(ho);
+        }
+        throw BadInput("--device: unknown USB device \"" + o.device + "\" (usb:hapio, usb:falcon, usb:haply; see contactlab devices)");
     }
     if (o.device.rfind("replay:", 0) == 0) {
         if (!o.hand.empty() || !o.task.empty()) throw BadInput("--device replay:FILE takes no --hand or --task");
@@ -77,7 +87,7 @@ std::unique_ptr<Device> make_device(const SimulateOptions& o, const Scene& scene
         wp.watchdog_timeout = std::max(wp.watchdog_timeout, 3.0 / o.rate);
         return std::make_unique<sim::SimWearableDevice>(wp, std::move(path));
     }
-    if (o.device != "sim-cld") throw BadInput("--device: unknown device \"" + o.device + "\" (sim-cld, sim-wearable, replay:FILE, usb:hapio, usb:falcon)");
+    if (o.device != "sim-cld") throw BadInput("--device: unknown device \"" + o.device + "\" (sim-cld, sim-wearable, replay:FILE, usb:hapio, usb:falcon, usb:haply)");
     if (o.hand.empty() == o.task.empty()) throw BadInput("sim-cld needs exactly one of --hand HAND.csv or --task contour-block");
     HandPath path;
     if (!o.task.empty()) {
@@ -260,6 +270,16 @@ int run_simulate(const SimulateOptions& o) {
                      static_cast<unsigned long long>(st.malformed), static_cast<unsigned long long>(st.timeouts),
                      static_cast<unsigned long long>(st.disconnects), static_cast<unsigned long long>(st.reconnects),
                      static_cast<unsigned long long>(st.firmware_uploads));
+    }
+    if (const auto* hp = dynamic_cast<const haply::HaplyDevice*>(dev.get())) {
+        const haply::HaplyStats st = hp->stats();
+        std::fprintf(stderr, "simulate: %s (2DIY generation %d on %s): %llu exchanges, %llu replies, %llu rejected "
+                     "(%llu short, %llu wrong device id, %llu not finite), %llu timeouts, %llu unplugs, %llu replugs\n",
+                     dev->name(), hp->hardware().generation, hp->port().c_str(), static_cast<unsigned long long>(st.exchanges),
+                     static_cast<unsigned long long>(st.replies), static_cast<unsigned long long>(st.rejected()),
+                     static_cast<unsigned long long>(st.short_frames), static_cast<unsigned long long>(st.wrong_device),
+                     static_cast<unsigned long long>(st.not_finite), static_cast<unsigned long long>(st.timeouts),
+                     static_cast<unsigned long long>(st.disconnects), static_cast<unsigned long long>(st.reconnects));
     }
     if (realtime) {
         std::fprintf(stderr, "simulate: %s; %s\n", rt.scheduling.c_str(), rt.memory_lock.c_str());
