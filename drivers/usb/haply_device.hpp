@@ -56,7 +56,9 @@ struct HaplyOptions {
     int reply_timeout_ms = 20;     // one exchange's reply; later is a missed exchange
     double handshake_timeout = 2.5;  // s: a board that resets when its port opens needs ~2 s
     double reopen_every = 0.2;     // s: retry period while unplugged
-    // kg: the lightest effective mass at the handle, for the passivity controller (0: none).
+    // kg: the lightest effective mass at the handle, for the passivity controller. Haply publishes
+    // none and none was measured here: 0 (the controller cannot act) unless the user's device
+    // file gives one.
     double mass = 0.0;
 };
 

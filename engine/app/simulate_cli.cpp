@@ -19,6 +19,9 @@ void register_simulate_command(CLI::App& app, int& rc) {
         ->default_val(3);
     cmd->add_option("--haply-port", o.haply_port,
                     "usb:haply: the board's serial port (e.g. /dev/ttyACM0); default: found by its USB id");
+    cmd->add_option("--device-file", o.device_file,
+                    "usb:*: a JSON file declaring what the device does not report: {\"effective_mass_kg\": M} (kg, "
+                    "measured), which \"passivity\": \"control\" needs on the Falcon, the 2DIY and version 1 hapio boards");
     cmd->add_option("--hand", o.hand, "Scripted hand path, header t,x,y,phi (s, m, m, rad), linearly interpolated");
     cmd->add_option("--task", o.task, "Built-in task instead of --hand: contour-block (seed 000 Fig. 9), or roller-bandwidth "
                                         "(the roller alone, 1 cm sine sweep; writes freq,gain,phase_deg,element_gain,max_error); "
