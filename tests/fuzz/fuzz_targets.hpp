@@ -5,6 +5,9 @@
 
 #include "frame_checks.hpp"
 #include "scene_loader_check.hpp"
+#ifdef CONTACTLAB_FUZZ_FILES
+#include "file_checks.hpp"
+#endif
 
 #include <string>
 #include <string_view>
@@ -73,11 +76,21 @@ inline std::vector<std::string> haply_seeds() {
     return out;
 }
 
+#ifdef CONTACTLAB_FUZZ_FILES
+inline std::vector<std::string> results_seeds() {
+    return {"trial,participant,stimulus,response,valid\n1,P1,10,20,1\n2,P1,\"1,5\",\"a\nb\",0\n"};
+}
+#endif
+
 inline const Target kTargets[] = {
     {"scene", &check_scene_input, &no_seeds},
     {"hapio", &check_hapio_frames, &hapio_seeds},
     {"falcon", &check_falcon_stream, &falcon_seeds},
     {"haply", &check_haply_reply, &haply_seeds},
+#ifdef CONTACTLAB_FUZZ_FILES
+    {"protocol", &check_protocol_input, &no_seeds},  // corpus: scenes/experiments/*.json
+    {"results", &check_results_input, &results_seeds},
+#endif
 };
 
 inline const Target* find_target(std::string_view name) {
