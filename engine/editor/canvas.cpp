@@ -388,6 +388,16 @@ void draw_canvas_marks(const EditorState& s, const render::Theme& theme, render:
             out.fill_rect(p - render::P2(5.0f), p + render::P2(5.0f), accent);
         }
     }
+    if (s.device && std::string(s.device->name()).rfind("usb:", 0) == 0) {
+        // A real device's workspace (e.g. the 2DIY's 12 x 7 cm), where its finger can go: the
+        // scene outside it cannot be touched with this device.
+        const Aabb w = s.device->limits().workspace;
+        if (w.lo.x < w.hi.x && w.lo.y < w.hi.y) {
+            const std::vector<render::P2> box = {view.to_px(w.lo), view.to_px(Vec2{w.hi.x, w.lo.y}), view.to_px(w.hi),
+                                                 view.to_px(Vec2{w.lo.x, w.hi.y})};
+            out.stroke(box, true, 1.5f, theme.legend.with_alpha(150));
+        }
+    }
     if (s.pose_input && s.device && std::string(s.device->name()) == "sim-cld") {
         // sim-cld: the cursor is where the hand wants the finger; the finger drawn by the frame is
         // where the simulation put it. A cross marks the former so the lag and the stop at the

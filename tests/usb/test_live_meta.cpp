@@ -24,7 +24,7 @@ TEST_CASE("live session on the emulated 2DIY: the results' meta records the boar
     const std::string script = dir.file("s.txt");
     write_text(script, "expect device usb:haply\nwait_state engaged 10\nanswer 20\nexpect experiment_done 1\nquit\n");
     const ProcessResult p = editor_test::run_under_xvfb({"edit", "--device", "usb:haply", "--experiment", proto,
-                                                         "--participant", "P1", "--results", results, "--software",
+                                                         "--participant", "P1", "--results", results, "--software", "--validation",
                                                          "--timeout", "90", "--script", script});
     INFO(p.err);
     CHECK(p.exit_code == 0);
