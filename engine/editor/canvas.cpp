@@ -258,14 +258,18 @@ void cmd_fit(EditorState& s) {
     const double reach = 3.5 * scene.finger.radius;  // m: the finger's body behind its centre
     // The finger where it is drawn: the cursor's pose, or (replay, USB: the cursor does not move
     // it) the device's.
-    const Vec2 finger = s.pose_input || !s.servo || s.servo->snapshot().ticks == 0 ? s.pose.finger : s.servo->snapshot().finger;
+    const Vec2 finger = (s.pose_input && s.pose_input->takes_position()) || !s.servo || s.servo->snapshot().ticks == 0
+                           ? s.pose.finger
+                           : s.servo->snapshot().finger;
     box.grow(finger - Vec2(reach));
     box.grow(finger + Vec2(reach));
     s.camera.fit(box);
 }
 
 void cmd_zoom_fingertip(EditorState& s) {
-    const Vec2 finger = s.pose_input || !s.servo || s.servo->snapshot().ticks == 0 ? s.pose.finger : s.servo->snapshot().finger;
+    const Vec2 finger = (s.pose_input && s.pose_input->takes_position()) || !s.servo || s.servo->snapshot().ticks == 0
+                           ? s.pose.finger
+                           : s.servo->snapshot().finger;
     s.camera.fit(render::fingertip_box(finger, s.pose.phi, s.doc.scene().finger.radius));  // as `render --wearable`
     s.say("zoomed on the fingertip (F: the whole scene)");
 }

@@ -5,6 +5,7 @@
 #include "drivers/usb/falcon_device.hpp"
 #include "drivers/usb/hapio_device.hpp"
 #include "drivers/usb/haply_device.hpp"
+#include "engine/editor/keyed_angle_device.hpp"
 #include "drivers/usb/usb_devices.hpp"
 #include "engine/editor/cursor_cld_device.hpp"
 #include "engine/editor/cursor_wearable_device.hpp"
@@ -55,9 +56,9 @@ std::unique_ptr<drivers::Device> HapticsHost::make_device(const std::string& spe
     // A model 2 board (the wearable platform) tracks no finger: the cursor, or seed 003's live
     // sweep, supplies it (platform_finger_device.hpp).
     if (spec == "usb:hapio") return std::make_unique<PlatformFingerDevice>(std::make_unique<drivers::hapio::HapioDevice>(), pose);
-    if (spec == "usb:falcon") return std::make_unique<drivers::falcon::FalconDevice>();
-    // The 2DIY measures no finger angle: phi stays where the editor holds it (keyboard).
-    if (spec == "usb:haply") return std::make_unique<drivers::haply::HaplyDevice>();
+    // The Falcon and the 2DIY measure no finger angle: phi is the editor's (its keys and wheel).
+    if (spec == "usb:falcon") return std::make_unique<KeyedAngleDevice>(std::make_unique<drivers::falcon::FalconDevice>(), pose);
+    if (spec == "usb:haply") return std::make_unique<KeyedAngleDevice>(std::make_unique<drivers::haply::HaplyDevice>(), pose);
     error = "unknown device \"" + spec + "\" (mouse, sim-cld, sim-wearable, replay:FILE, usb:hapio, usb:falcon, usb:haply)";
     return nullptr;
 }

@@ -34,3 +34,22 @@ TEST_CASE("live session on the emulated 2DIY: the results' meta records the boar
     INFO(meta.dump(2));
     CHECK(meta["device_serials"]["usb:haply"] == "HAPLY-0042");
 }
+
+TEST_CASE("the editor on the emulated 2DIY: the handle places the finger, the keys turn its angle") {
+    HaplyEmulator emu;  // the handle at the workspace's centre: the scene's origin
+    preload_umockdev_in_children();
+    TempDir dir;
+    const std::string script = dir.file("s.txt");
+    // q turns the finger by one 2-degree step, e twice back; the cursor moving does not move it.
+    write_text(script, "expect device usb:haply\nwait_state engaged 10\nexpect finger_x 0 0.001\nexpect finger_y 0 0.001\n"
+                       "finger 30 40\nframes 3\nexpect finger_x 0 0.001\n"
+                       "key q\nframes 3\nwait 0.1\nexpect finger_phi 2 1e-9\nkey e\nkey e\nframes 3\nwait 0.1\n"
+                       "expect finger_phi -2 1e-9\nquit\n");
+    const ProcessResult p = editor_test::run_under_xvfb({"edit", "scenes/block.json", "--device", "usb:haply",
+                                                         "--software", "--validation", "--timeout", "60", "--script",
+                                                         script},
+                                                        source_dir().string());
+    INFO(p.err);
+    CHECK(p.exit_code == 0);
+    CHECK_FALSE(contains(p.err, "FAILED"));
+}
