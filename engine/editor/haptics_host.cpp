@@ -6,6 +6,7 @@
 #include "drivers/usb/hapio_device.hpp"
 #include "drivers/usb/haply_device.hpp"
 #include "engine/editor/keyed_angle_device.hpp"
+#include "drivers/servo_loop.hpp"
 #include "drivers/usb/usb_devices.hpp"
 #include "engine/editor/cursor_cld_device.hpp"
 #include "engine/editor/cursor_wearable_device.hpp"
@@ -76,6 +77,18 @@ std::string HapticsHost::start(const std::string& spec, double rate, const Scene
     std::string error;
     std::unique_ptr<drivers::Device> next = same ? nullptr : make_device(spec, pose, error);
     if (!same && !next) return error;  // likewise: the running device carries on
+    // "passivity": "control" needs the device's effective mass: a real device is opened first to
+    // read what it declares (a hapio board says it in its info frame) and refused here, before
+    // any servo starts on it, when it declares none: never run as "fault" without saying so.
+    if (next && is_usb(spec) && params.passivity == PassivityMode::control && next->open() &&
+        !(drivers::servo_config_for(*next, rate).max_damping > 0.0)) {
+        next->close();
+        const bool running = servo_ != nullptr;
+        if (!running) start("mouse", rate, scene, params, pose, stopped);  // as when a device does not open
+        return "device " + spec + " declares no effective mass, so the scene's \"passivity\": \"control\" cannot run on it "
+               "(give the mass in a device file with `contactlab simulate --device-file`, docs/devices.md, or use "
+               "\"passivity\": \"fault\"); " + (running ? "the running device carries on" : "the mouse drives the finger");
+    }
 
     // The proxy's history goes over to the new servo (issue 15): a finger resting in a wall keeps
     // feeling it across a rate change or a device switch; the new servo's first tick walks from

@@ -53,3 +53,24 @@ TEST_CASE("the editor on the emulated 2DIY: the handle places the finger, the ke
     CHECK(p.exit_code == 0);
     CHECK_FALSE(contains(p.err, "FAILED"));
 }
+
+TEST_CASE("the editor refuses the passivity controller on the 2DIY, which declares no effective mass") {
+    HaplyEmulator emu;
+    preload_umockdev_in_children();
+    TempDir dir;
+    std::string text = read_text(scene("block.json"));
+    const std::string key = "\"force\": {";
+    REQUIRE(text.find(key) != std::string::npos);
+    text.insert(text.find(key) + key.size(), " \"passivity\": \"control\",");
+    const std::string scene_path = dir.file("control.json");
+    write_text(scene_path, text);
+    const std::string script = dir.file("s.txt");
+    write_text(script, "expect device mouse\nexpect error 1\nwait_state engaged 5\nquit\n");
+    const ProcessResult p = editor_test::run_under_xvfb({"edit", scene_path, "--device", "usb:haply", "--software",
+                                                         "--timeout", "60", "--script", script});
+    INFO(p.err);
+    CHECK(p.exit_code == 0);
+    CHECK_FALSE(contains(p.err, "FAILED"));
+    CHECK(contains(p.err, "device usb:haply declares no effective mass"));
+    CHECK(contains(p.err, "the mouse drives the finger"));
+}
