@@ -35,11 +35,15 @@ ServoLoop::ServoLoop(Device& dev, ServoTick& tick, double period, SpscRing<TickR
 
 bool ServoLoop::start() {
     if (!dev_.open()) return false;
+    start_opened();
+    return true;
+}
+
+void ServoLoop::start_opened() {
     platform_ = dev_.capabilities().platform;  // known after open (a hapio board says its model)
     DeviceReading r;
     dev_.read(r);
     tick_.connect(r.t);
-    return true;
 }
 
 void ServoLoop::step(double wall_period, bool wait_for_ring) noexcept {

@@ -36,6 +36,9 @@ public:
 
     // Opens the device (off the servo thread) and tells the tick it is connected.
     bool start();
+    // The same for a device the caller has opened already (to read what it declares, such as its
+    // effective mass, before the tick is built): not opened a second time.
+    void start_opened();
     // One tick: read -> ServoTick -> write, then (simulations) advance the device by one period.
     // `wall_period` (s) is what gets recorded as the period (virtual time: the nominal one).
     // With `wait_for_ring` a full ring is waited on (virtual time: lose nothing); otherwise the

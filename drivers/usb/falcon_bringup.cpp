@@ -172,6 +172,15 @@ DeviceFault FalconDevice::bring_up() {
     const int ad = libusb_set_auto_detach_kernel_driver(handle_, 1);
     if (ad != LIBUSB_SUCCESS && ad != LIBUSB_ERROR_NOT_SUPPORTED) return usb::fault_of_error(ad);
     if (const int rc = libusb_claim_interface(handle_, 0); rc != LIBUSB_SUCCESS) return usb::fault_of_error(rc);
+    // The FTDI chip's serial names this Falcon in the results' meta. A Falcon that will not say
+    // it still works: the serial stays "" and only provenance loses it.
+    libusb_device_descriptor desc{};
+    if (libusb_get_device_descriptor(dev_, &desc) == LIBUSB_SUCCESS && desc.iSerialNumber != 0) {
+        std::array<char, 64> sn{};
+        const int n = libusb_get_string_descriptor_ascii(handle_, desc.iSerialNumber,
+                                                         reinterpret_cast<unsigned char*>(sn.data()), sn.size() - 1);
+        if (n > 0) serial_.store(sn);
+    }
 
     for (const FtdiRequest& r : kNormalSetup)
         if (DeviceFault f = control(r.request, r.value); f.code != DeviceFaultCode::none) return f;

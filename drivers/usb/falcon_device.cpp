@@ -38,6 +38,7 @@ DeviceLimits FalconDevice::limits() const noexcept {
     l.workspace.lo = opt_.planar.origin - Vec2{0.05};  // m: about the Falcon's 10 cm cube
     l.workspace.hi = opt_.planar.origin + Vec2{0.05};
     l.native_rate = 1000.0;
+    l.mass = opt_.mass;
     return l;
 }
 
@@ -95,6 +96,11 @@ void FalconDevice::close() {
     fault_code_.store(DeviceFaultCode::none);
     fault_detail_.store("");
     state_.store(DeviceState::disconnected);
+}
+
+std::string FalconDevice::serial() const {
+    const std::array<char, 64> s = serial_.load();
+    return std::string(s.data());
 }
 
 FalconStats FalconDevice::stats() const noexcept {

@@ -15,6 +15,7 @@
 #include "drivers/usb/usb_context.hpp"
 #include "haptics/servo_seqlock.hpp"
 
+#include <array>
 #include <atomic>
 #include <memory>
 #include <string>
@@ -35,6 +36,9 @@ struct FalconOptions {
     int handshake_attempts = 20;     // bootloader probes before giving up
     int open_attempts = 2;           // whole bring-ups for transient USB errors
     double retry_delay = 0.05;       // s
+    // kg: effective mass at the grip for the passivity controller. Novint publishes none and none
+    // was measured here: 0 (the controller cannot act) unless the user's device file gives one.
+    double mass = 0.0;
 };
 
 struct FalconStats {
@@ -59,6 +63,8 @@ public:
     bool read(DeviceReading& out) noexcept override;
     void write(const DeviceCommand& cmd) noexcept override;
 
+    // The FTDI chip's serial number (its USB string descriptor), read at the first bring-up.
+    std::string serial() const override;
     FalconStats stats() const noexcept;
     Vec3 grip() const noexcept { return latest_.load().p; }  // m, device frame
 
@@ -103,6 +109,7 @@ private:
     std::atomic<bool> wanted_{false};
     Seqlock<Sample> latest_;
     Seqlock<DeviceCommand> command_;
+    Seqlock<std::array<char, 64>> serial_;  // event thread writes (bring-up), any thread reads
     std::atomic<std::uint64_t> commands_{0}, timeouts_{0}, disconnects_{0}, reconnects_{0}, uploads_{0};
     std::atomic<std::uint64_t> malformed_{0}, discarded_{0}, packets_{0};
 

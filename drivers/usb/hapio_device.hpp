@@ -39,6 +39,9 @@ struct HapioOptions {
     int open_attempts = 3;               // bounded bring-up retries for transient errors
     double retry_delay = 0.05;           // s between attempts
     std::uint16_t watchdog_ms = 20;      // firmware stops its motors without a command this long
+    // kg: effective mass at the finger from the user's device file, used when the board declares
+    // none (a version 1 info frame); 0: none (the passivity controller cannot act).
+    double mass = 0.0;
 };
 
 // Counters since construction (monotone; read from any thread).
@@ -66,7 +69,13 @@ public:
 
     const char* name() const noexcept override { return "usb:hapio"; }
     DeviceCapabilities capabilities() const noexcept override;
-    DeviceLimits limits() const noexcept override { return is_wearable() ? wearable_.limits() : model_.limits(); }
+    // The effective mass: the board's own (info frame version 2), else the device file's.
+    DeviceLimits limits() const noexcept override {
+        DeviceLimits l = is_wearable() ? wearable_.limits() : model_.limits();
+        const double m = info().mass();
+        l.mass = m > 0.0 ? m : opt_.mass;
+        return l;
+    }
     bool open() override;
     void close() override;
     DeviceState state() const noexcept override { return state_.load(std::memory_order_acquire); }

@@ -30,10 +30,11 @@ std::uint32_t get32(const std::uint8_t* p) {
 }
 
 // Header and trailer checks shared by the three frame kinds: the CRC covers everything before it.
+// Info frames may also be version 2 (kInfoVersion2).
 FrameError check(const std::uint8_t* d, std::size_t n, std::size_t size, char kind) {
     if (d == nullptr || n < size) return FrameError::short_frame;
     if (d[0] != 'H' || d[1] != static_cast<std::uint8_t>(kind)) return FrameError::bad_magic;
-    if (d[2] != kVersion) return FrameError::bad_version;
+    if (d[2] != kVersion && !(kind == 'I' && d[2] == kInfoVersion2)) return FrameError::bad_version;
     if (crc32(d, size - 4) != get32(d + size - 4)) return FrameError::bad_crc;
     return FrameError::none;
 }
@@ -70,6 +71,7 @@ void pack(const Info& in, std::uint8_t (&o)[kInfoSize]) noexcept {
     put16(o + 8, in.frame_rate);
     put16(o + 10, in.firmware);
     put32(o + 12, in.serial);
+    if (in.version >= kInfoVersion2) put32(o + 16, in.mass_mg);  // reserved (zero) in version 1
     put32(o + 28, crc32(o, 28));
 }
 
@@ -81,6 +83,7 @@ FrameError unpack(const std::uint8_t* d, std::size_t n, Info& out) noexcept {
     out.frame_rate = get16(d + 8);
     out.firmware = get16(d + 10);
     out.serial = get32(d + 12);
+    out.mass_mg = out.version >= kInfoVersion2 ? get32(d + 16) : 0;  // version 1: reserved, ignored
     return FrameError::none;
 }
 

@@ -19,6 +19,9 @@ inline constexpr std::uint8_t kInterfaceProtocol = 0x01;
 inline constexpr std::uint8_t kEndpointIn = 0x81;   // interrupt IN: state frames
 inline constexpr std::uint8_t kEndpointOut = 0x01;  // interrupt OUT: command frames
 inline constexpr std::uint8_t kVersion = 1;
+// Info frames may be version 2: version 1's layout plus the effective mass at the finger (HAPIO.md
+// §3.1), which the passivity controller needs. State and command frames stay version 1.
+inline constexpr std::uint8_t kInfoVersion2 = 2;
 
 inline constexpr std::size_t kStateSize = 64;    // one full-speed packet
 inline constexpr std::size_t kCommandSize = 32;
@@ -53,6 +56,9 @@ struct Info {
     std::uint16_t frame_rate = 1000; // Hz
     std::uint16_t firmware = 0;
     std::uint32_t serial = 0;
+    std::uint32_t mass_mg = 0;       // version 2: lightest effective mass at the finger, mg (0: none)
+    // kg, what the board declares (version 2 with a mass), else 0.
+    double mass() const noexcept { return version >= kInfoVersion2 ? 1e-6 * static_cast<double>(mass_mg) : 0.0; }
 };
 
 // Device -> host, one per frame period on the IN endpoint.

@@ -1,6 +1,8 @@
 // usb_devices.cpp — listing known devices (see usb_devices.hpp).
 #include "drivers/usb/usb_devices.hpp"
 #include "drivers/usb/hapio_protocol.hpp"
+#include "drivers/usb/haply_device.hpp"
+#include "drivers/usb/serial_port.hpp"
 #include "drivers/usb/usb_status.hpp"
 
 #include <libusb.h>
@@ -13,14 +15,48 @@ const std::vector<KnownModel>& known_models() {
     static const std::vector<KnownModel> models{
         {hapio::kVendorId, hapio::kProductId, "hapio board (CLD rig)", "usb:hapio"},
         {0x0403, 0xcb48, "Novint Falcon", "usb:falcon"},
+        // Listed through its tty (add_haply_boards), not libusb: the id is the Due's native port.
+        {0x2341, 0x003e, "Haply 2DIY", "usb:haply"},
     };
     return models;
 }
 
+namespace {
+
+// Haply boards: ttys whose USB device has one of the 2DIY board ids. Only access() is asked:
+// opening a tty may reset an Arduino-class board, and listing must never disturb a device.
+void add_haply_boards(UsbScan& scan) {
+    for (const serial::UsbTty& t : serial::usb_ttys()) {
+        const haply::BoardId* id = nullptr;
+        for (const haply::BoardId& b : haply::kBoardIds)
+            if (b.vendor_id == t.vendor_id && b.product_id == t.product_id) id = &b;
+        if (id == nullptr) continue;
+        UsbDeviceEntry e;
+        e.model = std::string("Haply 2DIY (") + id->what + ")";
+        e.device = "usb:haply";
+        e.node = t.node;
+        e.vendor_id = t.vendor_id;
+        e.product_id = t.product_id;
+        if (t.accessible) {
+            e.state = "available";
+        } else {
+            e.state = "permission denied";
+            e.problem = "permission denied opening " + t.node +
+                        ": install the udev rule (sudo cp assets/udev/70-contactlab.rules /etc/udev/rules.d/ && sudo "
+                        "udevadm control --reload && sudo udevadm trigger), or add yourself to the dialout group; then "
+                        "unplug and replug the board";
+        }
+        scan.devices.push_back(e);
+    }
+}
+
+}  // namespace
+
 UsbScan scan_usb_devices(UsbContext& ctx) {
     UsbScan scan;
+    add_haply_boards(scan);
     if (!ctx.ok()) {
-        scan.why_none = ctx.why();
+        if (scan.devices.empty()) scan.why_none = ctx.why();
         return scan;
     }
     scan.usb_available = true;
@@ -33,6 +69,7 @@ UsbScan scan_usb_devices(UsbContext& ctx) {
     for (ssize_t i = 0; i < n; ++i) {
         libusb_device_descriptor d{};
         if (libusb_get_device_descriptor(list[i], &d) != LIBUSB_SUCCESS) continue;
+        if (haply::is_board_id(d.idVendor, d.idProduct)) continue;  // a serial board: its tty is listed
         const KnownModel* m = nullptr;
         for (const KnownModel& k : known_models())
             if (k.vendor_id == d.idVendor && k.product_id == d.idProduct) m = &k;
@@ -67,7 +104,8 @@ UsbScan scan_usb_devices(UsbContext& ctx) {
     if (scan.devices.empty()) {
         scan.why_none = n == 0 ? "libusb sees no USB devices at all (no USB bus on this machine, or no access to it)"
                                : "none of the " + std::to_string(n) +
-                                     " USB devices is a known haptic device (hapio 1209:c1d0, Falcon 0403:cb48)";
+                                     " USB devices is a known haptic device (hapio 1209:c1d0, Falcon 0403:cb48, Haply "
+                                     "2DIY on an Arduino Due 2341:003e/003d or Zero 2341:804d serial port)";
     }
     return scan;
 }
@@ -81,6 +119,13 @@ std::string format_scan(const UsbScan& scan) {
         return out;
     }
     for (const UsbDeviceEntry& e : scan.devices) {
+        if (!e.node.empty()) {
+            std::snprintf(line, sizeof line, "%-24s %-21s  %04x:%04x  --device %-10s  %s\n", e.model.c_str(), e.node.c_str(),
+                          e.vendor_id, e.product_id, e.device.c_str(), e.state.c_str());
+            out += line;
+            if (!e.problem.empty()) out += "    " + e.problem + "\n";
+            continue;
+        }
         std::snprintf(line, sizeof line, "%-24s bus %03d address %03d  %04x:%04x  --device %-10s  %s\n", e.model.c_str(),
                       e.bus, e.address, e.vendor_id, e.product_id, e.device.c_str(), e.state.c_str());
         out += line;

@@ -16,11 +16,13 @@ struct KnownModel {
     const char* model;    // what a user calls it
     const char* device;   // the --device value that drives it
 };
-// hapio boards and the Novint Falcon.
+// hapio boards and the Novint Falcon (libusb), and the Haply 2DIY (its tty). Haply boards are USB serial ports: they are found
+// through their ttys (serial_port.hpp) and listed with their node.
 const std::vector<KnownModel>& known_models();
 
 struct UsbDeviceEntry {
     std::string model, device;
+    std::string node;     // the tty of a USB serial board (Haply 2DIY), "" for libusb devices
     int bus = 0, address = 0;
     std::uint16_t vendor_id = 0, product_id = 0;
     std::string state;    // "available", "permission denied", "busy", ...

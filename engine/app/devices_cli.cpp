@@ -10,7 +10,7 @@
 namespace contactlab::app {
 
 void register_devices_command(CLI::App& app, int& rc) {
-    CLI::App* cmd = app.add_subcommand("devices", "List haptic USB devices (hapio boards, Novint Falcon) and their state");
+    CLI::App* cmd = app.add_subcommand("devices", "List haptic USB devices (hapio boards, Novint Falcon, Haply 2DIY) and their state");
     cmd->callback([&rc] {
         drivers::usb::UsbContext ctx;
         const drivers::usb::UsbScan scan = drivers::usb::scan_usb_devices(ctx);

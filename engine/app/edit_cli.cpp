@@ -59,7 +59,7 @@ void register_edit_command(CLI::App& app, int& rc) {
     cmd->add_option("--timeout", o.timeout, "Give up (exit 1) after this many seconds");
     cmd->add_option("--rate", o.rate, "Servo rate (Hz), 100..20000")->default_val(1000.0);
     cmd->add_option("--device", o.device,
-                    "Device the servo starts on: mouse (default), sim-cld, sim-wearable, replay:FILE, usb:hapio, usb:falcon "
+                    "Device the servo starts on: mouse (default), sim-cld, sim-wearable, replay:FILE, usb:hapio, usb:falcon, usb:haply "
                     "(one that does not open leaves the mouse running and says why)")
         ->default_val("mouse");
     cmd->add_option("--autosave", o.autosave_interval, "Seconds between writes of the recovery file")->default_val(30.0);

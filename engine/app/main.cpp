@@ -40,6 +40,7 @@ int main(int argc, char** argv) {
     register_experiment_calibrate_command(app, rc);
     register_experiment_slurm_command(app, rc);
     register_falcon_kinematics_command(app, rc);
+    register_haply_kinematics_command(app, rc);
 
     try {
         app.parse(argc, argv);

@@ -10,10 +10,18 @@ void register_simulate_command(CLI::App& app, int& rc) {
     CLI::App* cmd = app.add_subcommand("simulate", "Run the servo loop against a simulated or replayed device");
     cmd->add_option("scene", o.scene_path, "Scene file (JSON, scenes/README.md)")->required();
     cmd->add_option("--device", o.device, "sim-cld (simulated CLD rig + scripted hand), sim-wearable (seed 003's platform under a finger that follows --hand, or its --task), replay:FILE, "
-                    "usb:hapio or usb:falcon (real devices: real time, need --duration)")
+                    "usb:hapio, usb:falcon or usb:haply (real devices: real time, need --duration)")
         ->default_val("sim-cld");
     cmd->add_option("--firmware", o.firmware,
                     "usb:falcon: Novint's Falcon firmware file, uploaded when the Falcon has none running (not shipped)");
+    cmd->add_option("--haply-hardware", o.haply_hardware,
+                    "usb:haply: the Haply 2DIY's board generation, 3 (current) or 2")
+        ->default_val(3);
+    cmd->add_option("--haply-port", o.haply_port,
+                    "usb:haply: the board's serial port (e.g. /dev/ttyACM0); default: found by its USB id");
+    cmd->add_option("--device-file", o.device_file,
+                    "usb:*: a JSON file declaring what the device does not report: {\"effective_mass_kg\": M} (kg, "
+                    "measured), which \"passivity\": \"control\" needs on the Falcon, the 2DIY and version 1 hapio boards");
     cmd->add_option("--hand", o.hand, "Scripted hand path, header t,x,y,phi (s, m, m, rad), linearly interpolated");
     cmd->add_option("--task", o.task, "Built-in task instead of --hand: contour-block (seed 000 Fig. 9), or roller-bandwidth "
                                         "(the roller alone, 1 cm sine sweep; writes freq,gain,phase_deg,element_gain,max_error); "

@@ -14,8 +14,10 @@
 #include "drivers/sim/sim_cld_device.hpp"
 #include "drivers/sim/sim_wearable_device.hpp"
 #include "drivers/tasks.hpp"
+#include "drivers/usb/device_file.hpp"
 #include "drivers/usb/falcon_device.hpp"
 #include "drivers/usb/hapio_device.hpp"
+#include "drivers/usb/haply_device.hpp"
 #include "haptics/scene_io.hpp"
 
 #include <algorithm>
@@ -40,14 +42,38 @@ std::unique_ptr<Device> make_device(const SimulateOptions& o, const Scene& scene
         // A real device: the user's hand moves it, so there is no path, and time is real.
         if (!o.hand.empty() || !o.task.empty()) throw BadInput("--device " + o.device + " takes no --hand or --task");
         if (o.duration < 0.0) throw BadInput("--device " + o.device + " needs --duration (s)");
-        if (o.device == "usb:hapio") return std::make_unique<hapio::HapioDevice>();
+        double mass = 0.0;  // kg, from the user's device file
+        if (!o.device_file.empty()) {
+            try {
+                mass = read_device_file(o.device_file).effective_mass;
+            } catch (const DeviceFileError& e) {
+                throw BadInput(std::string("--device-file ") + e.what());
+            }
+        }
+        if (o.device == "usb:hapio") {
+            hapio::HapioOptions ho;
+            ho.mass = mass;
+            return std::make_unique<hapio::HapioDevice>(ho);
+        }
         if (o.device == "usb:falcon") {
             falcon::FalconOptions fo;
             fo.firmware = o.firmware;
+            fo.mass = mass;
             return std::make_unique<falcon::FalconDevice>(fo);
         }
-        throw BadInput("--device: unknown USB device \"" + o.device + "\" (usb:hapio, usb:falcon; see contactlab devices)");
+        if (o.device == "usb:haply") {
+            if (o.haply_hardware != 2 && o.haply_hardware != 3)
+                throw BadInput("--haply-hardware must be 2 or 3 (the 2DIY's board generation), got " +
+                               std::to_string(o.haply_hardware));
+            haply::HaplyOptions ho;
+            ho.generation = o.haply_hardware;
+            ho.port = o.haply_port;
+            ho.mass = mass;
+            return std::make_unique<haply::HaplyDevice>(ho);
+        }
+        throw BadInput("--device: unknown USB device \"" + o.device + "\" (usb:hapio, usb:falcon, usb:haply; see contactlab devices)");
     }
+    if (!o.device_file.empty()) throw BadInput("--device-file: only real devices (usb:...) take a device file");
     if (o.device.rfind("replay:", 0) == 0) {
         if (!o.hand.empty() || !o.task.empty()) throw BadInput("--device replay:FILE takes no --hand or --task");
         const std::string file = o.device.substr(7);
@@ -77,7 +103,7 @@ std::unique_ptr<Device> make_device(const SimulateOptions& o, const Scene& scene
         wp.watchdog_timeout = std::max(wp.watchdog_timeout, 3.0 / o.rate);
         return std::make_unique<sim::SimWearableDevice>(wp, std::move(path));
     }
-    if (o.device != "sim-cld") throw BadInput("--device: unknown device \"" + o.device + "\" (sim-cld, sim-wearable, replay:FILE, usb:hapio, usb:falcon)");
+    if (o.device != "sim-cld") throw BadInput("--device: unknown device \"" + o.device + "\" (sim-cld, sim-wearable, replay:FILE, usb:hapio, usb:falcon, usb:haply)");
     if (o.hand.empty() == o.task.empty()) throw BadInput("sim-cld needs exactly one of --hand HAND.csv or --task contour-block");
     HandPath path;
     if (!o.task.empty()) {
@@ -105,6 +131,22 @@ std::unique_ptr<Device> make_device(const SimulateOptions& o, const Scene& scene
     // The amplifiers' watchdog must outlast a period: at 100 Hz a tick comes every 10 ms.
     sp.watchdog_timeout = watchdog_timeout_for(o.rate);
     return std::make_unique<sim::SimCldDevice>(sp, std::move(path));
+}
+
+// Why "passivity": "control" cannot run on this device: it declares no effective mass, so the
+// controller could add no damping and the loop would fault as with "fault" (never silently).
+std::string passivity_refusal(const Device& dev, const SimulateOptions& o) {
+    std::string why = std::string("the scene asks for \"passivity\": \"control\", but device ") + dev.name() +
+                      " declares no effective mass, so the passivity controller cannot add damping (the loop would "
+                      "fault as with \"fault\"). ";
+    if (const auto* h = dynamic_cast<const hapio::HapioDevice*>(&dev); h != nullptr && h->info().version < hapio::kInfoVersion2)
+        why += "This hapio board speaks info version 1, which carries no mass: ";
+    if (is_usb(o.device))
+        why += "give the mass you measured in a device file (--device-file FILE with {\"effective_mass_kg\": M}, "
+               "docs/devices.md)";
+    else
+        why += "this simulated device has no mass model; use sim-cld";
+    return why + ", or set \"passivity\": \"fault\"";
 }
 
 // Seed 002 constrains the roller's range "in software": the servo's travel limits shrink to
@@ -191,12 +233,17 @@ int run_simulate(const SimulateOptions& o) {
     params.max_force = scene.force.max_force;
     params.passivity = scene.force.passivity;
     params.safety.watchdog_timeout = watchdog_timeout_for(o.rate);
+    // Opened before the tick is built: what the device declares (a hapio board's effective mass is
+    // in its info frame) decides whether the scene's options can be honoured at all.
+    if (!dev->open()) {
+        std::fprintf(stderr, "simulate: device %s failed to open: %s\n", dev->name(), dev->fault().detail);
+        return 1;
+    }
     ServoConfig config = servo_config_for(*dev, o.rate);
-    if (scene.force.passivity == PassivityMode::control && !(config.max_damping > 0.0))
-        std::fprintf(stderr,
-                     "simulate: warning: the scene asks for the passivity controller, but the device declares no "
-                     "effective mass (DeviceLimits::mass): it cannot add damping, and an energy-generating loop faults "
-                     "as with \"passivity\": \"fault\"\n");
+    if (scene.force.passivity == PassivityMode::control && !(config.max_damping > 0.0)) {
+        dev->close();
+        throw BadInput(passivity_refusal(*dev, o));
+    }
     if (o.roller_travel_set) config.roller_travel = software_roller_travel(*dev, config, o.roller_travel);
     ServoTick tick(config, params);
     tick.scenes().publish(std::make_unique<ServoScene>(scene));
@@ -204,11 +251,7 @@ int run_simulate(const SimulateOptions& o) {
     SpscRing<TickRecord> ring(1u << 16);
     RecordWriter writer(ring, o.output, o.record);
     ServoLoop loop(*dev, tick, period, &ring);
-    if (!loop.start()) {
-        writer.finish();
-        std::fprintf(stderr, "simulate: device %s failed to open: %s\n", dev->name(), dev->fault().detail);
-        return 1;
-    }
+    loop.start_opened();
     // A real device cannot run in virtual time.
     const bool realtime = o.realtime || is_usb(o.device);
     RealtimeReport rt;
@@ -260,6 +303,16 @@ int run_simulate(const SimulateOptions& o) {
                      static_cast<unsigned long long>(st.malformed), static_cast<unsigned long long>(st.timeouts),
                      static_cast<unsigned long long>(st.disconnects), static_cast<unsigned long long>(st.reconnects),
                      static_cast<unsigned long long>(st.firmware_uploads));
+    }
+    if (const auto* hp = dynamic_cast<const haply::HaplyDevice*>(dev.get())) {
+        const haply::HaplyStats st = hp->stats();
+        std::fprintf(stderr, "simulate: %s (2DIY generation %d on %s): %llu exchanges, %llu replies, %llu rejected "
+                     "(%llu short, %llu wrong device id, %llu not finite), %llu timeouts, %llu unplugs, %llu replugs\n",
+                     dev->name(), hp->hardware().generation, hp->port().c_str(), static_cast<unsigned long long>(st.exchanges),
+                     static_cast<unsigned long long>(st.replies), static_cast<unsigned long long>(st.rejected()),
+                     static_cast<unsigned long long>(st.short_frames), static_cast<unsigned long long>(st.wrong_device),
+                     static_cast<unsigned long long>(st.not_finite), static_cast<unsigned long long>(st.timeouts),
+                     static_cast<unsigned long long>(st.disconnects), static_cast<unsigned long long>(st.reconnects));
     }
     if (realtime) {
         std::fprintf(stderr, "simulate: %s; %s\n", rt.scheduling.c_str(), rt.memory_lock.c_str());

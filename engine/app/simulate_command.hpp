@@ -12,8 +12,11 @@ namespace contactlab::app {
 
 struct SimulateOptions {
     std::string scene_path;
-    std::string device = "sim-cld";   // "sim-cld", "replay:FILE", "usb:hapio" or "usb:falcon"
+    std::string device = "sim-cld";   // "sim-cld", "replay:FILE", "usb:hapio", "usb:falcon" or "usb:haply"
     std::string firmware;             // usb:falcon: firmware file to upload (never shipped)
+    int haply_hardware = 3;           // usb:haply: the 2DIY's board generation, 2 or 3
+    std::string haply_port;           // usb:haply: its tty ("" finds it by USB id)
+    std::string device_file;          // usb:*: what the user declares (effective mass), JSON
     std::string hand;                 // HAND.csv (t,x,y,phi), or empty with task
     std::string task;                 // "contour-block", "roller-bandwidth", or seed 003's "wearable-step",
                                       // "wearable-bandwidth", "curvature-arc" (--device sim-wearable)

@@ -43,5 +43,6 @@ void register_experiment_calibrate_command(CLI::App& app, int& rc);
 // experiment slurm (experiment_slurm_cli.cpp); after register_experiment_command
 void register_experiment_slurm_command(CLI::App& app, int& rc);
 void register_falcon_kinematics_command(CLI::App& app, int& rc);  // falcon-kinematics (falcon_kinematics_cli.cpp)
+void register_haply_kinematics_command(CLI::App& app, int& rc);   // haply-kinematics (haply_kinematics_cli.cpp)
 
 }  // namespace contactlab::app

@@ -258,14 +258,18 @@ void cmd_fit(EditorState& s) {
     const double reach = 3.5 * scene.finger.radius;  // m: the finger's body behind its centre
     // The finger where it is drawn: the cursor's pose, or (replay, USB: the cursor does not move
     // it) the device's.
-    const Vec2 finger = s.pose_input || !s.servo || s.servo->snapshot().ticks == 0 ? s.pose.finger : s.servo->snapshot().finger;
+    const Vec2 finger = (s.pose_input && s.pose_input->takes_position()) || !s.servo || s.servo->snapshot().ticks == 0
+                           ? s.pose.finger
+                           : s.servo->snapshot().finger;
     box.grow(finger - Vec2(reach));
     box.grow(finger + Vec2(reach));
     s.camera.fit(box);
 }
 
 void cmd_zoom_fingertip(EditorState& s) {
-    const Vec2 finger = s.pose_input || !s.servo || s.servo->snapshot().ticks == 0 ? s.pose.finger : s.servo->snapshot().finger;
+    const Vec2 finger = (s.pose_input && s.pose_input->takes_position()) || !s.servo || s.servo->snapshot().ticks == 0
+                           ? s.pose.finger
+                           : s.servo->snapshot().finger;
     s.camera.fit(render::fingertip_box(finger, s.pose.phi, s.doc.scene().finger.radius));  // as `render --wearable`
     s.say("zoomed on the fingertip (F: the whole scene)");
 }
@@ -386,6 +390,16 @@ void draw_canvas_marks(const EditorState& s, const render::Theme& theme, render:
         if (s.selected) {
             const render::P2 p = view.to_px(handle_position(scene, *s.selected));
             out.fill_rect(p - render::P2(5.0f), p + render::P2(5.0f), accent);
+        }
+    }
+    if (s.device && std::string(s.device->name()).rfind("usb:", 0) == 0) {
+        // A real device's workspace (e.g. the 2DIY's 12 x 7 cm), where its finger can go: the
+        // scene outside it cannot be touched with this device.
+        const Aabb w = s.device->limits().workspace;
+        if (w.lo.x < w.hi.x && w.lo.y < w.hi.y) {
+            const std::vector<render::P2> box = {view.to_px(w.lo), view.to_px(Vec2{w.hi.x, w.lo.y}), view.to_px(w.hi),
+                                                 view.to_px(Vec2{w.lo.x, w.hi.y})};
+            out.stroke(box, true, 1.5f, theme.legend.with_alpha(150));
         }
     }
     if (s.pose_input && s.device && std::string(s.device->name()) == "sim-cld") {

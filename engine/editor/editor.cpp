@@ -1,6 +1,7 @@
 // editor.cpp — the editor's frame loop: events -> ImGui + canvas (or script) -> servo publish ->
 // draw list (the shared scene drawer + the editor's marks) -> window target (+ ImGui) -> present.
 #include "engine/editor/editor.hpp"
+#include "drivers/servo_loop.hpp"
 #include "engine/editor/cursor_wearable_device.hpp"
 #include "engine/editor/x_server_affinity.hpp"
 
@@ -273,6 +274,7 @@ int run_editor(const EditorOptions& o) {
     }
     sync_haptics(s);
     ServoParams published = servo_params_for(s.doc.last_valid(), s.roller, host.watchdog_timeout(), s.roller_travel);
+    const drivers::Device* control_said = nullptr;  // the device told that "control" cannot act on it
     std::uint64_t published_revision = s.doc.revision();
     std::uint64_t published_to = host.generation();  // a new servo (device or rate switch) got both at start
     s.camera.resize(target.extent().width, target.extent().height);
@@ -428,10 +430,23 @@ int run_editor(const EditorOptions& o) {
             const bool held = in_experiment && experiment.session && !experiment.session->finished() && experiment.session->roller_held();
             const ServoParams params = servo_params_for(in_experiment ? experiment_servo_scene(s) : s.doc.last_valid(), s.roller,
                                                         host.watchdog_timeout(), held ? 1e-9 : s.roller_travel);
+            // A scene asking for the passivity controller on a device that declares no effective
+            // mass (the mouse, or a scene opened or edited while a device runs): said once per
+            // device, never silently run as "fault".
+            if (params.passivity != PassivityMode::control) {
+                control_said = nullptr;
+            } else if (s.device && s.device != control_said) {
+                control_said = s.device;
+                if (!(drivers::servo_config_for(*s.device, servo.rate()).max_damping > 0.0))
+                    s.say(std::string("\"passivity\": \"control\" cannot act on ") + s.device->name() +
+                              ": it declares no effective mass, so an energy-generating loop faults as with \"fault\"",
+                          true);
+            }
             if (!same_params(params, published)) {
                 // Refused parameters are said once; the servo keeps the last ones it accepted.
                 if (const std::string problem = servo.publish_params(params); !problem.empty())
                     s.say("servo kept its parameters: " + problem, true);
+
                 published = params;
             }
             // The Wearable section's gains, fit mode and FSR noise, to the platform when they differ

@@ -59,7 +59,7 @@ struct EditorState {
     HapticsHost* haptics = nullptr;
     LiveServo* servo = nullptr;
     drivers::Device* device = nullptr;
-    PoseInput* pose_input = nullptr;  // null: the device ignores the cursor (replay, the Falcon)
+    PoseInput* pose_input = nullptr;  // null: the device ignores the cursor (replay); the Falcon and 2DIY take only phi
     // The panel's recording and replay files: different names, so that a recording started while
     // a replay runs never writes over the file being played (cmd_record_start refuses that too).
     char record_path[512] = "recording.csv";

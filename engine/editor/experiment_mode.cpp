@@ -80,18 +80,26 @@ void template_picture(double alpha_deg, const char* label) {
     ImGui::Dummy(ImVec2(w, h));
 }
 
-// The serial of the device the trial was felt on, where it reports one (a hapio board), goes into
-// the results' meta as "device_serials": {spec: serial} (a session may switch devices).
+// The serial of the device the trial was felt on goes into the results' meta as
+// "device_serials": {spec: serial} (a session may switch devices): a real device's own (a hapio
+// board's handshake, the Falcon's FTDI chip, the Haply board's USB serial); a simulated one is
+// "simulated, seed N" with the session's seed; the mouse and a replay say what they are.
 void record_device_serial(EditorState& s) {
     if (!s.device || !s.haptics || !s.experiment || !s.experiment->session) return;
-    const std::string serial = s.device->serial();
-    if (serial.empty()) return;
-    const std::string key = s.haptics->spec() + " " + serial;
+    const std::string spec = s.haptics->spec();
+    std::string serial = s.device->serial();
+    if (serial.empty()) {
+        if (spec.rfind("usb:", 0) == 0) return;  // a real device that has not said (yet)
+        serial = spec == "mouse" ? "mouse (no serial)" : spec.rfind("replay:", 0) == 0 ? "replay (no serial)" : "simulated";
+    }
+    const std::string key = spec + " " + serial;
     if (key == s.experiment->serial_recorded) return;
     try {
         auto meta = experiments::read_meta(s.experiment->session->results_path());
         if (!meta) return;
-        (*meta)["device_serials"][s.haptics->spec()] = serial;
+        std::string value = serial;
+        if (value == "simulated" && meta->contains("seed")) value += ", seed " + (*meta)["seed"].dump();
+        (*meta)["device_serials"][spec] = value;
         experiments::write_meta(s.experiment->session->results_path(), *meta);
         s.experiment->serial_recorded = key;
     } catch (const std::exception& ex) {

@@ -4,6 +4,9 @@
 #include "drivers/replay_device.hpp"
 #include "drivers/usb/falcon_device.hpp"
 #include "drivers/usb/hapio_device.hpp"
+#include "drivers/usb/haply_device.hpp"
+#include "engine/editor/keyed_angle_device.hpp"
+#include "drivers/servo_loop.hpp"
 #include "drivers/usb/usb_devices.hpp"
 #include "engine/editor/cursor_cld_device.hpp"
 #include "engine/editor/cursor_wearable_device.hpp"
@@ -54,8 +57,10 @@ std::unique_ptr<drivers::Device> HapticsHost::make_device(const std::string& spe
     // A model 2 board (the wearable platform) tracks no finger: the cursor, or seed 003's live
     // sweep, supplies it (platform_finger_device.hpp).
     if (spec == "usb:hapio") return std::make_unique<PlatformFingerDevice>(std::make_unique<drivers::hapio::HapioDevice>(), pose);
-    if (spec == "usb:falcon") return std::make_unique<drivers::falcon::FalconDevice>();
-    error = "unknown device \"" + spec + "\" (mouse, sim-cld, sim-wearable, replay:FILE, usb:hapio, usb:falcon)";
+    // The Falcon and the 2DIY measure no finger angle: phi is the editor's (its keys and wheel).
+    if (spec == "usb:falcon") return std::make_unique<KeyedAngleDevice>(std::make_unique<drivers::falcon::FalconDevice>(), pose);
+    if (spec == "usb:haply") return std::make_unique<KeyedAngleDevice>(std::make_unique<drivers::haply::HaplyDevice>(), pose);
+    error = "unknown device \"" + spec + "\" (mouse, sim-cld, sim-wearable, replay:FILE, usb:hapio, usb:falcon, usb:haply)";
     return nullptr;
 }
 
@@ -72,6 +77,18 @@ std::string HapticsHost::start(const std::string& spec, double rate, const Scene
     std::string error;
     std::unique_ptr<drivers::Device> next = same ? nullptr : make_device(spec, pose, error);
     if (!same && !next) return error;  // likewise: the running device carries on
+    // "passivity": "control" needs the device's effective mass: a real device is opened first to
+    // read what it declares (a hapio board says it in its info frame) and refused here, before
+    // any servo starts on it, when it declares none: never run as "fault" without saying so.
+    if (next && is_usb(spec) && params.passivity == PassivityMode::control && next->open() &&
+        !(drivers::servo_config_for(*next, rate).max_damping > 0.0)) {
+        next->close();
+        const bool running = servo_ != nullptr;
+        if (!running) start("mouse", rate, scene, params, pose, stopped);  // as when a device does not open
+        return "device " + spec + " declares no effective mass, so the scene's \"passivity\": \"control\" cannot run on it "
+               "(give the mass in a device file with `contactlab simulate --device-file`, docs/devices.md, or use "
+               "\"passivity\": \"fault\"); " + (running ? "the running device carries on" : "the mouse drives the finger");
+    }
 
     // The proxy's history goes over to the new servo (issue 15): a finger resting in a wall keeps
     // feeling it across a rate change or a device switch; the new servo's first tick walks from

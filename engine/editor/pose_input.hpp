@@ -28,6 +28,9 @@ public:
         return false;
     }
     virtual void stop_sweep() noexcept {}
+    // False where only the pose's angle is taken (a real device measuring no finger angle: the
+    // user's hand places the finger, keyed_angle_device.hpp): the finger is then the device's.
+    virtual bool takes_position() const noexcept { return true; }
 };
 
 }  // namespace contactlab::editor

@@ -300,6 +300,7 @@ bool Script::run(EditorState& s, const Line& line, double now) {
             else if (n == "recording") v = s.haptics && s.haptics->recording() ? 1 : 0;
             else if (n == "finger_x") v = snap.finger.x * 1e3;  // mm
             else if (n == "finger_y") v = snap.finger.y * 1e3;  // mm
+            else if (n == "finger_phi") v = snap.phi * 180.0 / 3.14159265358979323846;  // deg
             else if (n == "depth") v = snap.depth * 1e3;        // mm
             else if (n == "l_d") v = snap.l_d * 1e3;            // mm
             else if (n == "roller_target") v = snap.roller_target * 1e3;  // mm

@@ -15,6 +15,27 @@ PlatformPoseCommand contact_to_platform(double fx, double fy, double phi, const 
     out.roll = std::remainder(std::atan2(fy, fx) - (phi + 0.5 * std::numbers::pi), 2.0 * std::numbers::pi);
     out.roll = std::clamp(out.roll, -def.max_tilt, def.max_tilt);
     out.press = std::min(f / def.normal_stiffness, def.max_press);
+    // Within the platform's reach: the reachable rolls at a press are an interval around 0, so
+    // the largest reachable roll toward the asked one is found by bisection on its magnitude.
+    // 30 halvings bound it to 0.5 rad / 2^30 (5e-10 rad); inverse kinematics allocates nothing.
+    auto reachable = [&](double roll) {
+        Pose xi = def.platform.rest;
+        xi(2) += out.press;
+        xi(3) += roll;
+        return inverse_kinematics(def.platform, xi).status == IkStatus::ok;
+    };
+    if (!reachable(out.roll)) {
+        double lo = 0.0, hi = 1.0;  // fractions of the asked roll: lo reachable, hi not
+        if (!reachable(0.0)) {
+            out.roll = 0.0;
+            return out;
+        }
+        for (int i = 0; i < 30; ++i) {
+            const double mid = 0.5 * (lo + hi);
+            (reachable(mid * out.roll) ? lo : hi) = mid;
+        }
+        out.roll *= lo;
+    }
     return out;
 }
 

@@ -7,8 +7,13 @@
 //           positive where it rises toward the fingertip (the platform's +y side up)
 //   press = |F| / k_n (m into the pad, the fingertip's normal stiffness, eq. 8)
 //
-// both clamped to what the platform can show. In free space (|F| below min_force) the platform
-// is sent to rest (no tilt, no press): the cables go slack.
+// both clamped to what the platform can show: press to max_press, roll to max_tilt and then to
+// the platform's reach at that press (its cables must wrap the finger: inverse kinematics). The
+// seed's platform reaches -0.44..+0.88 rad of roll at rest and more pressed: a surface sloping
+// down toward the fingertip by more than 25 degrees, touched lightly, asked for a pose it cannot
+// take, and the device faulted ("a platform pose outside the workspace"). On a slope the force
+// ramps in from zero after every fault, so a finger held there never got out of it. In free
+// space (|F| below min_force) the platform is sent to rest (no tilt, no press): the cables go slack.
 #pragma once
 
 #include "haptics/wearable/finger_stiffness.hpp"
@@ -21,6 +26,7 @@ struct ContactDisplayDef {
     double max_press = 0.0015;         // m into the pad (the platform's chords stay < 2 R_i)
     double max_tilt = 0.5;             // rad
     double min_force = 1e-4;           // N: below, no contact
+    PlatformDef platform;              // whose reach bounds the tilt (the seed's platform)
 };
 
 struct PlatformPoseCommand {

@@ -273,3 +273,27 @@ TEST_CASE("sim-wearable in the editor: the cursor is the finger and the platform
     CHECK(num(w, "platform_tension_n") > 0.0);
     CHECK(fs::exists(shot));
 }
+
+TEST_CASE("a scene asking for the passivity controller on the mouse, which has no effective mass, is told so") {
+    TempDir dir;
+    std::string text = read_text((source_dir() / "scenes/block.json").string());
+    const std::string key = "\"force\": {";
+    REQUIRE(text.find(key) != std::string::npos);
+    text.insert(text.find(key) + key.size(), " \"passivity\": \"control\",");
+    const std::string scene_path = dir.file("control.json");
+    write_text(scene_path, text);
+    // The status line carries the warning as an error; the same scene without "control" none.
+    const std::string script = dir.file("s.txt");
+    write_text(script, "wait_state engaged 5\nframes 3\nexpect error 1\nquit\n");
+    const auto p = run_under_xvfb({"edit", scene_path, "--script", script, "--software", "--timeout", "60"});
+    INFO("stderr: " << p.err);
+    CHECK(p.exit_code == 0);
+    CHECK_FALSE(contains(p.err, "FAILED"));
+    const std::string plain = dir.file("p.txt");
+    write_text(plain, "wait_state engaged 5\nframes 3\nexpect error 0\nquit\n");
+    const auto q = run_under_xvfb({"edit", (source_dir() / "scenes/block.json").string(), "--script", plain, "--software",
+                                   "--timeout", "60"});
+    INFO("stderr: " << q.err);
+    CHECK(q.exit_code == 0);
+    CHECK_FALSE(contains(q.err, "FAILED"));
+}

@@ -6,6 +6,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace contactlab::wearable;
@@ -247,4 +248,46 @@ TEST_CASE("wearable contact display state: the tensions that hold the commanded 
     CHECK_FALSE(free.command.contact);
     CHECK(free.tension.isZero());
     CHECK(free.pose == p.rest);
+}
+
+TEST_CASE("contact display: every commanded pose is one the platform can take, light or heavy, on any slope") {
+    // The seed's platform reaches -0.44..+0.88 rad of roll at rest (pressed further, more): a
+    // light touch on a surface sloping down toward the fingertip by more than 25 degrees used to
+    // ask for -0.5 rad, which the cables cannot wrap, and the device faulted.
+    const ContactDisplayDef def;
+    int clamped_by_reach = 0;
+    for (int deg = 0; deg < 360; ++deg) {
+        for (double f : {2e-4, 1e-2, 0.3, 1.5, 5.0}) {  // N (min_force is 1e-4)
+            for (double phi : {-0.6, 0.0, 0.6}) {       // rad
+                const double a = deg * 3.141592653589793 / 180.0;
+                const double fx = f * std::cos(a), fy = f * std::sin(a);
+                const PlatformPoseCommand c = contact_to_platform(fx, fy, phi);
+                REQUIRE(c.contact);
+                Pose xi = def.platform.rest;
+                xi(2) += c.press;
+                xi(3) += c.roll;
+                INFO("force angle " << deg << " deg, " << f << " N, phi " << phi << ": roll " << c.roll);
+                CHECK(inverse_kinematics(def.platform, xi).status == IkStatus::ok);
+                CHECK(std::abs(c.roll) <= def.max_tilt);
+                // The roll asked for before the reach (straight down, angle(F) - pi/2 wraps to -pi).
+                const double asked = std::clamp(
+                    std::remainder(std::atan2(fy, fx) - (phi + 0.5 * 3.141592653589793), 2 * 3.141592653589793),
+                    -def.max_tilt, def.max_tilt);
+                if (std::abs(c.roll - asked) > 1e-12) {
+                    ++clamped_by_reach;
+                    // Only ever toward zero, keeping the slope's sign, and to the reach's edge:
+                    // 1e-3 rad further is out of reach.
+                    CHECK(c.roll * asked >= 0.0);
+                    CHECK(std::abs(c.roll) < std::abs(asked));
+                    Pose beyond = xi;
+                    beyond(3) += asked > 0 ? 1e-3 : -1e-3;
+                    CHECK(inverse_kinematics(def.platform, beyond).status != IkStatus::ok);
+                }
+            }
+        }
+    }
+    CHECK(clamped_by_reach > 0);  // the light touches on steep down-slopes
+    // A 0.4636 rad (26.6 degree) down-slope touched lightly: the reach at rest, -0.442 rad.
+    const PlatformPoseCommand light = contact_to_platform(0.01 * std::sin(0.4636), 0.01 * std::cos(0.4636), 0.0);
+    CHECK(light.roll == doctest::Approx(-0.442).epsilon(0.005));
 }

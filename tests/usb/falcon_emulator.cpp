@@ -204,7 +204,23 @@ struct FalconEmulator::Impl {
                 auto* b = static_cast<std::uint8_t*>(urb->buffer);
                 urb->status = 0;
                 urb->actual_length = 0;
-                if (urb->type == USBDEVFS_URB_TYPE_CONTROL) {
+                if (urb->type == USBDEVFS_URB_TYPE_CONTROL && b[0] == 0x80 && b[1] == 6 && b[3] == 3) {
+                    // GET_DESCRIPTOR (string): index 0 lists the languages (US English), index 3
+                    // is the FTDI chip's serial number, UTF-16LE. actual_length excludes the setup.
+                    std::vector<std::uint8_t> d{0, 3};
+                    if (b[2] == 0) {
+                        d.insert(d.end(), {0x09, 0x04});
+                    } else if (b[2] == 3) {
+                        for (char ch : cfg.serial) d.insert(d.end(), {static_cast<std::uint8_t>(ch), 0});
+                    } else {
+                        urb->status = -EPIPE;  // no such string: the device stalls the request
+                    }
+                    d[0] = static_cast<std::uint8_t>(d.size());
+                    const int want = b[6] | (b[7] << 8);
+                    const int n = urb->status == 0 ? std::min<int>(want, static_cast<int>(d.size())) : 0;
+                    std::memcpy(b + 8, d.data(), static_cast<std::size_t>(n));
+                    urb->actual_length = n;
+                } else if (urb->type == USBDEVFS_URB_TYPE_CONTROL) {
                     control(b[1], static_cast<std::uint16_t>(b[2] | (b[3] << 8)));
                 } else if (urb->endpoint == kEndpointOut) {
                     serial_in(b, urb->buffer_length);

@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace contactlab::test {
@@ -21,6 +22,7 @@ public:
         bool firmware_running = false;       // already running at plug-in (no upload needed)
         bool bootloader_answers = true;      // false: a Falcon without its power supply
         bool kernel_driver_bound = true;     // ftdi_sio holds FTDI chips by default
+        std::string serial = "FTB3X9QZ";     // the FTDI chip's serial (string descriptor 3)
     };
     explicit FalconEmulator(const Config& c);
     ~FalconEmulator();

@@ -72,6 +72,7 @@ TEST_CASE("falcon: firmware uploaded from the user's file, then positions stream
     CHECK(emu.handshakes() >= 1);
     CHECK_FALSE(emu.kernel_driver_bound());  // ftdi_sio detached
     CHECK(dev.stats().firmware_uploads == 1);
+    CHECK(dev.serial() == "FTB3X9QZ");  // the FTDI chip's serial, for the results' meta
 
     DeviceReading r;
     CHECK(wait_until([&] { return dev.stats().packets >= 50; }));
