@@ -1,15 +1,15 @@
 // haply_emulator.cpp — hAPI's firmware on the far end of umockdev's pty (see haply_emulator.hpp).
 #include "haply_emulator.hpp"
 
+#include "deny_node_access.hpp"
+
 #include "drivers/usb/haply_protocol.hpp"
 
 #include <umockdev.h>
 
 #include <dirent.h>
 #include <fcntl.h>
-#include <linux/capability.h>
 #include <poll.h>
-#include <sys/prctl.h>
 #include <sys/stat.h>
 #include <sys/syscall.h>
 #include <unistd.h>
@@ -207,23 +207,7 @@ void HaplyEmulator::unplug() {
     }
 }
 
-void HaplyEmulator::deny_permission() {
-    gchar* root = umockdev_testbed_get_root_dir(impl_->testbed);
-    const std::string file = std::string(root) + node();
-    g_free(root);
-    ::chmod(file.c_str(), 0);
-    if (::geteuid() == 0) {
-        // Root ignores file modes through CAP_DAC_OVERRIDE: drop it (and DAC_READ_SEARCH) from
-        // the effective and bounding sets, as HapioEmulator::deny_permission does.
-        __user_cap_header_struct hdr{_LINUX_CAPABILITY_VERSION_3, 0};
-        __user_cap_data_struct data[2]{};
-        syscall(SYS_capget, &hdr, data);
-        data[0].effective &= ~((1u << CAP_DAC_OVERRIDE) | (1u << CAP_DAC_READ_SEARCH));
-        syscall(SYS_capset, &hdr, data);
-        ::prctl(PR_CAPBSET_DROP, CAP_DAC_OVERRIDE, 0, 0, 0);
-        ::prctl(PR_CAPBSET_DROP, CAP_DAC_READ_SEARCH, 0, 0, 0);
-    }
-}
+void HaplyEmulator::deny_permission() { usb_test::deny_node_access(impl_->testbed, node()); }
 
 void HaplyEmulator::set_position(Vec p) {
     std::array<double, 2> t{};

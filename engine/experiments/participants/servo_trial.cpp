@@ -28,17 +28,24 @@ TrialTrace::~TrialTrace() {
     if (ticks.capacity() > spare.capacity()) spare.swap(ticks);
 }
 
+// The servo's parameters for a trial: the scene's force, and without contact location the
+// roller held at the pad's centre.
+static ServoParams trial_servo_params(const Scene& scene, bool contact_location) {
+    ServoParams params;
+    params.stiffness = scene.force.stiffness;
+    params.max_force = scene.force.max_force;
+    params.passivity = scene.force.passivity;
+    if (!contact_location) params.roller_travel = 1e-9;  // m: the element held at the pad's centre
+    return params;
+}
+
 TrialTrace run_servo_trial(const Scene& scene, const drivers::HandPath& path, bool contact_location) {
     TrialProfile* const profile = thread_profile();  // null unless `experiment run --profile`
     auto setup = std::make_optional<StageTimer>(&TrialProfile::servo_scene);
     drivers::sim::SimCldParams sp;
     sp.max_force = scene.force.max_force;
     drivers::sim::SimCldDevice dev(sp, path);
-    ServoParams params;
-    params.stiffness = scene.force.stiffness;
-    params.max_force = scene.force.max_force;
-    params.passivity = scene.force.passivity;
-    if (!contact_location) params.roller_travel = 1e-9;  // m: the element held at the pad's centre
+    const ServoParams params = trial_servo_params(scene, contact_location);
     const ServoConfig config = drivers::servo_config_for(dev, kTrialRate);
     ServoTick tick(config, params);
     tick.scenes().publish(std::make_unique<ServoScene>(scene));
@@ -92,11 +99,7 @@ TrialTrace run_steered_trial(const Scene& scene, const drivers::HandPath& envelo
     drivers::HandPath path(std::vector<drivers::PathSample>{start});
     path.reserve(ticks + 2);
     dev.hand().set_path(std::move(path));
-    ServoParams params;
-    params.stiffness = scene.force.stiffness;
-    params.max_force = scene.force.max_force;
-    params.passivity = scene.force.passivity;
-    if (!contact_location) params.roller_travel = 1e-9;  // m: the element held at the pad's centre
+    const ServoParams params = trial_servo_params(scene, contact_location);
     const ServoConfig config = drivers::servo_config_for(dev, kTrialRate);
     ServoTick tick(config, params);
     tick.scenes().publish(std::make_unique<ServoScene>(scene));
