@@ -77,7 +77,7 @@ void build_overlay_layer(const FrameContent& content, const View& view, const Th
     if (legend.status_line) marks.texts.push_back(box_of(*legend.status_line));
     else if (content.text && content.finger && content.status_line) marks.dropped.push_back("status line");
     if (content.finger) parts::draw_proxy_state(content, view, theme, m, out, marks);
-    parts::draw_legend(content, view, theme, m, out);
+    parts::draw_legend(content, view, theme, m, legend, out);  // the same layout: its placement drew the marks once
     if (placed) *placed = std::move(marks);
 }
 

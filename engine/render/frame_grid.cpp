@@ -45,8 +45,8 @@ void draw_grid(const View& view, const Theme& theme, DrawList& out) {
     }
 }
 
-void draw_legend(const FrameContent& c, const View& view, const Theme& theme, const Metrics& m, DrawList& out) {
-    const LegendLayout l = legend_layout(c, view);
+void draw_legend(const FrameContent& c, const View& view, const Theme& theme, const Metrics& m, const LegendLayout& l,
+                 DrawList& out) {
     const float tick = 2.0f * m.dot_radius;
     {  // Scale bar: its line along the box's bottom, the label above its left end.
         const PxBox& b = l.scale_bar;
@@ -73,7 +73,7 @@ void draw_legend(const FrameContent& c, const View& view, const Theme& theme, co
             draw_text(out, {xr - size.x, b.y}, label, theme.force, m.text_scale);
         }
     }
-    draw_platform_key(c, view, theme, out);  // the wearable's colours, with the text
+    draw_platform_key(c, theme, m, l, out);  // the wearable's colours, with the text
     // Status line, top left: the proxy's state in the UI's units (mm, N, degrees).
     if (l.status_line) draw_text(out, {l.status_line->x, l.status_line->y}, proxy_status_text(*c.finger).c_str(), theme.legend, m.text_scale);
 }
@@ -95,10 +95,9 @@ std::vector<std::string> platform_key_lines(const FrameContent& c) {
 
 }  // namespace
 
-void parts::draw_platform_key(const FrameContent& c, const View& view, const Theme& theme, DrawList& out) {
-    const LegendLayout l = legend_layout(c, view);
+void parts::draw_platform_key(const FrameContent& c, const Theme& theme, const parts::Metrics& m, const LegendLayout& l,
+                              DrawList& out) {
     if (!l.platform_key) return;
-    const parts::Metrics m = parts::metrics_for(view);
     const float pad = std::round(m.dot_radius * 2.0f), s = static_cast<float>(m.text_scale);
     const PxBox& b = *l.platform_key;
     out.fill_rect({b.x, b.y}, {b.x + b.w, b.y + b.h}, theme.background.with_alpha(200));

@@ -38,9 +38,11 @@ void add_contour_marks(const Environment& env, const View& view, const LabelBox&
 void draw_cspace(const FrameContent& c, const View& view, const Theme& theme, const Metrics& m,
                  DrawList& out);                                                             // frame_overlays.cpp
 void draw_zones(const FrameContent& c, const View& view, const Theme& theme, DrawList& out); // frame_overlays.cpp
-void draw_legend(const FrameContent& c, const View& view, const Theme& theme, const Metrics& m,
+// The legend where `l` (legend_layout, computed once per frame by the caller) puts it.
+void draw_legend(const FrameContent& c, const View& view, const Theme& theme, const Metrics& m, const LegendLayout& l,
                  DrawList& out);                                                             // frame_grid.cpp
-// The wearable platform's key (cable tension and force colours), top right, with the text.
-void draw_platform_key(const FrameContent& c, const View& view, const Theme& theme, DrawList& out);  // frame_grid.cpp
+// The wearable platform's key (cable tension and force colours) in l.platform_key, with the text.
+void draw_platform_key(const FrameContent& c, const Theme& theme, const Metrics& m, const LegendLayout& l,
+                       DrawList& out);                                                       // frame_grid.cpp
 
 }  // namespace contactlab::render::parts
