@@ -289,6 +289,9 @@ private:
     Anticipated anticipated_;
     // Asks the search for at most `budget` segments (0: all); true when it ended.
     bool continue_anticipation(int budget);
+    // The exact distance (m) from the search's finger to segment id's pieces at the search's
+    // angle; keeps the nearest (ties: the lowest segment) as the search's best.
+    double ask_anticipation(int id);
     // An empty build keeps the last one here (cache_aside_), still described by built_*.
     std::vector<CPiece> aside_pieces_;
     std::vector<Aabb> aside_boxes_;
