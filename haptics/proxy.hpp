@@ -189,7 +189,7 @@ private:
         return static_cast<int>(env_->segments.size()) <= kProxySmallScene && phi_from == phi_to && phi_to == built_phi_;
     }
     void build_pieces(double phi);                         // pieces_ of segment_ids_ at phi
-    void build_substep_pieces(double phi);                 // the same, for a re-projection sub-step
+    void build_substep_pieces(double phi, const std::vector<int>& ids);  // for a re-projection sub-step
     const PadFrame& pad_frame(double phi);
     struct WarmDisc {
         Vec2 center{0.0};    // m
@@ -205,7 +205,9 @@ private:
     void move_proxy(Vec2 finger, double phi, double turn, double max_push, Vec2 start, Vec2 center);
     void note_path(Vec2 p);               // the motion visited p: widen path_extent_
     void note_path_box(const Aabb& box);  // ... every point of box
-    void depenetrate(double max_push);
+    // Pushes the proxy out of the pieces it lies behind by at most max_push (m). With `within`:
+    // false, stopping there, when a point it asks the pieces about lies outside that disc.
+    bool depenetrate(double max_push, const WarmDisc* within = nullptr);
     bool handed_over(int i, Vec2 at, Vec2 t, int ended = -1) const;
     bool inside_or_past_concave_end(const CPiece& piece, double param, double reach) const;
     Vec2 walk(Vec2 from, Vec2 goal);
@@ -257,6 +259,7 @@ private:
     ProxyOutput out_;
     // Scratch space reused every tick (capacity kept: no allocation in steady state).
     std::vector<int> segment_ids_;
+    std::vector<int> rotation_ids_;  // move_proxy: the segments near the proxy, for a turn's sub-steps
     std::vector<CPiece> pieces_;
     PadFrame pad_frame_;            // the last pad frame made (pad_frame())
     bool pad_frame_valid_ = false;

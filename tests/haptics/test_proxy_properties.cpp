@@ -351,6 +351,71 @@ TEST_CASE("anticipation hovering over a valley of the pad's own shape asks few s
     CHECK(most_asked <= 400);
 }
 
+TEST_CASE("a finger turning as it slides round a dense gear: a turn's sub-steps build the segments near the proxy, and the proxy is a search of every segment's") {
+    // A closed gear (radius 40 mm, 24 flat-topped teeth 3 mm high, 4,000 segments of 63 um,
+    // drawn clockwise: solid inside), the pad facing its centre and pressed in along the radius
+    // while the finger goes a quarter turn round it in 400 ticks: phi turns 3.9 mrad a tick, the
+    // pad's ends sweep 0.1 mm, so each tick re-projects in 7 sub-steps of a quarter of the
+    // shortest segment. The sub-steps now build only the segments whose pieces come within four
+    // pushes of the proxy (they built every gathered one: 7 x the tick's gather); between teeth
+    // the finger is wedged in a corner, where a blocked slide round a pad end's circle used to
+    // count the whole circle toward the foot as the path and fail the warm start every tick.
+    // A proxy that builds every segment every sub-step must agree bit for bit.
+    constexpr int kSegments = 4000, kTeeth = 24, kTicks = 400;
+    constexpr double kRadius = 0.040, kTooth = 0.003;  // m
+    auto radius = [&](double t) { return kRadius + 0.5 * kTooth * (1.0 + std::tanh(4.0 * std::sin(kTeeth * t))); };
+    Contour gear;
+    gear.closed = true;
+    auto at = [&](int i) {
+        const double t = -2.0 * kPi * i / kSegments;  // clockwise
+        return Vec2{radius(t) * std::cos(t), radius(t) * std::sin(t)};
+    };
+    for (int i = 0; i < kSegments; ++i) gear.segments.push_back(line(at(i), at((i + 1) % kSegments)));
+    IndexedAndBrute pair(scene_of({gear}));
+    pair.indexed.reset({kRadius + kTooth + R + 0.05, 0.0}, -0.5 * kPi);
+    pair.brute.reset({kRadius + kTooth + R + 0.05, 0.0}, -0.5 * kPi);
+    int turning = 0, warm = 0, wedged = 0, wedged_warm = 0;
+    for (int k = 0; k < kTicks; ++k) {
+        const double t = 0.5 * kPi * k / (kTicks - 1);
+        const double centre = radius(t) + R - 0.001;  // m from the gear's centre: pressed 1 mm in
+        const Vec2 finger{centre * std::cos(t), centre * std::sin(t)};
+        const double phi = t - 0.5 * kPi;
+        const ProxyOutput a = pair.indexed.update(finger, phi);
+        const ProxyOutput& b = pair.brute.update(finger, phi);
+        CAPTURE(k);
+        REQUIRE(a.proxy == b.proxy);
+        REQUIRE(a.contact == b.contact);
+        CHECK(a.force == b.force);
+        if (k == 0 || a.work.rotation_steps < 2) continue;
+        ++turning;
+        warm += a.work.warm_start ? 1 : 0;
+        if (a.contact_count == 2 && a.proxy == a.start) {  // resting in a corner between teeth
+            ++wedged;
+            wedged_warm += a.work.warm_start ? 1 : 0;
+        }
+    }
+    MESSAGE(turning << " turning ticks, " << warm << " kept to the warm start; " << wedged << " wedged in a corner, "
+                    << wedged_warm << " of them kept to it");
+    CHECK(turning > kTicks - 10);
+    CHECK(wedged > 10);
+    CHECK(wedged_warm == wedged);
+    CHECK(warm > turning * 9 / 10);
+    // A jump the warm start cannot follow (3 mm further in, the finger turned 0.05 rad): the
+    // full gather, and 82 sub-steps, each building only the segments near the proxy.
+    const double t = 0.5 * kPi;
+    const double centre = radius(t) + R - 0.004;  // m
+    const Vec2 finger{centre * std::cos(t), centre * std::sin(t)};
+    const ProxyOutput a = pair.indexed.update(finger, t - 0.5 * kPi + 0.05);
+    const ProxyOutput& b = pair.brute.update(finger, t - 0.5 * kPi + 0.05);
+    REQUIRE(a.proxy == b.proxy);
+    CHECK(a.force == b.force);
+    CHECK_FALSE(a.work.warm_start);
+    CHECK(a.work.rotation_steps > 40);
+    MESSAGE("the jump: " << a.work.rotation_steps << " sub-steps, " << a.work.segments << " segments gathered, "
+                         << a.work.built_segments << " built");
+    CHECK(a.work.built_segments < a.work.rotation_steps * a.work.segments / 4);
+}
+
 TEST_CASE("anticipation spread over ticks: each tick asks at most its budget, and shows the exact answer of the tick its search began") {
     // ProxyDef::anticipation_budget: a search needing more segments than the budget continues in
     // the next ticks for the finger and angle it began at. Hovering 0.5-15 mm above the dense
