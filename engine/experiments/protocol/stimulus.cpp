@@ -19,12 +19,55 @@ namespace {
 
 constexpr double kSample = 1e-3;  // s between hand path samples
 
+constexpr double kPointStep = 2.5e-4;  // m between surface points, at most
+
+}  // namespace
+
+// How many intervals surface_points cuts a segment into: ceil(length / kPointStep), at least 2,
+// with segment_length's length. For a quadratic curve that length is a quadrature of 320 square
+// roots (a tenth of a seed 002 hand path's time), while the count needs only which multiple of
+// kPointStep the length lies below: the curve's length lies between its chord and its control
+// polygon, and between the chords and the control polygons of its halves, quarters, ... (de
+// Casteljau). When every length in that interval, widened by 1e-6 of itself (the quadrature is
+// exact to ~1e-14 for a curve whose direction never reverses, and the roundings of the bounds to
+// ~1e-16), gives the same count, that is the count; otherwise (a length within a micrometre of a
+// multiple, or a curve that turns back on itself) the quadrature decides, as before.
+int surface_intervals(const Segment& seg) {
+    auto count = [](double length) { return std::max(2, static_cast<int>(std::ceil(length / kPointStep))); };
+    const auto* q = std::get_if<QuadSegment>(&seg);
+    if (q == nullptr || !(glm::dot(q->p1 - q->p0, q->p2 - q->p1) > 0.0)) return count(segment_length(seg));
+    struct Piece {
+        Vec2 a, b, c;
+    };
+    Piece pieces[16] = {{q->p0, q->p1, q->p2}};
+    int n = 1;
+    for (;;) {
+        double lo = 0.0, hi = 0.0;  // m: the chords' and the control polygons' lengths
+        for (int i = 0; i < n; ++i) {
+            lo += glm::length(pieces[i].c - pieces[i].a);
+            hi += glm::length(pieces[i].b - pieces[i].a) + glm::length(pieces[i].c - pieces[i].b);
+        }
+        const int fewest = count(lo * (1.0 - 1e-6)), most = count(hi * (1.0 + 1e-6));
+        if (fewest == most) return fewest;
+        if (2 * n > 16) return count(segment_length(seg));
+        for (int i = n - 1; i >= 0; --i) {  // each piece into its halves
+            const Piece p = pieces[i];
+            const Vec2 ab = 0.5 * (p.a + p.b), bc = 0.5 * (p.b + p.c), mid = 0.5 * (ab + bc);
+            pieces[2 * i] = {p.a, ab, mid};
+            pieces[2 * i + 1] = {mid, bc, p.c};
+        }
+        n *= 2;
+    }
+}
+
+namespace {
+
 // Points along every segment of the scene, about every 0.25 mm.
 std::vector<Vec2> surface_points(const Scene& s) {
     std::vector<Vec2> out;
     for (const Contour& c : s.contours)
         for (const Segment& seg : c.segments) {
-            const int n = std::max(2, static_cast<int>(std::ceil(segment_length(seg) / 2.5e-4)));
+            const int n = surface_intervals(seg);
             for (int i = 0; i <= n; ++i) {
                 const double u = static_cast<double>(i) / n;
                 if (const auto* l = std::get_if<LineSegment>(&seg)) {
@@ -46,8 +89,8 @@ std::vector<Vec2> surface_points(const Scene& s) {
 // axis, and seed 002's base shape is steeper than that.
 drivers::HandPath slide_path(const SurfaceProfile& pts, double x0, double x1, double r, double speed, double press,
                              double& slide_start, double& slide_end) {
-    std::size_t at = 0, ahead = 0, behind = 0;  // where each of the three heights was last found
-    auto height = [&](double x, std::size_t& hint) { return resting_height(pts, x, r, hint) - press; };
+    RestingCursor at, ahead, behind;  // where each of the three heights was last found
+    auto height = [&](double x, RestingCursor& cursor) { return resting_height(pts, x, r, cursor) - press; };
     auto slope = [&](double x) {
         constexpr double h = 0.015;  // m
         return std::clamp(std::atan2(height(x + h, ahead) - height(x - h, behind), 2.0 * h), -1.4, 1.4);  // rad
