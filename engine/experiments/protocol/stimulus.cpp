@@ -91,13 +91,34 @@ drivers::HandPath slide_path(const SurfaceProfile& pts, double x0, double x1, do
                              double& slide_start, double& slide_end) {
     RestingCursor at, ahead, behind;  // where each of the three heights was last found
     auto height = [&](double x, RestingCursor& cursor) { return resting_height(pts, x, r, cursor) - press; };
-    auto slope = [&](double x) {
-        constexpr double h = 0.015;  // m
-        return std::clamp(std::atan2(height(x + h, ahead) - height(x - h, behind), 2.0 * h), -1.4, 1.4);  // rad
+    // The slide's positions and heights first: a slope asks for the heights 15 mm either side of
+    // a position, and about half of those positions are, to the last bit, slide positions 300
+    // samples away, whose heights are then taken from here (a height is a function of x alone).
+    const int n = static_cast<int>(std::ceil(std::abs(x1 - x0) / (speed * kSample)));
+    std::vector<double> xs(static_cast<std::size_t>(n) + 1), hs(xs.size());
+    for (int i = 0; i <= n; ++i) {
+        xs[static_cast<std::size_t>(i)] = x0 + (x1 - x0) * i / n;
+        hs[static_cast<std::size_t>(i)] = height(xs[static_cast<std::size_t>(i)], at);
+    }
+    constexpr double h = 0.015;  // m
+    const double step = (x1 - x0) / n;  // m a sample (signed)
+    const long span = std::isfinite(h / step) ? std::lround(h / step) : 0;  // samples 15 mm on (signed)
+    // The height at x, which lies about `offset` samples from sample i.
+    auto height_near = [&](double x, long i, long offset, RestingCursor& cursor) {
+        for (const long j : {i + offset, i + offset - 1, i + offset + 1})
+            if (j >= 0 && j <= n && xs[static_cast<std::size_t>(j)] == x) return hs[static_cast<std::size_t>(j)];
+        return height(x, cursor);
+    };
+    // The finger turns with the surface's slope over +-15 mm.
+    auto slope = [&](long i) {
+        const double x = xs[static_cast<std::size_t>(i)];
+        return std::clamp(std::atan2(height_near(x + h, i, span, ahead) - height_near(x - h, i, -span, behind), 2.0 * h), -1.4,
+                          1.4);  // rad
     };
     std::vector<drivers::PathSample> out;
+    out.reserve(xs.size() + 800);
     double t = 0.0;
-    const double y0 = height(x0, at), phi0 = slope(x0);
+    const double y0 = hs[0], phi0 = slope(0);  // xs[0] is x0
     const Vec2 above{x0, y0 + 0.015};
     auto push = [&](Vec2 x, double phi) {
         out.push_back({t, x, phi});
@@ -106,11 +127,7 @@ drivers::HandPath slide_path(const SurfaceProfile& pts, double x0, double x1, do
     for (int i = 0; i < 300; ++i) push(above + (Vec2{x0, y0} - above) * (i / 300.0), phi0);  // 0.3 s down
     for (int i = 0; i < 300; ++i) push({x0, y0}, phi0);                                      // 0.3 s settle
     slide_start = t;
-    const int n = static_cast<int>(std::ceil(std::abs(x1 - x0) / (speed * kSample)));
-    for (int i = 0; i <= n; ++i) {
-        const double x = x0 + (x1 - x0) * i / n;
-        push({x, height(x, at)}, slope(x));
-    }
+    for (int i = 0; i <= n; ++i) push({xs[static_cast<std::size_t>(i)], hs[static_cast<std::size_t>(i)]}, i == 0 ? phi0 : slope(i));
     slide_end = t;
     const drivers::PathSample last = out.back();
     for (int i = 0; i < 200; ++i) push(last.x, last.phi);  // 0.2 s hold

@@ -6,6 +6,29 @@
 
 namespace contactlab::experiments {
 
+namespace {
+
+// The line no point of pts[a, b) rises above (SurfaceProfile::BlockLine): their chord, lifted by
+// the most any of them rises over it.
+SurfaceProfile::BlockLine line_over(const std::vector<Vec2>& pts, std::size_t a, std::size_t b) {
+    SurfaceProfile::BlockLine l;
+    l.x0 = pts[a].x;
+    l.x1 = pts[b - 1].x;
+    l.y0 = pts[a].y;
+    const double run = l.x1 - l.x0;  // m
+    const double slope = run > 0.0 ? (pts[b - 1].y - l.y0) / run : 0.0;
+    l.slope = std::isfinite(slope) && std::abs(slope) <= 1e3 ? slope : 0.0;  // a vertical span: its top
+    double above = 0.0;
+    for (std::size_t i = a; i < b; ++i) above = std::max(above, pts[i].y - (l.y0 + l.slope * (pts[i].x - l.x0)));
+    // The roundings of the line's value at a point are ~1e-17 m at these sizes: far inside this.
+    l.above = above + 1e-12 * (1.0 + std::abs(l.y0) + std::abs(l.slope) * run + above);
+    l.root = std::sqrt(1.0 + l.slope * l.slope);
+    l.lean = l.slope / l.root;
+    return l;
+}
+
+}  // namespace
+
 SurfaceProfile profile_of(std::vector<Vec2> pts) {
     std::sort(pts.begin(), pts.end(), [](const Vec2& a, const Vec2& b) { return a.x < b.x; });
     SurfaceProfile p;
@@ -16,22 +39,10 @@ SurfaceProfile profile_of(std::vector<Vec2> pts) {
     for (std::size_t k = 0; k < p.block_top.size(); ++k)
         p.run_top[k / SurfaceProfile::kRun] = std::max(p.run_top[k / SurfaceProfile::kRun], p.block_top[k]);
     p.block_line.resize(p.block_top.size());
-    for (std::size_t k = 0; k < p.block_line.size(); ++k) {
-        const std::size_t a = k * B, b = std::min(pts.size(), a + B);
-        SurfaceProfile::BlockLine& l = p.block_line[k];
-        l.x0 = pts[a].x;
-        l.x1 = pts[b - 1].x;
-        l.y0 = pts[a].y;
-        const double run = l.x1 - l.x0;  // m
-        const double slope = run > 0.0 ? (pts[b - 1].y - l.y0) / run : 0.0;
-        l.slope = std::isfinite(slope) && std::abs(slope) <= 1e3 ? slope : 0.0;  // a vertical block: its top
-        double above = 0.0;
-        for (std::size_t i = a; i < b; ++i) above = std::max(above, pts[i].y - (l.y0 + l.slope * (pts[i].x - l.x0)));
-        // The roundings of the line's value at a point are ~1e-17 m at these sizes: far inside this.
-        l.above = above + 1e-12 * (1.0 + std::abs(l.y0) + std::abs(l.slope) * run + above);
-        l.root = std::sqrt(1.0 + l.slope * l.slope);
-        l.lean = l.slope / l.root;
-    }
+    for (std::size_t k = 0; k < p.block_line.size(); ++k) p.block_line[k] = line_over(pts, k * B, std::min(pts.size(), (k + 1) * B));
+    constexpr std::size_t R = B * SurfaceProfile::kRun;
+    p.run_line.resize(p.run_top.size());
+    for (std::size_t k = 0; k < p.run_line.size(); ++k) p.run_line[k] = line_over(pts, k * R, std::min(pts.size(), (k + 1) * R));
     p.pts = std::move(pts);
     return p;
 }
@@ -51,10 +62,10 @@ bool certainly_below(double y, double t, double best) {
     return d > 1e-12 && t < d * d * (1.0 - 1e-9);
 }
 
-// The largest height (m) a circle of radius r at x can rest at on a point of block `l` within r
-// of x, from the block's line alone (SurfaceProfile::BlockLine), plus an allowance for every
-// rounding, so that no point of the block gives more, as resting_height computes a point's
-// height, than the value returned. On the line y = y0 + slope (x' - x0) + above the circle rests
+// True when no point of a block (or run) whose line is `l` (SurfaceProfile::BlockLine) can hold
+// a circle of radius r at x higher than `best` (m), as resting_height computes a point's height:
+// when the largest height the circle can rest at on the line within r of x, plus an allowance
+// for every rounding, is no more than best. On the line y = y0 + slope (x' - x0) + above the circle rests
 // highest where it touches it, at x' = x + r slope / sqrt(1 + slope^2); over the block's points'
 // span the height along the line, y(x') + sqrt(r^2 - (x' - x)^2), is concave in x', so its most
 // there is at that x' held inside [x0, x1]. The allowance: a point's computed sqrt(r^2 - dx^2)
@@ -62,12 +73,16 @@ bool certainly_below(double y, double t, double best) {
 // ~6 ulps of r^2, and the square root of an error near 0 is its largest), and the line's own
 // rounding is ~1e-17 m: 1e-7 r + 1e-12 (1 + |y|) covers both by a wide margin, and is still
 // nothing beside the micrometres by which the line clears the circle where it rules a block out.
-double line_bound(const SurfaceProfile::BlockLine& l, double x, double r) {
+bool line_rules_out(const SurfaceProfile::BlockLine& l, double x, double r, double best) {
     const double at = std::clamp(x + r * l.lean, l.x0, l.x1);  // m
     const double d = at - x;
-    const double t = std::max(0.0, r * r - d * d);
+    const double t = r * r - d * d;  // m^2
     const double y = l.y0 + l.slope * (at - l.x0) + l.above;
-    return y + std::sqrt(t) + (1e-7 * r + 1e-12 * (1.0 + std::abs(y)));
+    // y + sqrt(t) + allowance <= best, the square root spared as in certainly_below: with
+    // D = best - allowance - y, t < D^2 (1 - 1e-9) puts sqrt(t) below D by far more than the
+    // roundings of D, D^2 and the product.
+    const double room = best - (1e-7 * r + 1e-12 * (1.0 + std::abs(y))) - y;  // m
+    return room > 1e-12 && t < room * room * (1.0 - 1e-9);
 }
 
 // The first point at or after `key` by x (lower_bound), stepping from `at`: a hand a few um on
@@ -134,10 +149,12 @@ double resting_height(const SurfaceProfile& s, double x, double r, RestingCursor
     if (lo >= hi) return best;
     // First the block that held the last sample's highest point (the hand moves a few um a
     // sample, so it is usually the answer, and the bounds below then skip most blocks).
-    const std::size_t first = std::clamp(c.hint, lo, hi - 1) / B;
+    const std::size_t hinted = std::clamp(c.hint, lo, hi - 1), first = hinted / B;
+    scan(hinted, hinted + 1);  // the last answer's point first: the rest of its block mostly falls below it
     scan(std::max(lo, first * B), std::min(hi, (first + 1) * B));
     for (std::size_t k = lo / B; k * B < hi; ++k) {
-        if (k % SurfaceProfile::kRun == 0 && s.run_top[k / SurfaceProfile::kRun] + reach_max <= best) {
+        if (k % SurfaceProfile::kRun == 0 && (s.run_top[k / SurfaceProfile::kRun] + reach_max <= best ||
+                                              line_rules_out(s.run_line[k / SurfaceProfile::kRun], x, r, best))) {
             k += SurfaceProfile::kRun - 1;  // the whole run is too low (the hint's block included: it was scanned)
             continue;
         }
@@ -147,7 +164,7 @@ double resting_height(const SurfaceProfile& s, double x, double r, RestingCursor
         // none rises above the block's top + sqrt(r^2 - gap^2).
         const double gap = s.pts[b - 1].x < x ? x - s.pts[b - 1].x : s.pts[a].x > x ? s.pts[a].x - x : 0.0;  // m
         if (gap > r) continue;  // every point of the block fails the scan's |dx| <= r
-        if (line_bound(s.block_line[k], x, r) <= best) continue;
+        if (line_rules_out(s.block_line[k], x, r, best)) continue;
         const double t = r * r - gap * gap;  // m^2
         if (certainly_below(s.block_top[k], t, best) || s.block_top[k] + std::sqrt(t) <= best) continue;
         scan(a, b);

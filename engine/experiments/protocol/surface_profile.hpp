@@ -32,6 +32,7 @@ struct SurfaceProfile {
     std::vector<double> block_top;  // m: max y over pts[i * kBlock, (i + 1) * kBlock)
     std::vector<double> run_top;    // m: max of block_top[i * kRun, (i + 1) * kRun)
     std::vector<BlockLine> block_line;
+    std::vector<BlockLine> run_line;  // the same over each run of kRun blocks
 };
 
 SurfaceProfile profile_of(std::vector<Vec2> pts);
