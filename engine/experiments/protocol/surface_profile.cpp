@@ -73,7 +73,7 @@ bool certainly_below(double y, double t, double best) {
 // ~6 ulps of r^2, and the square root of an error near 0 is its largest), and the line's own
 // rounding is ~1e-17 m: 1e-7 r + 1e-12 (1 + |y|) covers both by a wide margin, and is still
 // nothing beside the micrometres by which the line clears the circle where it rules a block out.
-bool line_rules_out(const SurfaceProfile::BlockLine& l, double x, double r, double best) {
+[[gnu::always_inline]] inline bool line_rules_out(const SurfaceProfile::BlockLine& l, double x, double r, double best) {
     const double at = std::clamp(x + r * l.lean, l.x0, l.x1);  // m
     const double d = at - x;
     const double t = r * r - d * d;  // m^2
