@@ -4,7 +4,6 @@
 
 #include "engine/experiments/procedures/adaptive_plan.hpp"
 #include "engine/experiments/base/results_table.hpp"
-#include "engine/experiments/runs/part_writer.hpp"
 #include "engine/experiments/runs/run_files.hpp"
 #include "engine/experiments/runs/run_meta.hpp"
 #include "engine/experiments/participants/servo_trial.hpp"
@@ -196,7 +195,6 @@ void run_adaptive_participant(Shared& sh, std::size_t index, const std::vector<s
     std::string part_text = csv_line(columns) + "\n";
     const Ledger ledger = done_rows.empty() ? Ledger{} : read_ledger(sh.files.sums(id));
     std::string sums_text;  // the ledger as committed so far
-    PartWriter writer(sh.files.sums(id), part);
     AdaptivePlan plan(p, o.seed, o.participants[index]);
     std::size_t k = 0;
     for (; !plan.done(); ++k) {
@@ -238,7 +236,8 @@ void run_adaptive_participant(Shared& sh, std::size_t index, const std::vector<s
         }
         if (k >= done_rows.size()) {
             const StageTimer timer(&TrialProfile::files);
-            writer.commit(sums_text, part_text);  // on disk while the next trial runs (part_writer.hpp)
+            write_file_atomically(sh.files.sums(id), sums_text);  // the checksums first: a row on disk has its own
+            write_file_atomically(part, part_text);  // on disk before the next trial
         }
         if (o.progress) o.progress(++sh.done, std::max(sh.total, sh.done.load()));
     }
@@ -246,7 +245,6 @@ void run_adaptive_participant(Shared& sh, std::size_t index, const std::vector<s
         throw ExperimentError(part + ": " + std::to_string(done_rows.size()) + " rows, the procedure ended after " + std::to_string(k) +
                               " (the file is not this run's); give --overwrite to start again");
     const StageTimer timer(&TrialProfile::files);
-    writer.finish();  // the whole part on disk before RESULTS.csv holds its rows
     std::lock_guard<std::mutex> g(sh.lock);
     out.finished = true;
     sh.write_results(false);
@@ -265,7 +263,6 @@ void run_participant(Shared& sh, std::size_t index, const std::vector<std::vecto
     std::string part_text = csv_line(columns) + "\n";
     const Ledger ledger = done_rows.empty() ? Ledger{} : read_ledger(sh.files.sums(id));
     std::string sums_text;  // the ledger as committed so far
-    PartWriter writer(sh.files.sums(id), part);
     std::size_t k = 0;  // this participant's trials so far, in order
     for (std::vector<PlannedTrial> block : plan_trials(p, o.seed, o.participants[index])) {
         const std::size_t planned = block.size();
@@ -311,10 +308,11 @@ void run_participant(Shared& sh, std::size_t index, const std::vector<std::vecto
                 std::lock_guard<std::mutex> g(sh.lock);
                 out.lines.push_back(line);
             }
-            // On disk while the next trial runs (part_writer.hpp).
+            // On disk before the next trial starts.
             if (k >= done_rows.size()) {
                 const StageTimer timer(&TrialProfile::files);
-                writer.commit(sums_text, part_text);
+                write_file_atomically(sh.files.sums(id), sums_text);  // the checksums first: a row on disk has its own
+                write_file_atomically(part, part_text);
             }
             if (o.progress) o.progress(++sh.done, sh.total);
         }
@@ -323,7 +321,6 @@ void run_participant(Shared& sh, std::size_t index, const std::vector<std::vecto
         throw ExperimentError(part + ": " + std::to_string(done_rows.size()) + " rows, the plan has " + std::to_string(k) +
                               " (the file is not this run's); give --overwrite to start again");
     const StageTimer timer(&TrialProfile::files);
-    writer.finish();  // the whole part on disk before RESULTS.csv holds its rows
     std::lock_guard<std::mutex> g(sh.lock);
     out.finished = true;
     sh.write_results(false);
