@@ -23,42 +23,6 @@ void HandPath::append(const PathSample& s) {
     samples_.push_back(s);
 }
 
-bool HandPath::interval(double t, double& u) const noexcept {
-    const std::size_t n = samples_.size();
-    if (n == 0 || !(t > samples_.front().t) || t >= samples_.back().t) return false;
-    // The interval is the last sample at or before t (and before the last sample): found from the
-    // cursor, stepping back or on, so a call a little behind the last one (a simulated device's
-    // substeps ask for the hand at t and at t + h) costs a step, not a scan from sample 0.
-    if (cursor_ >= n - 1) cursor_ = n - 2;
-    while (cursor_ > 0 && samples_[cursor_].t > t) --cursor_;
-    while (cursor_ + 1 < n - 1 && samples_[cursor_ + 1].t <= t) ++cursor_;
-    const PathSample& a = samples_[cursor_];
-    const PathSample& b = samples_[cursor_ + 1];
-    u = (t - a.t) / (b.t - a.t);
-    return true;
-}
-
-PathPoint HandPath::at(double t) const noexcept {
-    if (samples_.empty()) return {};
-    double u = 0.0;
-    if (!interval(t, u)) {
-        const PathSample& s = held(t);
-        return {s.x, Vec2{0.0}, s.phi};
-    }
-    const PathSample& a = samples_[cursor_];
-    const PathSample& b = samples_[cursor_ + 1];
-    return {a.x + (b.x - a.x) * u, slopes_[cursor_], a.phi + (b.phi - a.phi) * u};
-}
-
-double HandPath::phi_at(double t) const noexcept {
-    if (samples_.empty()) return 0.0;
-    double u = 0.0;
-    if (!interval(t, u)) return held(t).phi;
-    const PathSample& a = samples_[cursor_];
-    const PathSample& b = samples_[cursor_ + 1];
-    return a.phi + (b.phi - a.phi) * u;
-}
-
 // The file is the finger-path CSV `contactlab trace` reads (haptics/finger_samples_csv.hpp): one
 // reader, one set of error messages.
 HandPath read_hand_path_file(const std::string& path) {

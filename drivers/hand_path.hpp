@@ -35,9 +35,28 @@ public:
 
     // Linear interpolation; before the first sample holds the first, after the last holds the
     // last (with zero velocity). Amortised O(1) for increasing t (a cursor), no allocation.
-    PathPoint at(double t) const noexcept;
+    // Inline, like interval(): a simulated rig asks twice every 0.1 ms substep, and the calls
+    // themselves were a good part of it.
+    PathPoint at(double t) const noexcept {
+        if (samples_.empty()) return {};
+        double u = 0.0;
+        if (!interval(t, u)) {
+            const PathSample& s = held(t);
+            return {s.x, Vec2{0.0}, s.phi};
+        }
+        const PathSample& a = samples_[cursor_];
+        const PathSample& b = samples_[cursor_ + 1];
+        return {a.x + (b.x - a.x) * u, slopes_[cursor_], a.phi + (b.phi - a.phi) * u};
+    }
     // at(t).phi alone, the same bits (a simulated finger's angle asks for it every substep).
-    double phi_at(double t) const noexcept;
+    double phi_at(double t) const noexcept {
+        if (samples_.empty()) return 0.0;
+        double u = 0.0;
+        if (!interval(t, u)) return held(t).phi;
+        const PathSample& a = samples_[cursor_];
+        const PathSample& b = samples_[cursor_ + 1];
+        return a.phi + (b.phi - a.phi) * u;
+    }
     // A hand that steers by feel (a closed loop, not a script) writes its path as it goes: one
     // sample after the last (its t later than the last's), amortised O(1). Reserve what a trial
     // needs first to keep the servo-rate appends free of reallocation.
@@ -53,7 +72,20 @@ public:
 private:
     // The interval [t0, t1) at or before t and its fraction u = (t - t0) / (t1 - t0), from the
     // cursor; false (and u untouched) outside the path, which at() and phi_at() hold.
-    bool interval(double t, double& u) const noexcept;
+    bool interval(double t, double& u) const noexcept {
+        const std::size_t n = samples_.size();
+        if (n == 0 || !(t > samples_.front().t) || t >= samples_.back().t) return false;
+        // The interval is the last sample at or before t (and before the last sample): found from the
+        // cursor, stepping back or on, so a call a little behind the last one (a simulated device's
+        // substeps ask for the hand at t and at t + h) costs a step, not a scan from sample 0.
+        if (cursor_ >= n - 1) cursor_ = n - 2;
+        while (cursor_ > 0 && samples_[cursor_].t > t) --cursor_;
+        while (cursor_ + 1 < n - 1 && samples_[cursor_ + 1].t <= t) ++cursor_;
+        const PathSample& a = samples_[cursor_];
+        const PathSample& b = samples_[cursor_ + 1];
+        u = (t - a.t) / (b.t - a.t);
+        return true;
+    }
     // The sample held outside the path (samples_ not empty): the first before it (and for a NaN
     // time), the last after it.
     const PathSample& held(double t) const noexcept { return t > samples_.front().t ? samples_.back() : samples_.front(); }

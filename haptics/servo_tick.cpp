@@ -295,7 +295,7 @@ const ServoCommand& ServoTick::tick(const ServoInput& in) noexcept {
     snap.fault = safety_.fault();
     snap.fault_count = safety_.fault_count();
     snap.scene_swaps = scene_swaps_;
-    snapshot_.store(snap);
+    if (publish_snapshots_) snapshot_.store(snap);
     return cmd_;
 }
 

@@ -153,6 +153,11 @@ public:
     // out to the surface if needed (Proxy::place), instead of at the first finger sample: a finger
     // resting in a wall keeps feeling it across the switch (issue 15).
     void seed_proxy(Vec2 proxy, double phi) noexcept;
+    // Before the servo thread starts (not thread-safe): whether each tick publishes its snapshot
+    // (on by default). A caller that never reads snapshot(), such as a simulated trial in virtual
+    // time, turns it off: the seqlock's copy of the snapshot every tick is then saved (the tick's
+    // commands, proxy_output(), energy_terms() and observer() are the same either way).
+    void set_publish_snapshots(bool on) noexcept { publish_snapshots_ = on; }
 
     const ServoConfig& config() const noexcept { return config_; }
 
@@ -187,6 +192,7 @@ private:
     bool seeded_ = false;  // seed_proxy() was called: the first scene's proxy starts at seed_
     Vec2 seed_{0.0};
     double seed_phi_ = 0.0;
+    bool publish_snapshots_ = true;
 };
 
 }  // namespace contactlab

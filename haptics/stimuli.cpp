@@ -67,15 +67,19 @@ GeneratedScene generate_bumps(const BumpsDef& d) {
         return y;
     };
     const int samples = static_cast<int>(std::floor(d.length / d.sample_step + 1e-9));
-    double lo = raw(0.0), hi = lo;
-    for (int i = 0; i <= samples; ++i) {
-        const double y = raw(i * d.sample_step);
+    // raw() at each sample x = i * sample_step, kept: the envelope below asks for the same x
+    // again (20 sines a value; the same argument gives the same bits).
+    std::vector<double> raw_at(static_cast<std::size_t>(samples) + 1);
+    for (int i = 0; i <= samples; ++i) raw_at[static_cast<std::size_t>(i)] = raw(i * d.sample_step);
+    double lo = raw_at[0], hi = lo;  // raw(0.0): 0 * sample_step is 0.0
+    for (const double y : raw_at) {
         lo = std::min(lo, y);
         hi = std::max(hi, y);
     }
     const double scale = hi > lo ? d.base_span / (hi - lo) : 0.0;
-    const double y0 = (raw(0.0) - lo) * scale;
+    const double y0 = (raw_at[0] - lo) * scale;
     auto base = [&](double x) { return (raw(x) - lo) * scale - y0; };
+    auto base_at = [&](int i) { return (raw_at[static_cast<std::size_t>(i)] - lo) * scale - y0; };
 
     // Bumps: shuffled sizes, each preceded by a random gap; all must fit in the traced length.
     std::vector<bool> large(static_cast<std::size_t>(d.small_bumps), false);
@@ -127,7 +131,7 @@ GeneratedScene generate_bumps(const BumpsDef& d) {
         const bool inside = std::any_of(out.bumps.begin(), out.bumps.end(), [&](const BumpPlacement& b) {
             return xs >= b.start - 1e-12 && xs <= b.start + b.width + 1e-12;
         });
-        if (!inside) out.envelope.push_back({xs, base(xs)});
+        if (!inside) out.envelope.push_back({xs, base_at(i)});
     }
     // Drop points closer than 0.1 mm to the previous one (a sample next to a bump's end point).
     std::vector<Vec2> env;

@@ -6,17 +6,6 @@
 
 namespace contactlab::drivers::sim {
 
-void PlanarArm::jacobian_from(double s1, double c1, double s12, double c12, double J[2][2]) const {
-    J[0][0] = -p_.l1 * s1 - p_.l2 * s12;
-    J[0][1] = -p_.l2 * s12;
-    J[1][0] = p_.l1 * c1 + p_.l2 * c12;
-    J[1][1] = p_.l2 * c12;
-}
-
-Vec2 PlanarArm::endpoint_from(double s1, double c1, double s12, double c12) const {
-    return p_.base + Vec2{p_.l1 * c1 + p_.l2 * c12, p_.l1 * s1 + p_.l2 * s12};
-}
-
 void PlanarArm::update_trig() {
     s1_ = std::sin(q1_), c1_ = std::cos(q1_);
     s12_ = std::sin(q1_ + q2_), c12_ = std::cos(q1_ + q2_);
@@ -55,10 +44,6 @@ void PlanarArm::turn_trig(double d1, double d12) {
     rotate(s12_, c12_, d12);
 }
 
-void PlanarArm::jacobian_now(double J[2][2]) const { jacobian_from(s1_, c1_, s12_, c12_, J); }
-
-Vec2 PlanarArm::endpoint() const { return endpoint_from(s1_, c1_, s12_, c12_); }
-
 Vec2 PlanarArm::endpoint_of(double q1, double q2) const {
     return endpoint_from(std::sin(q1), std::cos(q1), std::sin(q1 + q2), std::cos(q1 + q2));
 }
@@ -76,12 +61,6 @@ bool PlanarArm::place_at(Vec2 x) {
     update_trig();
     w1_ = w2_ = 0.0;
     return true;
-}
-
-Vec2 PlanarArm::velocity() const {
-    double J[2][2];
-    jacobian_now(J);
-    return {J[0][0] * w1_ + J[0][1] * w2_, J[1][0] * w1_ + J[1][1] * w2_};
 }
 
 double PlanarArm::quantise(double q) const {
@@ -126,9 +105,7 @@ Vec2 PlanarArm::applied_force() const {
     return {fx, fy};
 }
 
-void PlanarArm::step(double h, Vec2 ext) {
-    double J[2][2];
-    jacobian_now(J);
+void PlanarArm::step_from(double h, Vec2 ext, const double J[2][2]) {
     // J-dot q-dot: the endpoint's centripetal acceleration, for the endpoint mass.
     const double c1 = c1_, s1 = s1_, c12 = c12_, s12 = s12_;
     const double w12 = w1_ + w2_;

@@ -33,8 +33,12 @@ public:
     bool place_at(Vec2 x);
     // Forward kinematics of joint angles (rad) and of the true state.
     Vec2 endpoint_of(double q1, double q2) const;
-    Vec2 endpoint() const;
-    Vec2 velocity() const;  // m/s, true endpoint velocity
+    Vec2 endpoint() const { return endpoint_from(s1_, c1_, s12_, c12_); }
+    Vec2 velocity() const {  // m/s, true endpoint velocity
+        double J[2][2];
+        jacobian_now(J);
+        return velocity_from(J);
+    }
     double q1() const { return q1_; }  // rad, the true shoulder angle
     double q2() const { return q2_; }  // rad, the true elbow angle (relative)
     // Endpoint from the quantised encoder angles (what the device reports).
@@ -44,7 +48,21 @@ public:
     void command_force(Vec2 f);
     void zero_torque() { tau1_ = tau2_ = 0.0; }
     // Integrates over h (s) with an external force (N) on the endpoint (the hand).
-    void step(double h, Vec2 external);
+    void step(double h, Vec2 external) {
+        double J[2][2];
+        jacobian_now(J);
+        step_from(h, external, J);
+    }
+    // The same with the external force a function of the endpoint's position and velocity (m,
+    // m/s) at the start of the step, `external(x, v)` (a hand holding the finger): the Jacobian
+    // the velocity needs is the one the step needs, made once. The same bits as
+    // step(h, external(endpoint(), velocity())).
+    template <typename External>
+    void step_held(double h, External&& external) {
+        double J[2][2];
+        jacobian_now(J);
+        step_from(h, external(endpoint(), velocity_from(J)), J);
+    }
 
     // The rendered endpoint force the saturated torques actually produce (N).
     Vec2 applied_force() const;
@@ -58,9 +76,19 @@ public:
 private:
     // J (m per rad) and the endpoint (m) from sines and cosines of q1 and q1 + q2: the one
     // formula for the true state, the measured angles and any others.
-    void jacobian_from(double s1, double c1, double s12, double c12, double J[2][2]) const;
-    Vec2 endpoint_from(double s1, double c1, double s12, double c12) const;
-    void jacobian_now(double J[2][2]) const;  // at the true state, from the stored sines
+    void jacobian_from(double s1, double c1, double s12, double c12, double J[2][2]) const {
+        J[0][0] = -p_.l1 * s1 - p_.l2 * s12;
+        J[0][1] = -p_.l2 * s12;
+        J[1][0] = p_.l1 * c1 + p_.l2 * c12;
+        J[1][1] = p_.l2 * c12;
+    }
+    Vec2 endpoint_from(double s1, double c1, double s12, double c12) const {
+        return p_.base + Vec2{p_.l1 * c1 + p_.l2 * c12, p_.l1 * s1 + p_.l2 * s12};
+    }
+    void jacobian_now(double J[2][2]) const { jacobian_from(s1_, c1_, s12_, c12_, J); }  // at the true state, from the stored sines
+    Vec2 velocity_from(const double J[2][2]) const { return {J[0][0] * w1_ + J[0][1] * w2_, J[1][0] * w1_ + J[1][1] * w2_}; }
+    // step()'s integration, J being the Jacobian at the true state (jacobian_now).
+    void step_from(double h, Vec2 external, const double J[2][2]);
     void update_trig();                       // after q1_ or q2_ changed
     void turn_trig(double d1, double d12);    // after a substep turned q1_ by d1, q1_ + q2_ by d12 (rad)
     // sin and cos of the measured (quantised) q1 and q1 + q2, for the encoders' endpoint and the

@@ -113,7 +113,7 @@ void SimCldDevice::advance(double dt) noexcept {
     const double h = dt / n;
     for (int i = 0; i < n; ++i) {
         const double t = t_ + i * h;
-        arm_.step(h, hand_.force(t, arm_.endpoint(), arm_.velocity()));
+        arm_.step_held(h, [&](Vec2 x, Vec2 v) { return hand_.force(t, x, v); });
         roller_.step(h);
         hand_.step_phi(t + h, h);
     }

@@ -4,6 +4,11 @@
 // must not change with the speed-up), over seeded random contours, radii, positions and hints.
 #include "engine/experiments/protocol/surface_profile.hpp"
 
+#include "engine/experiments/protocol/stimulus.hpp"
+#include "haptics/bezier.hpp"
+#include "haptics/scene.hpp"
+#include "haptics/stimuli.hpp"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -57,13 +62,28 @@ TEST_CASE("resting height: bit for bit the scan of every point, on 200 seeded ra
         std::size_t hint = static_cast<std::size_t>(u(rng) * 1e6);  // any start is valid
         // A hand sliding across (and beyond) the contour in small steps, as the paths do, then
         // jumps to random places, and points exactly r from a sample point (the |dx| <= r edge).
+        // The cursor's way too (the hand paths'), from a fresh cursor and from a stale one.
+        RestingCursor cursor, stale;
+        stale.hint = static_cast<std::size_t>(u(rng) * 2.0 * pts.size());
+        stale.lo = static_cast<std::size_t>(u(rng) * 2.0 * pts.size());
+        stale.hi = static_cast<std::size_t>(u(rng) * 2.0 * pts.size());
+        stale.span_valid = true;
         double x = -0.03;
         for (int i = 0; i < 400; ++i, x += 0.001) {
             const double want = brute_resting_height(pts, x, r), got = resting_height(profile, x, r, hint);
             CAPTURE(c);
             CAPTURE(x);
             REQUIRE(got == want);
+            REQUIRE(resting_height(profile, x, r, cursor) == want);
+            REQUIRE(resting_height(profile, x, r, stale) == want);
             ++compared, supported += want > -1e9;
+        }
+        for (int i = 0; i < 50; ++i) {  // back and forth in small steps, as a hand path's three heights go
+            const double xq = -0.03 + 0.35 * u(rng);
+            for (int j = 0; j < 20; ++j) {
+                const double xj = xq + (j - 10) * 5e-5;
+                REQUIRE(resting_height(profile, xj, r, cursor) == brute_resting_height(pts, xj, r));
+            }
         }
         for (int i = 0; i < 100; ++i) {
             const Vec2 q = pts[static_cast<std::size_t>(u(rng) * pts.size()) % pts.size()];
@@ -98,4 +118,62 @@ TEST_CASE("resting height: analytic cases, a flat floor and a single peak") {
     CHECK(resting_height(peak, 0.05, 0.026, hint) == doctest::Approx(0.031).epsilon(1e-12));
     const double dx = 0.01;  // m: off the peak, the peak still holds it higher than the floor
     CHECK(resting_height(peak, 0.05 + dx, 0.026, hint) == doctest::Approx(0.005 + std::sqrt(0.026 * 0.026 - dx * dx)).epsilon(1e-12));
+}
+
+TEST_CASE("resting height: seed 002's stimuli, every resting height of a slide bit for bit the scan of every point") {
+    // The scenes the bump-counting task makes (generate_bumps), sampled as its hand paths sample
+    // them (a point about every 0.25 mm), with a 20 mm pad sliding in 50 um steps.
+    for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+        BumpsDef def;
+        def.seed = seed * 7919;
+        def.small_bumps = static_cast<int>(seed % 3);
+        def.large_bumps = static_cast<int>(seed % 2) + 1;
+        def.base_span = seed % 2 ? 0.02 : 0.2;
+        const Scene scene = generate_bumps(def).scene;
+        std::vector<Vec2> pts;
+        for (const Segment& seg : scene.contours.front().segments) {
+            const int n = surface_intervals(seg);
+            for (int i = 0; i <= n; ++i) {
+                const double t = static_cast<double>(i) / n;
+                if (std::holds_alternative<LineSegment>(seg)) pts.push_back(segment_start(seg) + (segment_end(seg) - segment_start(seg)) * t);
+                else pts.push_back(bezier_point(segment_bezier(seg), t));
+            }
+        }
+        const SurfaceProfile profile = profile_of(pts);
+        RestingCursor at, ahead;
+        for (double x = 0.01; x < def.length - 0.01; x += 5e-5) {
+            REQUIRE(resting_height(profile, x, 0.02, at) == brute_resting_height(pts, x, 0.02));
+            REQUIRE(resting_height(profile, x + 0.015, 0.02, ahead) == brute_resting_height(pts, x + 0.015, 0.02));
+        }
+    }
+}
+
+TEST_CASE("surface points: a curve's count of intervals is the one its quadrature length gives") {
+    // ceil(segment_length / 0.25 mm), at least 2, as the hand paths' points were always cut, over
+    // seeded random quadratics (bent, nearly straight, turning back on themselves) and seed 002's.
+    auto want = [](const Segment& s) { return std::max(2, static_cast<int>(std::ceil(segment_length(s) / 2.5e-4))); };
+    std::mt19937_64 rng(20261129);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    long fast_cases = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const double size = std::pow(10.0, -4.0 + 2.5 * (0.5 + 0.5 * u(rng)));  // m: 0.1 mm to 30 mm
+        const Vec2 p0{u(rng), u(rng)};
+        const Vec2 p2 = p0 + size * Vec2{1.0, 0.3 * u(rng)};
+        const Vec2 p1 = 0.5 * (p0 + p2) + size * (i % 4 == 0 ? 1e-4 : 0.5) * Vec2{u(rng), u(rng)};
+        const Segment seg = QuadSegment{p0, p1, p2};
+        REQUIRE(surface_intervals(seg) == want(seg));
+        fast_cases += glm::dot(p1 - p0, p2 - p1) > 0.0;
+    }
+    CHECK(fast_cases > 15000);
+    // A curve whose length is a whole number of steps, to the rounding: the quadrature decides.
+    const Segment straight = QuadSegment{{0.0, 0.0}, {0.001, 0.0}, {0.002, 0.0}};
+    CHECK(surface_intervals(straight) == want(straight));
+    for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+        BumpsDef def;
+        def.seed = seed;
+        def.small_bumps = 2;
+        def.large_bumps = 2;
+        const Scene scene = generate_bumps(def).scene;
+        for (const Segment& seg : scene.contours.front().segments) REQUIRE(surface_intervals(seg) == want(seg));
+    }
 }

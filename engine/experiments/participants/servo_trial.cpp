@@ -48,6 +48,7 @@ TrialTrace run_servo_trial(const Scene& scene, const drivers::HandPath& path, bo
     const ServoParams params = trial_servo_params(scene, contact_location);
     const ServoConfig config = drivers::servo_config_for(dev, kTrialRate);
     ServoTick tick(config, params);
+    tick.set_publish_snapshots(false);  // nobody reads them: the trial's records come through the ring
     tick.scenes().publish(std::make_unique<ServoScene>(scene));
     // One record a step, taken off after every step: a few slots suffice (4,096 were 1.2 MB
     // allocated and page-faulted in every trial).

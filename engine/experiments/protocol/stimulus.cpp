@@ -19,12 +19,55 @@ namespace {
 
 constexpr double kSample = 1e-3;  // s between hand path samples
 
+constexpr double kPointStep = 2.5e-4;  // m between surface points, at most
+
+}  // namespace
+
+// How many intervals surface_points cuts a segment into: ceil(length / kPointStep), at least 2,
+// with segment_length's length. For a quadratic curve that length is a quadrature of 320 square
+// roots (a tenth of a seed 002 hand path's time), while the count needs only which multiple of
+// kPointStep the length lies below: the curve's length lies between its chord and its control
+// polygon, and between the chords and the control polygons of its halves, quarters, ... (de
+// Casteljau). When every length in that interval, widened by 1e-6 of itself (the quadrature is
+// exact to ~1e-14 for a curve whose direction never reverses, and the roundings of the bounds to
+// ~1e-16), gives the same count, that is the count; otherwise (a length within a micrometre of a
+// multiple, or a curve that turns back on itself) the quadrature decides, as before.
+int surface_intervals(const Segment& seg) {
+    auto count = [](double length) { return std::max(2, static_cast<int>(std::ceil(length / kPointStep))); };
+    const auto* q = std::get_if<QuadSegment>(&seg);
+    if (q == nullptr || !(glm::dot(q->p1 - q->p0, q->p2 - q->p1) > 0.0)) return count(segment_length(seg));
+    struct Piece {
+        Vec2 a, b, c;
+    };
+    Piece pieces[16] = {{q->p0, q->p1, q->p2}};
+    int n = 1;
+    for (;;) {
+        double lo = 0.0, hi = 0.0;  // m: the chords' and the control polygons' lengths
+        for (int i = 0; i < n; ++i) {
+            lo += glm::length(pieces[i].c - pieces[i].a);
+            hi += glm::length(pieces[i].b - pieces[i].a) + glm::length(pieces[i].c - pieces[i].b);
+        }
+        const int fewest = count(lo * (1.0 - 1e-6)), most = count(hi * (1.0 + 1e-6));
+        if (fewest == most) return fewest;
+        if (2 * n > 16) return count(segment_length(seg));
+        for (int i = n - 1; i >= 0; --i) {  // each piece into its halves
+            const Piece p = pieces[i];
+            const Vec2 ab = 0.5 * (p.a + p.b), bc = 0.5 * (p.b + p.c), mid = 0.5 * (ab + bc);
+            pieces[2 * i] = {p.a, ab, mid};
+            pieces[2 * i + 1] = {mid, bc, p.c};
+        }
+        n *= 2;
+    }
+}
+
+namespace {
+
 // Points along every segment of the scene, about every 0.25 mm.
 std::vector<Vec2> surface_points(const Scene& s) {
     std::vector<Vec2> out;
     for (const Contour& c : s.contours)
         for (const Segment& seg : c.segments) {
-            const int n = std::max(2, static_cast<int>(std::ceil(segment_length(seg) / 2.5e-4)));
+            const int n = surface_intervals(seg);
             for (int i = 0; i <= n; ++i) {
                 const double u = static_cast<double>(i) / n;
                 if (const auto* l = std::get_if<LineSegment>(&seg)) {
@@ -46,15 +89,36 @@ std::vector<Vec2> surface_points(const Scene& s) {
 // axis, and seed 002's base shape is steeper than that.
 drivers::HandPath slide_path(const SurfaceProfile& pts, double x0, double x1, double r, double speed, double press,
                              double& slide_start, double& slide_end) {
-    std::size_t at = 0, ahead = 0, behind = 0;  // where each of the three heights was last found
-    auto height = [&](double x, std::size_t& hint) { return resting_height(pts, x, r, hint) - press; };
-    auto slope = [&](double x) {
-        constexpr double h = 0.015;  // m
-        return std::clamp(std::atan2(height(x + h, ahead) - height(x - h, behind), 2.0 * h), -1.4, 1.4);  // rad
+    RestingCursor at, ahead, behind;  // where each of the three heights was last found
+    auto height = [&](double x, RestingCursor& cursor) { return resting_height(pts, x, r, cursor) - press; };
+    // The slide's positions and heights first: a slope asks for the heights 15 mm either side of
+    // a position, and about half of those positions are, to the last bit, slide positions 300
+    // samples away, whose heights are then taken from here (a height is a function of x alone).
+    const int n = static_cast<int>(std::ceil(std::abs(x1 - x0) / (speed * kSample)));
+    std::vector<double> xs(static_cast<std::size_t>(n) + 1), hs(xs.size());
+    for (int i = 0; i <= n; ++i) {
+        xs[static_cast<std::size_t>(i)] = x0 + (x1 - x0) * i / n;
+        hs[static_cast<std::size_t>(i)] = height(xs[static_cast<std::size_t>(i)], at);
+    }
+    constexpr double h = 0.015;  // m
+    const double step = (x1 - x0) / n;  // m a sample (signed)
+    const long span = std::isfinite(h / step) ? std::lround(h / step) : 0;  // samples 15 mm on (signed)
+    // The height at x, which lies about `offset` samples from sample i.
+    auto height_near = [&](double x, long i, long offset, RestingCursor& cursor) {
+        for (const long j : {i + offset, i + offset - 1, i + offset + 1})
+            if (j >= 0 && j <= n && xs[static_cast<std::size_t>(j)] == x) return hs[static_cast<std::size_t>(j)];
+        return height(x, cursor);
+    };
+    // The finger turns with the surface's slope over +-15 mm.
+    auto slope = [&](long i) {
+        const double x = xs[static_cast<std::size_t>(i)];
+        return std::clamp(std::atan2(height_near(x + h, i, span, ahead) - height_near(x - h, i, -span, behind), 2.0 * h), -1.4,
+                          1.4);  // rad
     };
     std::vector<drivers::PathSample> out;
+    out.reserve(xs.size() + 800);
     double t = 0.0;
-    const double y0 = height(x0, at), phi0 = slope(x0);
+    const double y0 = hs[0], phi0 = slope(0);  // xs[0] is x0
     const Vec2 above{x0, y0 + 0.015};
     auto push = [&](Vec2 x, double phi) {
         out.push_back({t, x, phi});
@@ -63,11 +127,7 @@ drivers::HandPath slide_path(const SurfaceProfile& pts, double x0, double x1, do
     for (int i = 0; i < 300; ++i) push(above + (Vec2{x0, y0} - above) * (i / 300.0), phi0);  // 0.3 s down
     for (int i = 0; i < 300; ++i) push({x0, y0}, phi0);                                      // 0.3 s settle
     slide_start = t;
-    const int n = static_cast<int>(std::ceil(std::abs(x1 - x0) / (speed * kSample)));
-    for (int i = 0; i <= n; ++i) {
-        const double x = x0 + (x1 - x0) * i / n;
-        push({x, height(x, at)}, slope(x));
-    }
+    for (int i = 0; i <= n; ++i) push({xs[static_cast<std::size_t>(i)], hs[static_cast<std::size_t>(i)]}, i == 0 ? phi0 : slope(i));
     slide_end = t;
     const drivers::PathSample last = out.back();
     for (int i = 0; i < 200; ++i) push(last.x, last.phi);  // 0.2 s hold

@@ -53,6 +53,10 @@ double edge_radius(const Protocol& p, const PlannedTrial& t, int interval);
 // tangent arc of `radius` (m); solid below.
 Scene generate_edge(double radius, double slope, double half_width);
 
+// How many intervals a task's surface points cut a segment into (a point about every 0.25 mm, for
+// the hand's resting heights): ceil(segment_length(seg) / 0.25 mm), at least 2.
+int surface_intervals(const Segment& seg);
+
 // Seed 003: the force direction's range (deg) sliding over a whole arc of chord d and height h,
 // twice the slope at its ends: 2 asin(d / (2 r_a)), r_a = (d^2 / 4 + h^2) / (2 h) (seed 003 §4).
 double arc_slope_range_deg(double chord, double height);
