@@ -69,7 +69,8 @@ double lapse_scale(const Protocol& p, double travelled) {
     const double ratio = (*hi - s) / (*hi - mid);  // the middle hazard over the hazard here
     return ratio * ratio;
 }
-constexpr double kCornerShare = 1.0;  // round the corner at this share of the free speed
+constexpr double kCornerShare = 1.0;
+constexpr double kEarlyMargin = 0.3;  // s of free speed before the shortest block: two 0.15 s time constants  // round the corner at this share of the free speed
 
 }  // namespace
 
@@ -84,6 +85,7 @@ FeelTrial feel_contour_following(const Protocol& p, const Condition& c, const Pl
     const double v_top = top_speed(p, c, person);                 // m/s along the top
     const double v_free = p.hand_speed * person.pace;             // m/s round the corner and down
     const double d = t.stimulus;                                  // m
+    const double d_min = *std::min_element(p.stimuli.begin(), p.stimuli.end());  // m, the shortest block
     // Long enough for the slowest person to reach the finish; a trial that does not has failed.
     const double max_s = 2.0 + 2.0 * (d + 0.02) / v_top + 2.0 * (0.05 + p.finish_depth) / (kCornerShare * v_free);
     // Candidate lapses at the largest rate the hazard allows, each kept with the rate's share at
@@ -126,6 +128,12 @@ FeelTrial feel_contour_following(const Protocol& p, const Condition& c, const Pl
                 }
                 break;
             case Phase::slide: {
+                // Where the edge cannot come yet (less than the shortest block past the start line,
+                // as the arm tells the distance), nothing needs stopping for: the person goes at
+                // their free speed, slowing to v_top in time to be at it there (two of the
+                // speed's time constants ahead, kEarlyMargin). The hazard that shapes their
+                // lapses (lapse_scale) shapes their speed too (Niemi & Naatanen 1981).
+                hand.set_speed(r.finger.x + d < d_min - kEarlyMargin * v_free ? std::max(v_top, v_free) : v_top);
                 // The edge noticed (the scripted person's cues) past the start line, outside lapses.
                 if (r.finger.x < -d || kept.at(r.t)) break;
                 const bool cue = (c.contact_location && std::abs(r.roller_l) >= loc_threshold) ||
@@ -140,6 +148,7 @@ FeelTrial feel_contour_following(const Protocol& p, const Condition& c, const Pl
                 if (r.t >= act_at) {  // tip round the edge
                     hand.set_speed(kCornerShare * v_free);
                     hand.set_turn(kTipTurn);
+                    hand.set_guarded(false);  // pressing round the corner on purpose
                     hand.follow_normal(kTipLead);
                     phase = Phase::round;
                 }
