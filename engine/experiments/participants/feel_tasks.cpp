@@ -174,7 +174,8 @@ FeelTrial feel_slide(const Condition& c, const PlannedTrial& t, const Stimulus& 
     // Seed 002's people were told to be quick: 18.4 cm in 4.1-4.5 s, 41-45 mm/s on average, the
     // bumps' tops taken slower. The free speed, 55 mm/s at the median pace, is fitted to that
     // average (10 participants, seed 1: 45 mm/s gave 5.5 s a trial, 50 mm/s 4.9 s with contact
-    // breaks differing between the conditions, 55 mm/s 4.5 s).
+    // breaks differing between the conditions, 55 mm/s 4.5 s; with the guarded slide, 6.4 s, and
+    // 75 mm/s 5.4 s with large bumps counted worse: left at 55 mm/s, docs/experiments.md).
     const double v_free = 0.055 * person.pace;  // m/s
     const double x0 = st.path.samples().front().x.x;
     // The slide ends where the scripted one does: its path's x at slide_end.
