@@ -69,8 +69,10 @@ double lapse_scale(const Protocol& p, double travelled) {
     const double ratio = (*hi - s) / (*hi - mid);  // the middle hazard over the hazard here
     return ratio * ratio;
 }
-constexpr double kCornerShare = 1.0;
-constexpr double kEarlyMargin = 0.3;  // s of free speed before the shortest block: two 0.15 s time constants  // round the corner at this share of the free speed
+constexpr double kCornerShare = 1.0;  // round the corner at this share of the free speed
+// Seed 000: the free speed ends this long (s, at free speed) before the shortest block: two of
+// the hand's 0.15 s speed time constants, so it is down to the top speed where the edge can come.
+constexpr double kEarlyMargin = 0.3;
 
 }  // namespace
 
