@@ -220,3 +220,100 @@ TEST_CASE("experiment run --hand: feel is recorded in the meta, a bad name exits
     CHECK(other.exit_code == 2);
     CHECK(other.err.find("another hand") != std::string::npos);
 }
+
+namespace {
+
+// The hand over a floor that rises at 45 deg at x = 0 by 20 mm (seed 002's large bumps rise as
+// steeply), sliding at `speed` from x = -3 cm once contact has been felt for 0.3 s, guarded or
+// not; `seconds` of virtual time.
+TrialTrace climb_ramp(bool guarded, double speed, double seconds) {
+    Scene scene;
+    Contour c;
+    c.segments.push_back(LineSegment{{-1.0, 0.0}, {0.0, 0.0}});
+    c.segments.push_back(LineSegment{{0.0, 0.0}, {0.02, 0.02}});
+    c.segments.push_back(LineSegment{{0.02, 0.02}, {1.0, 0.02}});
+    scene.contours.push_back(c);
+    scene.force.stiffness = 1300.0;
+    scene.force.max_force = 1.5;
+    scene.finger.radius = 0.020;
+    scene.finger.length = 0.020;
+    const drivers::PathSample start{0.0, Vec2{-0.03, 0.020 + 0.005}, 0.0};
+    const drivers::HandPath envelope(std::vector<drivers::PathSample>{start, {1.0, Vec2{0.06, 0.04}, 0.0}});
+    FeelHand hand(quiet_person(0.12, 0.6), start, 1e-3, 7);
+    hand.set_approach(0.03);
+    hand.set_guarded(guarded);
+    hand.follow_normal(0.0);
+    double felt_since = -1.0;
+    const Steer steer = [&](const drivers::TickRecord& r, drivers::PathSample& next) {
+        if (hand.felt_contact() && felt_since < 0.0) felt_since = r.t;
+        if (felt_since >= 0.0 && r.t - felt_since >= 0.3) hand.set_speed(speed);
+        next = hand.step(r);
+        return true;
+    };
+    return run_steered_trial(scene, envelope, start, false, steer, seconds);
+}
+
+double peak_force(const TrialTrace& tr) {
+    double p = 0.0;
+    for (const auto& r : tr.ticks) p = std::max(p, std::hypot(r.force.x, r.force.y));
+    return p;
+}
+
+}  // namespace
+
+TEST_CASE("feel hand: out of touch it does not advance, and it advances once it touches") {
+    // Told to slide at 30 mm/s from the start, 1 cm above the floor: it reaches down (30 mm/s
+    // along the last felt normal, straight down) without moving along x until the touch is felt,
+    // a delay after it happens; from then on it slides at the speed it was told.
+    const double v = 0.03;
+    const TrialTrace tr = press_floor(quiet_person(), v, 2.5);
+    REQUIRE_FALSE(tr.faulted);
+    const auto first = std::find_if(tr.ticks.begin(), tr.ticks.end(), [](const auto& r) { return r.contact; });
+    REQUIRE(first != tr.ticks.end());
+    // The reach's own sway: the finger lands where it started, to within a tenth of a millimetre.
+    CHECK(std::abs(first->finger.x - (-0.05)) < 1e-4);
+    // Over the last second: x advances at v.
+    const auto at = [&](double t) {
+        const auto it = std::find_if(tr.ticks.begin(), tr.ticks.end(), [&](const auto& r) { return r.t >= t; });
+        return it->finger.x;
+    };
+    CHECK((at(2.4) - at(1.4)) / 1.0 == doctest::Approx(v).epsilon(0.03));
+}
+
+TEST_CASE("feel hand: a guarded slide holds back against a rising face and climbs it") {
+    const TrialTrace free = climb_ramp(false, 0.05, 3.0), guarded = climb_ramp(true, 0.05, 3.0);
+    REQUIRE_FALSE(free.faulted);
+    REQUIRE_FALSE(guarded.faulted);
+    const auto over = [](const TrialTrace& tr, double f) {
+        double s = 0.0;
+        for (const auto& r : tr.ticks) s += std::hypot(r.force.x, r.force.y) > f ? 1e-3 : 0.0;
+        return s;
+    };
+    const auto breaks = [](const TrialTrace& tr) {
+        int n = 0;
+        bool touched = false, prev = false;
+        for (const auto& r : tr.ticks) {
+            if (touched && prev && !r.contact) ++n;
+            touched |= r.contact;
+            prev = r.contact;
+        }
+        return n;
+    };
+    // Unguarded, the hand pushes on along the lagging felt tangent until the felt normal has
+    // turned, and sits at the display's 1.5 N limit for 0.17 s; guarded, it stops advancing a
+    // delay after the force passed twice its 0.6 N target, which takes at least a third of a
+    // delay (0.04 s) off the time at the limit (0.11 s), and off the time over twice the target.
+    const double sat_free = over(free, 1.45), sat_guarded = over(guarded, 1.45);
+    CAPTURE(sat_free);
+    CAPTURE(sat_guarded);
+    CHECK(sat_free > 0.12);
+    CHECK(sat_guarded < sat_free - 0.04);
+    CHECK(over(guarded, 1.2) < over(free, 1.2) - 0.04);
+    // Both climb: within 3 s the guarded finger's centre is past the face's top (x = 2 cm) and on
+    // the upper floor (its centre a radius, 20 mm, above y = 2 cm, less the press's sinking,
+    // up to 1.2 mm at the 1.5 N limit and 1300 N/m: 3 % of 4 cm).
+    CHECK(guarded.ticks.back().finger.x > 0.02);
+    CHECK(guarded.ticks.back().finger.y == doctest::Approx(0.04).epsilon(0.03));
+    CHECK(breaks(free) <= 2);
+    CHECK(breaks(guarded) <= 2);
+}

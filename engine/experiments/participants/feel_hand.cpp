@@ -20,6 +20,12 @@ constexpr double kLoopGain = 0.4;
 constexpr double kNoiseTau = 0.05;   // s, the low-pass of the motor noise
 constexpr double kSpeedTau = 0.15;   // s, how fast the speed follows its command
 constexpr double kTouch = 0.02;      // N: a force below this is not felt as contact
+// A guarded slide (FeelHand::set_guarded): it stops advancing at kHoldBack times the target
+// force, and never means the finger to be more than kMaxStretch target-force stretches (F* / the
+// series stiffness) deeper than the arm feels it. Both this model's choice: twice the target is
+// where a person pressing at a few tenths of a newton meets an obstacle rather than the surface.
+constexpr double kHoldBack = 2.0;
+constexpr double kMaxStretch = 2.0;
 
 // An Ornstein-Uhlenbeck step of unit stationary variance over dt.
 double ou(double x, double dt, std::uint64_t& rng) {
@@ -62,7 +68,14 @@ drivers::PathSample FeelHand::step(const drivers::TickRecord& now) {
     speed_ += (speed_goal_ - speed_) * (1.0 - std::exp(-dt_ / kSpeedTau));
     noise_speed_ = ou(noise_speed_, dt_, rng_);
     noise_force_ = ou(noise_force_, dt_, rng_);
-    const double v = std::max(0.0, speed_ * (1.0 + person_.speed_noise_cv * noise_speed_));
+    // A guarded move: pushing against more than the target force (the surface rose ahead of the
+    // finger faster than the felt tangent turned), the hand holds back its advance, fully at
+    // kHoldBack times the target, until the press loop and the felt normal have caught up.
+    const double resist = std::clamp((felt_force_ - person_.press_force_n) / ((kHoldBack - 1.0) * person_.press_force_n), 0.0, 1.0);
+    // Out of touch, the hand does not go on along a tangent it no longer feels: it reaches back
+    // for the surface along the last felt normal (the press below) and advances again on touch.
+    const double go = felt_contact_ ? 1.0 - (guard_ ? resist : 0.0) : 0.0;
+    const double v = std::max(0.0, speed_ * go * (1.0 + person_.speed_noise_cv * noise_speed_));
     // The felt tangent turned clockwise by turn_ (toward the surface for travel along +tangent).
     const Vec2 tan = felt_tangent();
     const double ca = std::cos(turn_), sa = std::sin(turn_);
@@ -72,6 +85,15 @@ drivers::PathSample FeelHand::step(const drivers::TickRecord& now) {
     double press = gain_ * (person_.press_force_n - felt_force_);  // m/s into the surface
     if (!felt_contact_ && approach_ > 0.0) press = std::max(press, approach_);
     plan_ += (v * dir - press * normal_) * dt_;
+    // The arm knows where the finger is (felt as late as the rest): the hand never means the
+    // finger to be deeper into the surface than twice its target force's stretch beyond it, so
+    // reaching back for a surface lost, or pressing while the display's force is saturated, does
+    // not wind the press up (a person feels their own finger and does not drive it on).
+    if (have && guard_) {
+        const double depth = glm::dot(felt.finger - plan_, normal_);  // m into the surface, past the finger
+        const double most = kMaxStretch * person_.press_force_n / kSeriesStiffness;
+        if (depth > most) plan_ += (depth - most) * normal_;
+    }
     // The press's own noise: a force of sd force_noise_cv F* through the series stiffness.
     const Vec2 intended = plan_ - normal_ * (person_.force_noise_cv * person_.press_force_n / kSeriesStiffness * noise_force_);
     // The finger's angle: held, or turned with the felt normal and `lead` further round, never

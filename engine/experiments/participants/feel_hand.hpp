@@ -56,6 +56,11 @@ public:
     // Descend toward the surface at `v` (m/s) until contact is felt, instead of the force loop's
     // slower approach (people reach for a surface faster than they press on it).
     void set_approach(double v) { approach_ = v; }
+    // Guarded sliding (the default): pushing against more than the target force, the hand holds
+    // back its advance (fully at twice the target) until the press and the felt normal have
+    // caught up with a surface that rose ahead of it. Off while the strategy means to press into
+    // the surface (tipping round seed 000's edge, where the force rises by intent).
+    void set_guarded(bool on) { guard_ = on; }
 
     // What the hand has felt so far, `delay_s` late.
     bool felt_contact() const { return felt_contact_; }
@@ -81,6 +86,7 @@ private:
     bool follow_ = false;
     double lead_ = 0.0, phi_goal_ = 0.0;  // rad
     double approach_ = 0.0;               // m/s
+    bool guard_ = true;
     double gain_ = 0.0;                   // m/(s N), the press loop's integral gain
     double noise_speed_ = 0.0, noise_force_ = 0.0;  // unit-variance low-pass noises
 };

@@ -70,6 +70,9 @@ double lapse_scale(const Protocol& p, double travelled) {
     return ratio * ratio;
 }
 constexpr double kCornerShare = 1.0;  // round the corner at this share of the free speed
+// Seed 000: the free speed ends this long (s, at free speed) before the shortest block: two of
+// the hand's 0.15 s speed time constants, so it is down to the top speed where the edge can come.
+constexpr double kEarlyMargin = 0.3;
 
 }  // namespace
 
@@ -84,6 +87,7 @@ FeelTrial feel_contour_following(const Protocol& p, const Condition& c, const Pl
     const double v_top = top_speed(p, c, person);                 // m/s along the top
     const double v_free = p.hand_speed * person.pace;             // m/s round the corner and down
     const double d = t.stimulus;                                  // m
+    const double d_min = *std::min_element(p.stimuli.begin(), p.stimuli.end());  // m, the shortest block
     // Long enough for the slowest person to reach the finish; a trial that does not has failed.
     const double max_s = 2.0 + 2.0 * (d + 0.02) / v_top + 2.0 * (0.05 + p.finish_depth) / (kCornerShare * v_free);
     // Candidate lapses at the largest rate the hazard allows, each kept with the rate's share at
@@ -126,6 +130,12 @@ FeelTrial feel_contour_following(const Protocol& p, const Condition& c, const Pl
                 }
                 break;
             case Phase::slide: {
+                // Where the edge cannot come yet (less than the shortest block past the start line,
+                // as the arm tells the distance), nothing needs stopping for: the person goes at
+                // their free speed, slowing to v_top in time to be at it there (two of the
+                // speed's time constants ahead, kEarlyMargin). The hazard that shapes their
+                // lapses (lapse_scale) shapes their speed too (Niemi & Naatanen 1981).
+                hand.set_speed(r.finger.x + d < d_min - kEarlyMargin * v_free ? std::max(v_top, v_free) : v_top);
                 // The edge noticed (the scripted person's cues) past the start line, outside lapses.
                 if (r.finger.x < -d || kept.at(r.t)) break;
                 const bool cue = (c.contact_location && std::abs(r.roller_l) >= loc_threshold) ||
@@ -140,6 +150,7 @@ FeelTrial feel_contour_following(const Protocol& p, const Condition& c, const Pl
                 if (r.t >= act_at) {  // tip round the edge
                     hand.set_speed(kCornerShare * v_free);
                     hand.set_turn(kTipTurn);
+                    hand.set_guarded(false);  // pressing round the corner on purpose
                     hand.follow_normal(kTipLead);
                     phase = Phase::round;
                 }
@@ -165,7 +176,8 @@ FeelTrial feel_slide(const Condition& c, const PlannedTrial& t, const Stimulus& 
     // Seed 002's people were told to be quick: 18.4 cm in 4.1-4.5 s, 41-45 mm/s on average, the
     // bumps' tops taken slower. The free speed, 55 mm/s at the median pace, is fitted to that
     // average (10 participants, seed 1: 45 mm/s gave 5.5 s a trial, 50 mm/s 4.9 s with contact
-    // breaks differing between the conditions, 55 mm/s 4.5 s).
+    // breaks differing between the conditions, 55 mm/s 4.5 s; with the guarded slide, 6.4 s, and
+    // 75 mm/s 5.4 s with large bumps counted worse: left at 55 mm/s, docs/experiments.md).
     const double v_free = 0.055 * person.pace;  // m/s
     const double x0 = st.path.samples().front().x.x;
     // The slide ends where the scripted one does: its path's x at slide_end.

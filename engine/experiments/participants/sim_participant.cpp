@@ -89,6 +89,45 @@ std::vector<std::pair<std::size_t, std::size_t>> protrusions(const std::vector<d
     return out;
 }
 
+// The contour as the arm reads it while the finger slides by feel: the person builds the
+// contour's shape from where the finger touched it (the contour-following exploratory
+// procedure yields exact shape, Lederman & Klatzky 1987), position by position along the
+// travel, not tick by tick: where the finger went over a place more than once (it slipped back
+// down a bump's face and climbed it again) the highest touch there is the surface (a finger
+// pressed harder sinks further into it), and where it touched nothing (it lifted off a top and
+// came down beyond) the surface is taken as straight between the touches either side. `at[k]`
+// is the travel x (m) of sample k, `step` (m) the samples' spacing from `at[0]`; returns the
+// height (m) of the finger's centre over each sample, or the arm's height where it never touched.
+std::vector<double> felt_contour(const TrialTrace& tr, double t0, double t1, const std::vector<double>& at, double step,
+                                 const std::vector<double>& arm) {
+    const std::size_t n = at.size();
+    std::vector<double> h(n, -1e300);
+    if (n == 0) return h;
+    for (const TickRecord& r : tr.ticks) {
+        if (r.t < t0 || r.t > t1 || !r.contact) continue;
+        const double k = std::floor((r.finger.x - at[0]) / step + 0.5);
+        if (k < 0.0 || k >= static_cast<double>(n)) continue;
+        double& v = h[static_cast<std::size_t>(k)];
+        v = std::max(v, r.finger.y);
+    }
+    std::size_t first = 0;
+    while (first < n && h[first] < -1e299) ++first;
+    if (first == n) return arm;
+    for (std::size_t k = 0; k < first; ++k) h[k] = h[first];
+    for (std::size_t k = first + 1; k < n;) {
+        if (h[k] > -1e299) {
+            ++k;
+            continue;
+        }
+        std::size_t b = k;
+        while (b < n && h[b] < -1e299) ++b;
+        for (std::size_t j = k; j < b; ++j)
+            h[j] = b == n ? h[k - 1] : h[k - 1] + (h[b] - h[k - 1]) * static_cast<double>(j - k + 1) / static_cast<double>(b - k + 1);
+        k = b;
+    }
+    return h;
+}
+
 // Curvature (1/m, negative where the path turns downward) of the path (x[i], y[i]) at sample i,
 // from the samples `half` either side: the second difference over the slope's (1 + y'^2)^1.5.
 double path_curvature(const std::vector<double>& x, const std::vector<double>& y, std::size_t i, std::size_t half) {
@@ -216,6 +255,7 @@ TrialOutcome bump_counting(const Protocol& p, const Condition& c, const PlannedT
         height.push_back(r.finger.y);  // the arm feels where the finger is, in contact or not
         travel.push_back(r.finger.x);
     }
+    if (feel) height = felt_contour(tr, f.start, f.end, travel, p.hand_speed / kTrialRate, height);
     // Cues over a bump's width (15-30 mm): means over 4 mm less means over 16 mm of travel; the
     // finger's height less its mean over 24 mm (a bump lifts the finger over 30-50 mm of travel
     // once the 20 mm pad rolls over it).
