@@ -40,6 +40,19 @@ Person quiet_person(double delay = 0.12, double force = 0.6) {
     return p;
 }
 
+// Runs `hand` over `scene` from `start`, told `speed` (m/s) once it has felt contact for 0.3 s.
+TrialTrace slide_after_touch(const Scene& scene, const drivers::HandPath& envelope, const drivers::PathSample& start,
+                             FeelHand& hand, double speed, double seconds) {
+    double felt_since = -1.0;
+    const Steer steer = [&](const drivers::TickRecord& r, drivers::PathSample& next) {
+        if (hand.felt_contact() && felt_since < 0.0) felt_since = r.t;
+        if (felt_since >= 0.0 && r.t - felt_since >= 0.3) hand.set_speed(speed);
+        next = hand.step(r);
+        return true;
+    };
+    return run_steered_trial(scene, envelope, start, false, steer, seconds);
+}
+
 // The hand over seed 000's rendering of a flat floor (y = 0, 1000 N/m, 1.5 N), starting 1 cm
 // above it; `speed` (m/s) set once contact has been felt for 0.3 s; `seconds` of virtual time.
 TrialTrace press_floor(const Person& person, double speed, double seconds) {
@@ -51,14 +64,7 @@ TrialTrace press_floor(const Person& person, double speed, double seconds) {
     const drivers::HandPath envelope(std::vector<drivers::PathSample>{start, {1.0, Vec2{0.05, 0.023}, 0.0}});
     FeelHand hand(person, start, 1e-3, 7);
     hand.set_approach(0.03);
-    double felt_since = -1.0;
-    const Steer steer = [&](const drivers::TickRecord& r, drivers::PathSample& next) {
-        if (hand.felt_contact() && felt_since < 0.0) felt_since = r.t;
-        if (felt_since >= 0.0 && r.t - felt_since >= 0.3) hand.set_speed(speed);
-        next = hand.step(r);
-        return true;
-    };
-    return run_steered_trial(scene, envelope, start, false, steer, seconds);
+    return slide_after_touch(scene, envelope, start, hand, speed, seconds);
 }
 
 double mean_force(const TrialTrace& tr, double from, double to) {
@@ -243,14 +249,7 @@ TrialTrace climb_ramp(bool guarded, double speed, double seconds) {
     hand.set_approach(0.03);
     hand.set_guarded(guarded);
     hand.follow_normal(0.0);
-    double felt_since = -1.0;
-    const Steer steer = [&](const drivers::TickRecord& r, drivers::PathSample& next) {
-        if (hand.felt_contact() && felt_since < 0.0) felt_since = r.t;
-        if (felt_since >= 0.0 && r.t - felt_since >= 0.3) hand.set_speed(speed);
-        next = hand.step(r);
-        return true;
-    };
-    return run_steered_trial(scene, envelope, start, false, steer, seconds);
+    return slide_after_touch(scene, envelope, start, hand, speed, seconds);
 }
 
 double peak_force(const TrialTrace& tr) {
