@@ -67,6 +67,18 @@ TrialTrace press_floor(const Person& person, double speed, double seconds) {
     return slide_after_touch(scene, envelope, start, hand, speed, seconds);
 }
 
+// Contacts lost after the first touch: a tick in contact followed by one out of it.
+int contact_breaks(const TrialTrace& tr) {
+    int n = 0;
+    bool touched = false, prev = false;
+    for (const auto& r : tr.ticks) {
+        if (touched && prev && !r.contact) ++n;
+        touched |= r.contact;
+        prev = r.contact;
+    }
+    return n;
+}
+
 double mean_force(const TrialTrace& tr, double from, double to) {
     double sum = 0.0;
     int n = 0;
@@ -85,14 +97,7 @@ TEST_CASE("feel hand: pressing a floor, the force settles on the person's press 
         const TrialTrace tr = press_floor(quiet_person(0.12, target), 0.0, 3.0);
         REQUIRE_FALSE(tr.faulted);
         CHECK(mean_force(tr, 2.0, 3.0) == doctest::Approx(target).epsilon(0.03));
-        int breaks = 0;
-        bool touched = false, prev = false;
-        for (const auto& r : tr.ticks) {
-            if (touched && prev && !r.contact) ++breaks;
-            touched |= r.contact;
-            prev = r.contact;
-        }
-        CHECK(breaks == 0);
+        CHECK(contact_breaks(tr) == 0);
     }
 }
 
@@ -252,12 +257,6 @@ TrialTrace climb_ramp(bool guarded, double speed, double seconds) {
     return slide_after_touch(scene, envelope, start, hand, speed, seconds);
 }
 
-double peak_force(const TrialTrace& tr) {
-    double p = 0.0;
-    for (const auto& r : tr.ticks) p = std::max(p, std::hypot(r.force.x, r.force.y));
-    return p;
-}
-
 }  // namespace
 
 TEST_CASE("feel hand: out of touch it does not advance, and it advances once it touches") {
@@ -288,16 +287,6 @@ TEST_CASE("feel hand: a guarded slide holds back against a rising face and climb
         for (const auto& r : tr.ticks) s += std::hypot(r.force.x, r.force.y) > f ? 1e-3 : 0.0;
         return s;
     };
-    const auto breaks = [](const TrialTrace& tr) {
-        int n = 0;
-        bool touched = false, prev = false;
-        for (const auto& r : tr.ticks) {
-            if (touched && prev && !r.contact) ++n;
-            touched |= r.contact;
-            prev = r.contact;
-        }
-        return n;
-    };
     // Unguarded, the hand pushes on along the lagging felt tangent until the felt normal has
     // turned, and sits at the display's 1.5 N limit for 0.17 s; guarded, it stops advancing a
     // delay after the force passed twice its 0.6 N target, which takes at least a third of a
@@ -313,6 +302,6 @@ TEST_CASE("feel hand: a guarded slide holds back against a rising face and climb
     // up to 1.2 mm at the 1.5 N limit and 1300 N/m: 3 % of 4 cm).
     CHECK(guarded.ticks.back().finger.x > 0.02);
     CHECK(guarded.ticks.back().finger.y == doctest::Approx(0.04).epsilon(0.03));
-    CHECK(breaks(free) <= 2);
-    CHECK(breaks(guarded) <= 2);
+    CHECK(contact_breaks(free) <= 2);
+    CHECK(contact_breaks(guarded) <= 2);
 }
