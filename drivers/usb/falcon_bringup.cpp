@@ -150,7 +150,7 @@ DeviceFault FalconDevice::upload_firmware() {
 
 DeviceFault FalconDevice::bring_up() {
     if (handle_ != nullptr) return {};
-    state_.store(DeviceState::opening);
+    status_.state.store(DeviceState::opening);
     libusb_device** list = nullptr;
     const ssize_t n = libusb_get_device_list(ctx_->raw(), &list);
     if (n < 0) return usb::fault_of_error(static_cast<int>(n));
@@ -200,9 +200,7 @@ DeviceFault FalconDevice::bring_up() {
     const int rc = libusb_submit_transfer(in_);
     in_active_ = rc == LIBUSB_SUCCESS;
     if (!in_active_) return usb::fault_of_error(rc);
-    fault_code_.store(DeviceFaultCode::none);
-    fault_detail_.store("");
-    state_.store(DeviceState::ready);
+    status_.clear(DeviceState::ready);
     send_command();
     return {};
 }

@@ -43,18 +43,15 @@ DeviceLimits FalconDevice::limits() const noexcept {
 }
 
 DeviceFault FalconDevice::fault() const noexcept {
-    return {fault_code_.load(std::memory_order_acquire), fault_detail_.load(std::memory_order_acquire)};
+    return status_.fault();
 }
 
 void FalconDevice::set_fault(DeviceFaultCode code, const char* detail) noexcept {
-    fault_detail_.store(detail, std::memory_order_release);
-    fault_code_.store(code, std::memory_order_release);
-    state_.store(DeviceState::fault, std::memory_order_release);
+    status_.set_fault(code, detail);
 }
 
 void FalconDevice::set_engaged(bool on) noexcept {
-    DeviceState expect = on ? DeviceState::ready : DeviceState::engaged;
-    state_.compare_exchange_strong(expect, on ? DeviceState::engaged : DeviceState::ready, std::memory_order_acq_rel);
+    status_.engage(on);
 }
 
 bool FalconDevice::read(DeviceReading& out) noexcept {
@@ -63,7 +60,7 @@ bool FalconDevice::read(DeviceReading& out) noexcept {
     const DeviceState st = state();
     if (st == DeviceState::disconnected || st == DeviceState::opening) return false;
     // Unplugged: the last frame describes a device that is gone.
-    if (st == DeviceState::fault && fault_code_.load(std::memory_order_acquire) == DeviceFaultCode::disconnected) return false;
+    if (st == DeviceState::fault && status_.code.load(std::memory_order_acquire) == DeviceFaultCode::disconnected) return false;
     const Sample s = latest_.load();
     if (s.count == 0 || !s.p_ok || out.t - s.rx_time > opt_.stale_after) return false;
     if (s.state.homed != 0x7) return false;  // encoders are relative until every arm has homed
@@ -93,9 +90,7 @@ void FalconDevice::close() {
     if (!ctx_ || !ctx_->ok()) return;
     hotplug_.unwatch();
     ctx_->run([&] { teardown(false); });
-    fault_code_.store(DeviceFaultCode::none);
-    fault_detail_.store("");
-    state_.store(DeviceState::disconnected);
+    status_.clear(DeviceState::disconnected);
 }
 
 std::string FalconDevice::serial() const {

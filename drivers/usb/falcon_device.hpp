@@ -10,6 +10,7 @@
 #pragma once
 
 #include "drivers/device.hpp"
+#include "drivers/device_status.hpp"
 #include "drivers/usb/falcon_kinematics.hpp"
 #include "drivers/usb/falcon_protocol.hpp"
 #include "drivers/usb/usb_context.hpp"
@@ -56,7 +57,7 @@ public:
     DeviceLimits limits() const noexcept override;
     bool open() override;
     void close() override;
-    DeviceState state() const noexcept override { return state_.load(std::memory_order_acquire); }
+    DeviceState state() const noexcept override { return status_.get(); }
     DeviceFault fault() const noexcept override;
     void set_engaged(bool on) noexcept override;
     // Valid once all three arms have homed (the user moves the grip through its range once).
@@ -103,9 +104,7 @@ private:
     std::shared_ptr<usb::UsbContext> ctx_;
     double epoch_ = 0.0;
 
-    std::atomic<DeviceState> state_{DeviceState::disconnected};
-    std::atomic<DeviceFaultCode> fault_code_{DeviceFaultCode::none};
-    std::atomic<const char*> fault_detail_{""};
+    DeviceStatus status_;  // state and fault (device_status.hpp)
     std::atomic<bool> wanted_{false};
     Seqlock<Sample> latest_;
     Seqlock<DeviceCommand> command_;

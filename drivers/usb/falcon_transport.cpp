@@ -28,9 +28,9 @@ void FalconDevice::on_in(libusb_transfer* t) noexcept {
             });
             malformed_.store(parser_.malformed());
             discarded_.store(parser_.discarded_bytes());
-            if (got > 0 && state() == DeviceState::fault && fault_code_.load() == DeviceFaultCode::timeout) {
-                fault_code_.store(DeviceFaultCode::none);
-                state_.store(DeviceState::ready);
+            if (got > 0 && state() == DeviceState::fault && status_.code.load() == DeviceFaultCode::timeout) {
+                status_.code.store(DeviceFaultCode::none);
+                status_.state.store(DeviceState::ready);
             }
             // A reply asks for the next command; a reply that never came is re-asked after 5 ms.
             if (got > 0 || now() - last_sent_ > 0.005) send_command();

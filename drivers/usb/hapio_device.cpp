@@ -39,7 +39,7 @@ DeviceCapabilities HapioDevice::capabilities() const noexcept {
 }
 
 DeviceFault HapioDevice::fault() const noexcept {
-    return {fault_code_.load(std::memory_order_acquire), fault_detail_.load(std::memory_order_acquire)};
+    return status_.fault();
 }
 
 DeviceFault HapioDevice::last_fault() const noexcept {
@@ -50,22 +50,16 @@ void HapioDevice::set_fault(DeviceFaultCode code, const char* detail) noexcept {
     last_fault_detail_.store(detail, std::memory_order_release);
     last_fault_code_.store(code, std::memory_order_release);
     counters_->faults.fetch_add(1, std::memory_order_acq_rel);
-    fault_detail_.store(detail, std::memory_order_release);
-    fault_code_.store(code, std::memory_order_release);
-    state_.store(DeviceState::fault, std::memory_order_release);
+    status_.set_fault(code, detail);
 }
 
 void HapioDevice::clear_fault_to_ready() noexcept {
-    fault_code_.store(DeviceFaultCode::none, std::memory_order_release);
-    fault_detail_.store("", std::memory_order_release);
-    state_.store(DeviceState::ready, std::memory_order_release);
+    status_.clear(DeviceState::ready);
 }
 
 void HapioDevice::set_engaged(bool on) noexcept {
     want_engaged_.store(on, std::memory_order_release);
-    DeviceState expect = on ? DeviceState::ready : DeviceState::engaged;
-    state_.compare_exchange_strong(expect, on ? DeviceState::engaged : DeviceState::ready,
-                                   std::memory_order_acq_rel);
+    status_.engage(on);
 }
 
 bool HapioDevice::read(DeviceReading& out) noexcept {
@@ -74,7 +68,7 @@ bool HapioDevice::read(DeviceReading& out) noexcept {
     const DeviceState st = state();
     if (st == DeviceState::disconnected || st == DeviceState::opening) return false;
     // Unplugged: the last frame describes a device that is gone.
-    if (st == DeviceState::fault && fault_code_.load(std::memory_order_acquire) == DeviceFaultCode::disconnected) return false;
+    if (st == DeviceState::fault && status_.code.load(std::memory_order_acquire) == DeviceFaultCode::disconnected) return false;
     const Sample s = latest_.load();
     if (s.count == 0 || out.t - s.rx_time > opt_.stale_after) return false;
     if (is_wearable()) wearable_.to_reading(s.state, out);
@@ -103,9 +97,7 @@ void HapioDevice::close() {
     if (!ctx_ || !ctx_->ok()) return;
     hotplug_.unwatch();
     ctx_->run([&] { teardown(false); });
-    fault_code_.store(DeviceFaultCode::none);
-    fault_detail_.store("");
-    state_.store(DeviceState::disconnected);
+    status_.clear(DeviceState::disconnected);
 }
 
 HapioStats HapioDevice::stats() const noexcept {

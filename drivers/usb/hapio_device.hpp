@@ -11,6 +11,7 @@
 #pragma once
 
 #include "drivers/device.hpp"
+#include "drivers/device_status.hpp"
 #include "drivers/usb/hapio_cld_model.hpp"
 #include "drivers/usb/hapio_protocol.hpp"
 #include "drivers/usb/hapio_wearable_model.hpp"
@@ -78,7 +79,7 @@ public:
     }
     bool open() override;
     void close() override;
-    DeviceState state() const noexcept override { return state_.load(std::memory_order_acquire); }
+    DeviceState state() const noexcept override { return status_.get(); }
     DeviceFault fault() const noexcept override;
     void set_engaged(bool on) noexcept override;
     bool read(DeviceReading& out) noexcept override;
@@ -136,9 +137,7 @@ private:
     std::shared_ptr<usb::UsbContext> ctx_;
     double epoch_ = 0.0;
 
-    std::atomic<DeviceState> state_{DeviceState::disconnected};
-    std::atomic<DeviceFaultCode> fault_code_{DeviceFaultCode::none};
-    std::atomic<const char*> fault_detail_{""};
+    DeviceStatus status_;  // state and fault (device_status.hpp)
     std::atomic<DeviceFaultCode> last_fault_code_{DeviceFaultCode::none};
     std::atomic<const char*> last_fault_detail_{""};
     std::atomic<bool> wanted_{false};      // opened by the user: hot-plug may bring it back

@@ -62,7 +62,7 @@ bool HapioDevice::bring_up_with_retries() {
 
 DeviceFault HapioDevice::bring_up() {
     if (handle_ != nullptr) return {};
-    state_.store(DeviceState::opening);
+    status_.state.store(DeviceState::opening);
     libusb_context* ctx = ctx_->raw();
 
     libusb_device** list = nullptr;
@@ -287,7 +287,7 @@ void HapioDevice::process_frame(const std::uint8_t* data, int length) noexcept {
     else if (s.faults & kFaultEncoder) set_fault(DeviceFaultCode::io_error, "hapio board: encoder error");
     else if (s.faults & kFaultSupply) set_fault(DeviceFaultCode::io_error, "hapio board: motor supply under voltage");
     else if (!(s.faults & kHardware) && state() == DeviceState::fault) {
-        const DeviceFaultCode code = fault_code_.load();
+        const DeviceFaultCode code = status_.code.load();
         if (code != DeviceFaultCode::disconnected && code != DeviceFaultCode::permission_denied) clear_fault_to_ready();
     }
     send_command(s);

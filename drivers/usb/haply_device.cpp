@@ -79,27 +79,21 @@ DeviceLimits HaplyDevice::limits() const noexcept {
 }
 
 DeviceFault HaplyDevice::fault() const noexcept {
-    return {fault_code_.load(std::memory_order_acquire), fault_detail_.load(std::memory_order_acquire)};
+    return status_.fault();
 }
 
 void HaplyDevice::set_fault(DeviceFaultCode code, const char* detail) noexcept {
-    fault_detail_.store(detail, std::memory_order_release);
-    fault_code_.store(code, std::memory_order_release);
-    state_.store(DeviceState::fault, std::memory_order_release);
+    status_.set_fault(code, detail);
 }
 
 void HaplyDevice::clear_fault() noexcept {
     if (state() != DeviceState::fault) return;
-    fault_code_.store(DeviceFaultCode::none, std::memory_order_release);
-    fault_detail_.store("", std::memory_order_release);
-    state_.store(want_engaged_.load(std::memory_order_acquire) ? DeviceState::engaged : DeviceState::ready,
-                 std::memory_order_release);
+    status_.clear(want_engaged_.load(std::memory_order_acquire) ? DeviceState::engaged : DeviceState::ready);
 }
 
 void HaplyDevice::set_engaged(bool on) noexcept {
     want_engaged_.store(on, std::memory_order_release);
-    DeviceState expect = on ? DeviceState::ready : DeviceState::engaged;
-    state_.compare_exchange_strong(expect, on ? DeviceState::engaged : DeviceState::ready, std::memory_order_acq_rel);
+    status_.engage(on);
 }
 
 bool HaplyDevice::read(DeviceReading& out) noexcept {
@@ -107,7 +101,7 @@ bool HaplyDevice::read(DeviceReading& out) noexcept {
     out.t = now();
     const DeviceState st = state();
     if (st == DeviceState::disconnected || st == DeviceState::opening) return false;
-    if (st == DeviceState::fault && fault_code_.load(std::memory_order_acquire) == DeviceFaultCode::disconnected) return false;
+    if (st == DeviceState::fault && status_.code.load(std::memory_order_acquire) == DeviceFaultCode::disconnected) return false;
     const Sample s = latest_.load();
     if (s.count == 0 || out.t - s.rx_time > opt_.stale_after) return false;
     out.finger = to_world(s.p);
@@ -236,7 +230,7 @@ bool HaplyDevice::open() {
         set_fault(DeviceFaultCode::open_failed, open_error_.c_str());
         return false;
     }
-    state_.store(DeviceState::opening, std::memory_order_release);
+    status_.state.store(DeviceState::opening, std::memory_order_release);
     std::string error;
     if (!connect(error, false) || !handshake(error)) {
         tty_.close();
@@ -247,9 +241,7 @@ bool HaplyDevice::open() {
                   open_error_.c_str());
         return false;
     }
-    fault_code_.store(DeviceFaultCode::none);
-    fault_detail_.store("");
-    state_.store(want_engaged_.load() ? DeviceState::engaged : DeviceState::ready, std::memory_order_release);
+    status_.clear(want_engaged_.load() ? DeviceState::engaged : DeviceState::ready);
     stop_.store(false);
     thread_ = std::thread([this] { run(); });
     return true;
@@ -267,9 +259,7 @@ void HaplyDevice::close() {
         tty_.write_all(ex, sizeof ex, 50);
         tty_.close();
     }
-    fault_code_.store(DeviceFaultCode::none);
-    fault_detail_.store("");
-    state_.store(DeviceState::disconnected);
+    status_.clear(DeviceState::disconnected);
 }
 
 void HaplyDevice::exchange_once() noexcept {
@@ -330,7 +320,7 @@ void HaplyDevice::exchange_once() noexcept {
     const Sample prev = latest_.load();
     latest_.store(Sample{p, now(), prev.count + 1});
     replies_.fetch_add(1, std::memory_order_relaxed);
-    if (fault_code_.load(std::memory_order_acquire) != DeviceFaultCode::disconnected) clear_fault();
+    if (status_.code.load(std::memory_order_acquire) != DeviceFaultCode::disconnected) clear_fault();
 }
 
 void HaplyDevice::run() noexcept {
@@ -348,7 +338,7 @@ void HaplyDevice::run() noexcept {
                     if (connect(error, true) && handshake(error)) {
                         reconnects_.fetch_add(1, std::memory_order_relaxed);
                         missed_ = 0;
-                        fault_code_.store(DeviceFaultCode::none, std::memory_order_release);
+                        status_.code.store(DeviceFaultCode::none, std::memory_order_release);
                         clear_fault();
                     } else {
                         tty_.close();

@@ -19,6 +19,7 @@
 #pragma once
 
 #include "drivers/device.hpp"
+#include "drivers/device_status.hpp"
 #include "drivers/usb/haply_kinematics.hpp"
 #include "drivers/usb/haply_protocol.hpp"
 #include "drivers/usb/serial_port.hpp"
@@ -80,7 +81,7 @@ public:
     std::string serial() const override { return serial_; }
     bool open() override;
     void close() override;
-    DeviceState state() const noexcept override { return state_.load(std::memory_order_acquire); }
+    DeviceState state() const noexcept override { return status_.get(); }
     DeviceFault fault() const noexcept override;
     void set_engaged(bool on) noexcept override;
     bool read(DeviceReading& out) noexcept override;
@@ -118,9 +119,7 @@ private:
     std::string port_, serial_;
     std::string open_error_;      // why open() failed (fault details point into it until reopened)
 
-    std::atomic<DeviceState> state_{DeviceState::disconnected};
-    std::atomic<DeviceFaultCode> fault_code_{DeviceFaultCode::none};
-    std::atomic<const char*> fault_detail_{""};
+    DeviceStatus status_;  // state and fault (device_status.hpp)
     std::atomic<bool> want_engaged_{false}, stop_{false};
     Seqlock<Sample> latest_;
     Seqlock<DeviceCommand> command_;
