@@ -33,6 +33,13 @@ struct DeviceStatus {
         detail.store("", std::memory_order_release);
         state.store(to, std::memory_order_release);
     }
+    // Whether the device's last sample may be read: not while disconnected or opening, nor
+    // unplugged (faulted as disconnected: the last frame describes a device that is gone).
+    bool readable() const noexcept {
+        const DeviceState st = get();
+        if (st == DeviceState::disconnected || st == DeviceState::opening) return false;
+        return !(st == DeviceState::fault && code.load(std::memory_order_acquire) == DeviceFaultCode::disconnected);
+    }
     // ready <-> engaged; a device in any other state (opening, fault, disconnected) stays there.
     void engage(bool on) noexcept {
         DeviceState expect = on ? DeviceState::ready : DeviceState::engaged;

@@ -57,10 +57,7 @@ void FalconDevice::set_engaged(bool on) noexcept {
 bool FalconDevice::read(DeviceReading& out) noexcept {
     out = DeviceReading{};
     out.t = now();
-    const DeviceState st = state();
-    if (st == DeviceState::disconnected || st == DeviceState::opening) return false;
-    // Unplugged: the last frame describes a device that is gone.
-    if (st == DeviceState::fault && status_.code.load(std::memory_order_acquire) == DeviceFaultCode::disconnected) return false;
+    if (!status_.readable()) return false;
     const Sample s = latest_.load();
     if (s.count == 0 || !s.p_ok || out.t - s.rx_time > opt_.stale_after) return false;
     if (s.state.homed != 0x7) return false;  // encoders are relative until every arm has homed

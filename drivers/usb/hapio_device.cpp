@@ -65,10 +65,7 @@ void HapioDevice::set_engaged(bool on) noexcept {
 bool HapioDevice::read(DeviceReading& out) noexcept {
     out = DeviceReading{};
     out.t = now();  // host clock: keeps running through unplugs, so the servo's timing stays sane
-    const DeviceState st = state();
-    if (st == DeviceState::disconnected || st == DeviceState::opening) return false;
-    // Unplugged: the last frame describes a device that is gone.
-    if (st == DeviceState::fault && status_.code.load(std::memory_order_acquire) == DeviceFaultCode::disconnected) return false;
+    if (!status_.readable()) return false;
     const Sample s = latest_.load();
     if (s.count == 0 || out.t - s.rx_time > opt_.stale_after) return false;
     if (is_wearable()) wearable_.to_reading(s.state, out);

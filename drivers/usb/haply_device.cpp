@@ -99,9 +99,7 @@ void HaplyDevice::set_engaged(bool on) noexcept {
 bool HaplyDevice::read(DeviceReading& out) noexcept {
     out = DeviceReading{};
     out.t = now();
-    const DeviceState st = state();
-    if (st == DeviceState::disconnected || st == DeviceState::opening) return false;
-    if (st == DeviceState::fault && status_.code.load(std::memory_order_acquire) == DeviceFaultCode::disconnected) return false;
+    if (!status_.readable()) return false;
     const Sample s = latest_.load();
     if (s.count == 0 || out.t - s.rx_time > opt_.stale_after) return false;
     out.finger = to_world(s.p);
