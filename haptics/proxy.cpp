@@ -417,7 +417,7 @@ Proxy::WarmDisc Proxy::gather_warm(const WarmDisc& warm, double phi, double turn
     const double width = std::abs(turn);
     if (width > kMaxKeptTurnSpan) {  // a large turn: gathered as asked, nothing kept
         kept_.valid = false;
-        gather_near(warm.center, phi_, phi, warm.radius);
+        gather_near(warm.center, phi_, phi, warm.radius, segment_ids_);
         return warm;
     }
     if (kept_.valid && glm::length(warm.center - kept_.disc.center) + warm.radius <= kept_.disc.radius) {
@@ -438,7 +438,7 @@ Proxy::WarmDisc Proxy::gather_warm(const WarmDisc& warm, double phi, double turn
     kept_.disc = WarmDisc{warm.center, warm.radius + extra};
     kept_.from = from - margin;
     kept_.width = width + 2.0 * margin;
-    gather_near(kept_.disc.center, kept_.from, kept_.from + kept_.width, kept_.disc.radius);
+    gather_near(kept_.disc.center, kept_.from, kept_.from + kept_.width, kept_.disc.radius, segment_ids_);
     kept_.ids.assign(segment_ids_.begin(), segment_ids_.end());
     kept_.valid = true;
     return kept_.disc;
@@ -479,9 +479,7 @@ void Proxy::move_proxy(Vec2 finger, double phi, double turn, double max_push, Ve
                 if ((k - 1) % kRotationWindow == 0) {
                     const int last = std::min(k + kRotationWindow - 1, steps - 1);
                     const double near = kRotationNear * (last - k + 1) * sub_push;  // m
-                    std::swap(segment_ids_, rotation_ids_);
-                    gather_near(proxy_, phi_ + turn * k / steps, phi_ + turn * last / steps, near + kOnTolerance);
-                    std::swap(segment_ids_, rotation_ids_);
+                    gather_near(proxy_, phi_ + turn * k / steps, phi_ + turn * last / steps, near + kOnTolerance, rotation_ids_);
                     // (A warm start's few segments can be fewer still: then those.)
                     ids = rotation_ids_.size() < segment_ids_.size() ? &rotation_ids_ : &segment_ids_;
                     within = WarmDisc{proxy_, near - sub_push};
@@ -535,21 +533,21 @@ void Proxy::gather_for_motion(Vec2 finger, double phi, double reach) {
     // them to within its sagitta, which is at most the chord max_push, already inside `reach`.
     // (It was grown by 2 x reach: at 100,000 segments on 0.4 m that gathered thousands more and
     // cost twice the tick; a test compares against use_index = false in contact.)
-    gather_near(finger, phi_, phi, reach);
+    gather_near(finger, phi_, phi, reach, segment_ids_);
 }
 
 void Proxy::gather_within_reach(Vec2 finger, double phi, double reach) {
     // A pad-end piece is its segment moved by -R u_end: its points within `reach` of the finger
     // come from segment points within `reach` of the pad's end.
-    gather_near(finger, phi, phi, reach);
+    gather_near(finger, phi, phi, reach, segment_ids_);
 }
 
-void Proxy::gather_near(Vec2 finger, double phi_from, double phi_to, double reach) {
-    segment_ids_.clear();
+void Proxy::gather_near(Vec2 finger, double phi_from, double phi_to, double reach, std::vector<int>& out) {
+    out.clear();
     // A small scene at an unchanged angle: all of it (see kSmallScene). While the finger turns
     // every piece is built anew, and then the index's few are cheaper.
     if (!def_.use_index || gathers_all(phi_from, phi_to)) {
-        for (int i = 0; i < static_cast<int>(env_->segments.size()); ++i) segment_ids_.push_back(i);
+        for (int i = 0; i < static_cast<int>(env_->segments.size()); ++i) out.push_back(i);
         return;
     }
     // The offset pieces, the inner ones, and the segments within reach of each pad end as it
@@ -582,10 +580,10 @@ void Proxy::gather_near(Vec2 finger, double phi_from, double phi_to, double reac
                                               : NormalCone{wrap_2pi(pad_mid_angle(phi_from) - h + std::min(turn, 0.0) + kPi),
                                                            2.0 * h + std::abs(turn)};
     env_->tree.query_pad_reach(finger, shape.radius, reach, ends, end_centres, ends ? 2 : 0, reach + half_chord,
-                               outer_normals, segment_ids_);
+                               outer_normals, out);
     // Sorted, so the pieces' order (and thus tie-breaks) does not depend on the tree. (Along a
     // contour the tree's order usually is sorted already: checking is linear, sorting is not.)
-    if (!std::is_sorted(segment_ids_.begin(), segment_ids_.end())) std::sort(segment_ids_.begin(), segment_ids_.end());
+    if (!std::is_sorted(out.begin(), out.end())) std::sort(out.begin(), out.end());
 }
 
 // The pad frame at phi, kept from the last call while phi and the finger stay the same: its sines,

@@ -181,9 +181,10 @@ private:
     };
     void gather_for_motion(Vec2 finger, double phi, double reach);
     void gather_within_reach(Vec2 finger, double phi, double reach);  // pieces at phi within reach
-    // segment_ids_: segments whose R-offset can come within `reach` of the finger, or that lie
-    // within `reach` of the pad's ends between the two angles.
-    void gather_near(Vec2 finger, double phi_from, double phi_to, double reach);
+    // `out` (segment_ids_, or rotation_ids_ for a turn's sub-steps): segments whose R-offset can
+    // come within `reach` of the finger, or that lie within `reach` of the pad's ends between the
+    // two angles.
+    void gather_near(Vec2 finger, double phi_from, double phi_to, double reach, std::vector<int>& out);
     // A small scene at the angle of the last build (pieces kept) gathers every segment.
     bool gathers_all(double phi_from, double phi_to) const {
         return static_cast<int>(env_->segments.size()) <= kProxySmallScene && phi_from == phi_to && phi_to == built_phi_;

@@ -17,16 +17,6 @@ using namespace render_test;
 
 namespace {
 
-// Distance (px) from point p to segment a-b, written from scratch.
-float point_segment_distance(P2 p, P2 a, P2 b) {
-    const P2 d = b - a;
-    const float len2 = d.x * d.x + d.y * d.y;
-    float t = len2 > 0.0f ? ((p.x - a.x) * d.x + (p.y - a.y) * d.y) / len2 : 0.0f;
-    t = std::clamp(t, 0.0f, 1.0f);
-    const P2 q = a + t * d;
-    return std::hypot(p.x - q.x, p.y - q.y);
-}
-
 // The least distance (px) from the box to the segment, by sampling both finely: an independent
 // reference for LabelMarks::free (0.05 px steps on the segment, the box's nearest point exact).
 float box_segment_distance(const LabelBox& box, P2 a, P2 b) {
