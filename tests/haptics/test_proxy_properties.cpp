@@ -351,6 +351,44 @@ TEST_CASE("anticipation hovering over a valley of the pad's own shape asks few s
     CHECK(most_asked <= 400);
 }
 
+TEST_CASE("anticipation hovering over a rough floor builds only the segments within the pad's reach of the nearest, and finds the piece every segment gives") {
+    // A floor of 20,000 chords 10 um long whose vertices are jittered by up to 20 um (seeded):
+    // 5 mm above it the nearest pieces tie within the jitter over a millimetre or two of floor,
+    // and the tree's boxes, loose by their own size, let a few hundred segments through a tick.
+    // A segment lies within R of each of its pieces, so one whose distance less R exceeds the
+    // best so far cannot win: it is refused without building its pieces. The answer is checked
+    // against a proxy that builds every segment's pieces.
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    constexpr int kSegments = 20000;
+    constexpr double kJitter = 2e-5;  // m
+    Contour floor;
+    Vec2 from{-0.1, kJitter * u(rng)};
+    for (int i = 1; i <= kSegments; ++i) {
+        const Vec2 to{-0.1 + 0.2 * i / kSegments, kJitter * u(rng)};
+        floor.segments.push_back(line(from, to));
+        from = to;
+    }
+    IndexedAndBrute pair(scene_of({floor}));
+    int most_built = 0, compared = 0;
+    for (int i = 0; i <= 600; ++i) {
+        const Vec2 finger{-0.03 + 1e-4 * i, R + 0.005};  // m: 5 mm above the floor, along 6 cm
+        const ProxyOutput a = pair.indexed.update(finger, 0.0);
+        REQUIRE_FALSE(a.contact);
+        REQUIRE(a.anticipating);
+        if (i > 0) most_built = std::max(most_built, a.work.anticipated_segments);
+        if (i % 25 != 0) continue;
+        const ProxyOutput& b = pair.brute.update(finger, 0.0);
+        CAPTURE(i);
+        CHECK(a.l_d == b.l_d);
+        CHECK(a.anticipated_point == b.anticipated_point);
+        ++compared;
+    }
+    MESSAGE("most segments built in a tick after the first: " << most_built);
+    CHECK(compared == 25);
+    CHECK(most_built <= 12);
+}
+
 TEST_CASE("a finger turning as it slides round a dense gear: a turn's sub-steps build the segments near the proxy, and the proxy is a search of every segment's") {
     // A closed gear (radius 40 mm, 24 flat-topped teeth 3 mm high, 4,000 segments of 63 um,
     // drawn clockwise: solid inside), the pad facing its centre and pressed in along the radius
