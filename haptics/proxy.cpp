@@ -1077,6 +1077,10 @@ Proxy::Hit Proxy::first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b,
                 const double t = roots[k];
                 if (t < -t_slack || t > 1.0 || t >= best.s) continue;
                 const Vec2 x = p + t * v;
+                // Within the circle's span only if inside its box (grown by kBoxSlack, ten times
+                // the span's slack): a crossing of the rest of the circle is refused before the
+                // arctangent, the same refusal.
+                if (!piece_boxes_[static_cast<std::size_t>(i)].contains(x)) continue;
                 const Vec2 radial = (x - piece.center) / piece.radius;
                 const double along = glm::dot(v, radial) / len;
                 const bool entering = piece.free_outside ? along < -graze_tolerance(piece)
@@ -1110,7 +1114,15 @@ Proxy::Hit Proxy::first_entry_arc(const CPiece& on, double s0, double s1, int ex
     if (std::abs(ds) * on.radius <= 0.0) return best;
     const double direction = ds > 0.0 ? 1.0 : -1.0;
     const double s_slack = kOnTolerance / (on.radius * std::abs(ds));
+    // A point entered on the way lies on the slide's arc (up to kOnTolerance before its start),
+    // so inside its box grown by a few times that: a crossing outside it (the far one of two
+    // circles) is refused with four comparisons instead of two arctangents, the same refusal.
+    const Aabb on_slide = arc_slide_box_.grown(4.0 * kOnTolerance);
     auto consider = [&](int i, Vec2 x) {
+        if (!on_slide.contains(x)) return;
+        // ... and on the piece entered, within its span: inside its box (grown by kBoxSlack, ten
+        // times the span's slack). The same refusal again, before the piece's arctangent.
+        if (!piece_boxes_[static_cast<std::size_t>(i)].contains(x)) return;
         const CPiece& piece = pieces_[i];
         const double slack = piece.kind == CPiece::Kind::line ? kOnTolerance
                                                               : kOnTolerance / piece.radius;
