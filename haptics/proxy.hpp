@@ -296,6 +296,8 @@ private:
     // The exact distance (m) from the search's finger to segment id's pieces at the search's
     // angle; keeps the nearest (ties: the lowest segment) as the search's best.
     double ask_anticipation(int id);
+    // The segment nearest p (by distance to the segment itself), -1 in an empty scene.
+    int nearest_segment(Vec2 p) const;
     // An empty build keeps the last one here (cache_aside_), still described by built_*.
     std::vector<CPiece> aside_pieces_;
     std::vector<Aabb> aside_boxes_;
