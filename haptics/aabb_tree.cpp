@@ -197,13 +197,28 @@ Aabb AabbTree::offset_box(const Node& n, double r, double side) const {
     return moved_offset(n, n.offset, r, side);
 }
 
+// Every piece's point is a place of the finger where the pad (radius r) touches the piece's
+// segment, so within r of it and of any box holding the segment: no piece is nearer p than the
+// box's distance less r. The offset boxes above are swept over the items' normal cones, so where
+// those are wide (a jittered floor's segments lean every way) they reach r sideways and bound
+// nothing off to the side; this one does.
+// Returns the greater of that and `lower` (m), with no square root when `lower` is the greater.
+namespace {
+double max_with_reach_bound(double lower, const Aabb& box, Vec2 p, double r) {
+    const double d2 = box.distance_squared_to(p);  // m^2
+    const double at_least = lower + r;              // m
+    if (at_least * at_least >= d2) return lower;
+    return std::max(lower, std::sqrt(d2) - r);
+}
+}  // namespace
+
 double AabbTree::pad_lower_bound(const Node& n, Vec2 p, double r, bool inner, const Vec2* ends, int end_count,
                                  const PadNormals& normals) const {
     double lower = std::numeric_limits<double>::infinity();
     if (cones_meet(n.normals, normals.outer)) lower = offset_box(n, r, 1.0).distance_to(p);
     if (inner && cones_meet(n.normals, normals.inner)) lower = std::min(lower, offset_box(n, r, -1.0).distance_to(p));
     for (int k = 0; k < end_count; ++k) lower = std::min(lower, n.box.distance_to(ends[k]));
-    return lower;
+    return max_with_reach_bound(lower, n.box, p, r);
 }
 
 double AabbTree::item_lower_bound(const Node& leaf, int position, Vec2 p, double r, bool inner, const Vec2* ends,
@@ -216,7 +231,7 @@ double AabbTree::item_lower_bound(const Node& leaf, int position, Vec2 p, double
     if (inner && cones_meet(item_normals_[pos], normals.inner))
         lower = std::min(lower, moved_offset(leaf, item_offsets_[pos], r, -1.0).distance_to(p));
     for (int k = 0; k < end_count; ++k) lower = std::min(lower, item_boxes_[pos].distance_to(ends[k]));
-    return lower;
+    return max_with_reach_bound(lower, item_boxes_[pos], p, r);
 }
 
 bool AabbTree::offset_may_reach(const Node& n, Vec2 p, double r, double reach, double side) const {
