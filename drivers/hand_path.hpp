@@ -38,28 +38,31 @@ public:
     // One interval of the path, from a sample to the next: at() and phi_at() of a time t it holds
     // are the path's own, the same bits, without the cursor's search and the path's end checks.
     // A simulated rig finds the interval its servo tick starts in (interval_at) and asks it for
-    // its ten substeps' hand (two asks a substep, the search most of their cost before). Valid
-    // while the path is not appended to.
+    // its ten substeps' hand (two asks a substep, the search most of their cost before). It keeps
+    // the interval's numbers, not references to the path.
     class Interval {
     public:
         Interval() = default;  // holds no time
+        // The differences are taken here once, as at() took them each call: the same bits.
         Interval(const PathSample& a, const PathSample& b, Vec2 slope, bool first) noexcept
-            : a_(&a), b_(&b), slope_(slope), lo_(first ? std::nextafter(a.t, b.t) : a.t), hi_(b.t) {}
+            : lo_(first ? std::nextafter(a.t, b.t) : a.t), hi_(b.t), t0_(a.t), span_(b.t - a.t), x0_(a.x), dx_(b.x - a.x),
+              slope_(slope), phi0_(a.phi), dphi_(b.phi - a.phi) {}
         // Whether t (s) lies in it: [a.t, b.t), and after a.t where a is the path's first sample
         // (the path holds that one). False for NaN.
         bool holds(double t) const noexcept { return t >= lo_ && t < hi_; }
         PathPoint at(double t) const noexcept {
             const double u = fraction(t);
-            return {a_->x + (b_->x - a_->x) * u, slope_, a_->phi + (b_->phi - a_->phi) * u};
+            return {x0_ + dx_ * u, slope_, phi0_ + dphi_ * u};
         }
-        double phi_at(double t) const noexcept { return a_->phi + (b_->phi - a_->phi) * fraction(t); }
+        double phi_at(double t) const noexcept { return phi0_ + dphi_ * fraction(t); }
 
     private:
-        double fraction(double t) const noexcept { return (t - a_->t) / (b_->t - a_->t); }
-        const PathSample* a_ = nullptr;
-        const PathSample* b_ = nullptr;
-        Vec2 slope_{0.0};  // m/s
+        double fraction(double t) const noexcept { return (t - t0_) / span_; }
         double lo_ = std::numeric_limits<double>::infinity(), hi_ = -std::numeric_limits<double>::infinity();  // s
+        double t0_ = 0.0, span_ = 1.0;  // s: a.t, b.t - a.t
+        Vec2 x0_{0.0}, dx_{0.0};        // m: a.x, b.x - a.x
+        Vec2 slope_{0.0};               // m/s
+        double phi0_ = 0.0, dphi_ = 0.0;  // rad: a.phi, b.phi - a.phi
     };
 
     // Linear interpolation; before the first sample holds the first, after the last holds the
