@@ -77,9 +77,10 @@ void ServoLoop::step(double wall_period, bool wait_for_ring) noexcept {
     ++ticks_;
     clock.lap(stages.device);
 
-    if (ring_ != nullptr) {
+    if (ring_ != nullptr || records_ != nullptr) {
         const ProxyOutput& o = tick_.proxy_output();
-        TickRecord rec;
+        TickRecord spare;
+        TickRecord& rec = records_ != nullptr ? records_->emplace_back() : spare;
         rec.tick = ticks_;
         rec.t = in.t;
         rec.period = wall_period;
@@ -99,7 +100,7 @@ void ServoLoop::step(double wall_period, bool wait_for_ring) noexcept {
         rec.observer_used = tick_.observer().used();
         rec.state = tick_.state();
         rec.fault = tick_.fault();
-        if (!ring_->try_push(rec)) {
+        if (records_ == nullptr && !ring_->try_push(rec)) {
             if (wait_for_ring) {
                 while (!ring_->try_push(rec)) std::this_thread::yield();
             } else {

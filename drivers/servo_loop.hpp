@@ -56,6 +56,11 @@ public:
     void stall(double seconds) noexcept;
     // Sum each step's parts into `stages` (null: stop); five clock reads a step (StageClock).
     void set_profile(ServoLoopStages* stages) { profile_ = stages; }
+    // Virtual time on one thread: each step's record is appended to `out` (null: stop) instead of
+    // going through the ring, written in place (a simulated trial copied each record three times
+    // on its way to its trace). The caller reserves what the steps will append: a step never
+    // allocates.
+    void record_into(std::vector<TickRecord>* out) { records_ = out; }
 
 private:
     Device& dev_;
@@ -68,6 +73,7 @@ private:
     DeviceCommand command_;
     bool platform_ = false;  // the device is seed 003's platform: the force becomes a platform pose
     ServoLoopStages* profile_ = nullptr;
+    std::vector<TickRecord>* records_ = nullptr;
 };
 
 // Period statistics from a fixed histogram (100 ns bins up to 20 ms): no allocation per tick.

@@ -158,14 +158,6 @@ const ServoCommand& ServoTick::tick(const ServoInput& in) noexcept {
     if (clear_request_.exchange(false, std::memory_order_acq_rel)) safety_.clear_fault();
     apply_params(dt);
 
-    ServoSnapshot snap;
-    snap.ticks = ticks_;
-    snap.t = in.t;
-    snap.dt = dt;
-    snap.finger = in.finger;
-    snap.phi = in.phi;
-    snap.roller_l = in.roller_l;
-
     const bool finite = finite_input(in, config_.has_roller);
     const std::uint32_t swaps_before = scene_swaps_;
     if (finite) swap_scene(in);
@@ -178,7 +170,8 @@ const ServoCommand& ServoTick::tick(const ServoInput& in) noexcept {
         fault_tick(in, dt, ServoFault::watchdog);
     }
 
-    if (finite && scene_ != nullptr) {
+    const bool rendering = finite && scene_ != nullptr;
+    if (rendering) {
         Proxy& proxy = scene_->proxy;
         ProxyDef def = proxy.def();
         def.stiffness = current_.stiffness;
@@ -257,13 +250,6 @@ const ServoCommand& ServoTick::tick(const ServoInput& in) noexcept {
             cmd_.roller_target = std::clamp(proxy_out_.l_d, roller_.travel().min, roller_.travel().max);
             roller_.reset(in.roller_l);
         }
-
-        snap.proxy = proxy_out_.proxy;
-        snap.contact = proxy_out_.contact;
-        snap.contact_count = proxy_out_.contact_count;
-        snap.depth = proxy_out_.depth;
-        snap.rendered_force = rendered;
-        snap.l_d = proxy_out_.l_d;
     } else {
         // No scene or unusable input: nothing to render, and never a NaN to the motors.
         safety_.step(std::isfinite(in.t) ? in.t : 0.0);
@@ -277,6 +263,24 @@ const ServoCommand& ServoTick::tick(const ServoInput& in) noexcept {
     if (!std::isfinite(cmd_.roller_drive)) cmd_.roller_drive = 0.0;
     if (!std::isfinite(cmd_.roller_target)) cmd_.roller_target = 0.0;
 
+    // The snapshot is made only for a reader (set_publish_snapshots): a simulated trial's ticks
+    // skip its hundred stores.
+    if (!publish_snapshots_) return cmd_;
+    ServoSnapshot snap;
+    snap.ticks = ticks_;
+    snap.t = in.t;
+    snap.dt = dt;
+    snap.finger = in.finger;
+    snap.phi = in.phi;
+    snap.roller_l = in.roller_l;
+    if (rendering) {  // what the proxy rendered this tick (proxy_out_ is this tick's)
+        snap.proxy = proxy_out_.proxy;
+        snap.contact = proxy_out_.contact;
+        snap.contact_count = proxy_out_.contact_count;
+        snap.depth = proxy_out_.depth;
+        snap.rendered_force = proxy_out_.force;
+        snap.l_d = proxy_out_.l_d;
+    }
     snap.force = cmd_.force;
     snap.roller_target = cmd_.roller_target;
     snap.roller_drive = cmd_.roller_drive;
@@ -295,7 +299,7 @@ const ServoCommand& ServoTick::tick(const ServoInput& in) noexcept {
     snap.fault = safety_.fault();
     snap.fault_count = safety_.fault_count();
     snap.scene_swaps = scene_swaps_;
-    if (publish_snapshots_) snapshot_.store(snap);
+    snapshot_.store(snap);
     return cmd_;
 }
 

@@ -3,8 +3,38 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <vector>
 
 namespace contactlab::drivers::sim {
+
+namespace {
+// The encoders' quantised angles (k counts, k step rad) repeat from trial to trial, and their sines
+// were a twentieth of a simulated trial's arm (two sincos a tick: the counts change nearly every
+// tick). One turn's are made once a process, at the rig's 65,536 counts a turn (1 MB), with the
+// same expressions as a direct call: the same bits. Count 0 is left to the direct call (its angle
+// may be -0).
+constexpr int kTableCounts = 65536;
+const double* turn_table() {
+    static const std::vector<double> table = [] {
+        std::vector<double> t(2 * static_cast<std::size_t>(kTableCounts));
+        const double step = kTwoPi / kTableCounts;  // rad, as quantise's
+        for (int k = 1; k < kTableCounts; ++k) {
+            const double q = static_cast<double>(k) * step;
+            t[2 * static_cast<std::size_t>(k)] = std::sin(q);
+            t[2 * static_cast<std::size_t>(k) + 1] = std::cos(q);
+        }
+        return t;
+    }();
+    return table.data();
+}
+}  // namespace
+
+PlanarArm::PlanarArm(const PlanarArmParams& p) : p_(p) {
+    update_trig();
+    // Made here, off the servo thread: a tick reads it, never builds it.
+    if (p_.encoder_counts == kTableCounts) turn_table_ = turn_table();
+}
 
 void PlanarArm::update_trig() {
     s1_ = std::sin(q1_), c1_ = std::cos(q1_);
@@ -23,16 +53,25 @@ constexpr int kTrigRefresh = 16;
 
 // (s, c) turned by d (rad), |d| < kSmallTurn. The series in Horner form with the coefficients as
 // constants: divisions (a tenth of a substep's time when written d2 / 6 ...) are not needed.
-inline void rotate(double& s, double& c, double d) {
+// T is a double, or a pair of them (Pair) turned at once, each lane rounding as a double would.
+template <class T>
+inline void rotate(T& s, T& c, T d) {
     constexpr double s3 = -1.0 / 6.0, s5 = 1.0 / 120.0;
     constexpr double c2 = -1.0 / 2.0, c4 = 1.0 / 24.0, c6 = -1.0 / 720.0;
-    const double d2 = d * d;
-    const double sd = d + d * d2 * (s3 + d2 * s5);
-    const double cd = 1.0 + d2 * (c2 + d2 * (c4 + d2 * c6));
-    const double s0 = s;
+    const T d2 = d * d;
+    const T sd = d + d * d2 * (s3 + d2 * s5);
+    const T cd = 1.0 + d2 * (c2 + d2 * (c4 + d2 * c6));
+    const T s0 = s;
     s = s0 * cd + c * sd;
     c = c * cd - s0 * sd;
 }
+
+// Two doubles in one register (GCC's and Clang's vector extension): the shoulder's and the
+// forearm's turns are the same series on independent numbers, so one pass of two-lane operations
+// does both (the same bits: each lane's operations are the scalar ones, in the same order; the
+// two scalar passes were a quarter of a substep).
+using Pair = double __attribute__((vector_size(16)));
+
 }  // namespace
 
 void PlanarArm::turn_trig(double d1, double d12) {
@@ -40,8 +79,10 @@ void PlanarArm::turn_trig(double d1, double d12) {
         update_trig();
         return;
     }
-    rotate(s1_, c1_, d1);
-    rotate(s12_, c12_, d12);
+    Pair s{s1_, s12_}, c{c1_, c12_};
+    rotate(s, c, Pair{d1, d12});
+    s1_ = s[0], s12_ = s[1];
+    c1_ = c[0], c12_ = c[1];
 }
 
 Vec2 PlanarArm::endpoint_of(double q1, double q2) const {
@@ -63,15 +104,25 @@ bool PlanarArm::place_at(Vec2 x) {
     return true;
 }
 
-double PlanarArm::quantise(double q) const {
+void PlanarArm::count_trig(double k, double q, double& s, double& c) const {
     const double step = kTwoPi / p_.encoder_counts;
-    return std::floor(q / step) * step;
+    if (turn_table_ != nullptr && k >= 1.0 && k < kTableCounts && k * step == q) {
+        const double* e = turn_table_ + 2 * static_cast<std::size_t>(k);
+        s = e[0], c = e[1];
+        return;
+    }
+    s = std::sin(q), c = std::cos(q);
 }
 
 const PlanarArm::MeasuredTrig& PlanarArm::measured_trig() const {
-    const double q1 = quantise(q1_), q2 = quantise(q2_);
+    const double step = kTwoPi / p_.encoder_counts;
+    const double k1 = std::floor(q1_ / step), k2 = std::floor(q2_ / step);  // counts
+    const double q1 = k1 * step, q2 = k2 * step;  // rad, quantised
     if (!(measured_.valid && measured_.q1 == q1 && measured_.q2 == q2)) {
-        measured_ = {q1, q2, std::sin(q1), std::cos(q1), std::sin(q1 + q2), std::cos(q1 + q2), true};
+        measured_.q1 = q1, measured_.q2 = q2, measured_.valid = true;
+        count_trig(k1, q1, measured_.s1, measured_.c1);
+        // q1 + q2 is k1 + k2 counts, and mostly the same double as (k1 + k2) step: then the table's.
+        count_trig(k1 + k2, q1 + q2, measured_.s12, measured_.c12);
     }
     return measured_;
 }

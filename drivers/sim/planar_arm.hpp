@@ -27,7 +27,7 @@ struct PlanarArmParams {
 
 class PlanarArm {
 public:
-    explicit PlanarArm(const PlanarArmParams& p) : p_(p) { update_trig(); }
+    explicit PlanarArm(const PlanarArmParams& p);
 
     // Elbow-up inverse kinematics; returns false when x is out of reach (state unchanged).
     bool place_at(Vec2 x);
@@ -100,7 +100,9 @@ private:
         bool valid = false;
     };
     const MeasuredTrig& measured_trig() const;
-    double quantise(double q) const;
+    // sin and cos (s, c) of q (rad), the angle of k counts (k a whole number, q = k step as the
+    // encoders quantise it): from the table of one turn's counts where it holds q, else computed.
+    void count_trig(double k, double q, double& s, double& c) const;
 
     PlanarArmParams p_;
     double q1_ = 0.0, q2_ = 0.0;    // rad: shoulder absolute, elbow relative
@@ -113,6 +115,9 @@ private:
     double s1_ = 0.0, c1_ = 1.0, s12_ = 0.0, c12_ = 1.0;
     int turns_since_refresh_ = 0;
     mutable MeasuredTrig measured_;
+    // sin and cos of 1 ... counts - 1 counts, interleaved, made once a process (count_trig); null
+    // for an encoder of another resolution than the table's.
+    const double* turn_table_ = nullptr;
 };
 
 }  // namespace contactlab::drivers::sim

@@ -8,6 +8,8 @@
 
 #include "drivers/hand_path.hpp"
 
+#include <cmath>
+
 namespace contactlab::drivers::sim {
 
 struct HandParams {
@@ -20,18 +22,16 @@ class ScriptedHand {
 public:
     ScriptedHand(const HandParams& p, HandPath path) : p_(p), path_(std::move(path)) {}
     // Force (N) on the finger at time t (s) with finger position x (m) and velocity v (m/s).
-    Vec2 force(double t, Vec2 x, Vec2 v) const noexcept {
-        const PathPoint q = path_.at(t);
-        return p_.stiffness * (q.x - x) + p_.damping * (q.v - v);
+    Vec2 force(double t, Vec2 x, Vec2 v) const noexcept { return pull(path_.at(t), x, v); }
+    // The same, `span` an interval of the path (HandPath::interval_at) asked first: the same bits.
+    Vec2 force(double t, Vec2 x, Vec2 v, const HandPath::Interval& span) const noexcept {
+        return pull(span.holds(t) ? span.at(t) : path_.at(t), x, v);
     }
     // Advances the finger angle over h (s) toward the path's angle at time t (s).
-    void step_phi(double t, double h) noexcept {
-        const double goal = path_.phi_at(t);
-        if (h != gain_h_) {  // the substep is nearly always the last one: keep its gain (same bits)
-            gain_h_ = h;
-            gain_ = 1.0 - std::exp(-h / p_.phi_lag);
-        }
-        phi_ += (goal - phi_) * gain_;
+    void step_phi(double t, double h) noexcept { turn_toward(path_.phi_at(t), h); }
+    // The same, `span` asked first (as force()).
+    void step_phi(double t, double h, const HandPath::Interval& span) noexcept {
+        turn_toward(span.holds(t) ? span.phi_at(t) : path_.phi_at(t), h);
     }
     void reset(double t) noexcept { phi_ = path_.phi_at(t); }
     // A hand steering by feel: a new path before the device opens (its first sample is where the
@@ -43,6 +43,16 @@ public:
     const HandParams& params() const noexcept { return p_; }
 
 private:
+    Vec2 pull(const PathPoint& q, Vec2 x, Vec2 v) const noexcept { return p_.stiffness * (q.x - x) + p_.damping * (q.v - v); }
+    // The angle's first-order lag over h (s) toward `goal` (rad).
+    void turn_toward(double goal, double h) noexcept {
+        if (h != gain_h_) {  // the substep is nearly always the last one: keep its gain (same bits)
+            gain_h_ = h;
+            gain_ = 1.0 - std::exp(-h / p_.phi_lag);
+        }
+        phi_ += (goal - phi_) * gain_;
+    }
+
     HandParams p_;
     HandPath path_;
     double phi_ = 0.0;  // rad

@@ -111,11 +111,14 @@ void SimCldDevice::advance(double dt) noexcept {
     }
     const int n = std::max(std::max(1, p_.min_substeps), static_cast<int>(std::ceil(dt / p_.substep - 1e-9)));
     const double h = dt / n;
+    // The path's interval the tick starts in: the substeps' times mostly lie in it (samples a
+    // period apart), and it answers them without the path's search (the same bits).
+    const HandPath::Interval span = hand_.path().interval_at(t_);
     for (int i = 0; i < n; ++i) {
         const double t = t_ + i * h;
-        arm_.step_held(h, [&](Vec2 x, Vec2 v) { return hand_.force(t, x, v); });
+        arm_.step_held(h, [&](Vec2 x, Vec2 v) { return hand_.force(t, x, v, span); });
         roller_.step(h);
-        hand_.step_phi(t + h, h);
+        hand_.step_phi(t + h, h, span);
     }
     t_ += dt;
 }

@@ -129,3 +129,27 @@ TEST_CASE("the servo's own stall detector faults on a gap in device time") {
     CHECK(servo.fault() == ServoFault::watchdog);
     CHECK(c.force == Vec2{0.0});
 }
+
+TEST_CASE("a hand path's interval answers as the path does inside it and holds nothing else") {
+    const drivers::HandPath path({{0.0, {0.0, 0.010}, 0.1}, {0.001, {0.001, 0.011}, 0.2}, {0.002, {0.003, 0.0105}, 0.25}});
+    const drivers::HandPath::Interval first = path.interval_at(0.0005);
+    CHECK_FALSE(first.holds(0.0));  // the path holds its first sample there, at rest
+    CHECK_FALSE(first.holds(0.001));
+    CHECK_FALSE(first.holds(std::nan("")));
+    for (const double t : {1e-9, 0.0003, 0.0009999}) {
+        REQUIRE(first.holds(t));
+        const drivers::PathPoint a = first.at(t), b = path.at(t);  // m, m/s, rad
+        CHECK(a.x.x == doctest::Approx(b.x.x).epsilon(1e-15));
+        CHECK(a.x.y == doctest::Approx(b.x.y).epsilon(1e-15));
+        CHECK(a.v.x == doctest::Approx(b.v.x).epsilon(1e-15));  // 1 m/s along x
+        CHECK(a.v.y == doctest::Approx(b.v.y).epsilon(1e-15));
+        CHECK(first.phi_at(t) == doctest::Approx(path.phi_at(t)).epsilon(1e-15));
+    }
+    const drivers::HandPath::Interval second = path.interval_at(0.001);
+    CHECK(second.holds(0.001));
+    CHECK(second.at(0.0015).x.x == doctest::Approx(0.002).epsilon(1e-12));  // m, halfway
+    CHECK(second.at(0.0015).v.x == doctest::Approx(2.0).epsilon(1e-12));    // m/s
+    CHECK_FALSE(second.holds(0.002));
+    CHECK_FALSE(path.interval_at(0.002).holds(0.002));  // the last sample: held by the path
+    CHECK_FALSE(path.interval_at(-1.0).holds(-1.0));
+}

@@ -7,7 +7,6 @@
 #include "drivers/sim/sim_cld_device.hpp"
 #include "haptics/servo_scene.hpp"
 #include "haptics/servo_tick.hpp"
-#include "haptics/spsc_ring.hpp"
 
 #include <cmath>
 #include <memory>
@@ -50,10 +49,7 @@ TrialTrace run_servo_trial(const Scene& scene, const drivers::HandPath& path, bo
     ServoTick tick(config, params);
     tick.set_publish_snapshots(false);  // nobody reads them: the trial's records come through the ring
     tick.scenes().publish(std::make_unique<ServoScene>(scene));
-    // One record a step, taken off after every step: a few slots suffice (4,096 were 1.2 MB
-    // allocated and page-faulted in every trial).
-    SpscRing<drivers::TickRecord> ring(16);
-    drivers::ServoLoop loop(dev, tick, 1.0 / kTrialRate, &ring);
+    drivers::ServoLoop loop(dev, tick, 1.0 / kTrialRate);
     TrialTrace trace;
     trace.ticks.swap(spare_ticks());  // a finished trial's memory, if this thread has one
     trace.ticks.clear();
@@ -62,7 +58,8 @@ TrialTrace run_servo_trial(const Scene& scene, const drivers::HandPath& path, bo
         return trace;
     }
     const auto ticks = static_cast<std::uint64_t>(std::llround((path.end() - path.start()) * kTrialRate));
-    trace.ticks.reserve(ticks);
+    trace.ticks.reserve(ticks);  // the loop writes a record a step into the trace (no ring): reserved
+    loop.record_into(&trace.ticks);
     setup.reset();
     // Profiled, the loop's own stages (device, tick, ring) are timed by the loop; the rest of
     // this loop (taking the records off the ring into the trace) counts as records.
@@ -72,10 +69,7 @@ TrialTrace run_servo_trial(const Scene& scene, const drivers::HandPath& path, bo
     clock.start(profile != nullptr);
     for (std::uint64_t k = 0; k < ticks; ++k) {
         loop.step(1.0 / kTrialRate, true);
-        for (drivers::TickRecord r; ring.try_pop(r);) {
-            trace.faulted |= r.fault != ServoFault::none;
-            trace.ticks.push_back(r);
-        }
+        trace.faulted |= trace.ticks.back().fault != ServoFault::none;
     }
     if (profile) {
         double all = 0.0;  // ns
@@ -104,8 +98,7 @@ TrialTrace run_steered_trial(const Scene& scene, const drivers::HandPath& envelo
     const ServoConfig config = drivers::servo_config_for(dev, kTrialRate);
     ServoTick tick(config, params);
     tick.scenes().publish(std::make_unique<ServoScene>(scene));
-    SpscRing<drivers::TickRecord> ring(16);
-    drivers::ServoLoop loop(dev, tick, 1.0 / kTrialRate, &ring);
+    drivers::ServoLoop loop(dev, tick, 1.0 / kTrialRate);
     TrialTrace trace;
     trace.ticks.swap(spare_ticks());
     trace.ticks.clear();
@@ -113,7 +106,8 @@ TrialTrace run_steered_trial(const Scene& scene, const drivers::HandPath& envelo
         trace.faulted = true;
         return trace;
     }
-    trace.ticks.reserve(ticks);
+    trace.ticks.reserve(ticks);  // at most a record a step, written by the loop
+    loop.record_into(&trace.ticks);
     setup.reset();
     drivers::ServoLoopStages stages;
     if (profile) loop.set_profile(&stages);
@@ -122,16 +116,14 @@ TrialTrace run_steered_trial(const Scene& scene, const drivers::HandPath& envelo
     std::uint64_t k = 0;
     for (bool going = true; going && k < ticks; ++k) {
         loop.step(1.0 / kTrialRate, true);
-        for (drivers::TickRecord r; ring.try_pop(r);) {
-            trace.faulted |= r.fault != ServoFault::none;
-            trace.ticks.push_back(r);
-            drivers::PathSample next;
-            going = steer(r, next);
-            if (!going) break;
-            // The sample is for the next tick; a later one than the path's last, always.
-            next.t = std::max(next.t, dev.hand().path().end() + 1e-9);
-            dev.hand().steer(next);
-        }
+        const drivers::TickRecord& r = trace.ticks.back();
+        trace.faulted |= r.fault != ServoFault::none;
+        drivers::PathSample next;
+        going = steer(r, next);
+        if (!going) continue;  // the loop ends here, with this step counted in k
+        // The sample is for the next tick; a later one than the path's last, always.
+        next.t = std::max(next.t, dev.hand().path().end() + 1e-9);
+        dev.hand().steer(next);
     }
     if (profile) {
         double all = 0.0;

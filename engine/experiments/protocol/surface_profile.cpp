@@ -152,10 +152,12 @@ double resting_height(const SurfaceProfile& s, double x, double r, RestingCursor
     const std::size_t hinted = std::clamp(c.hint, lo, hi - 1), first = hinted / B;
     scan(hinted, hinted + 1);  // the last answer's point first: the rest of its block mostly falls below it
     scan(std::max(lo, first * B), std::min(hi, (first + 1) * B));
+    // A run's bounds hold for all its points, so they rule out the first run too, though it starts
+    // before the points within reach (its blocks, one by one, were a third of the tests).
     for (std::size_t k = lo / B; k * B < hi; ++k) {
-        if (k % SurfaceProfile::kRun == 0 && (s.run_top[k / SurfaceProfile::kRun] + reach_max <= best ||
-                                              line_rules_out(s.run_line[k / SurfaceProfile::kRun], x, r, best))) {
-            k += SurfaceProfile::kRun - 1;  // the whole run is too low (the hint's block included: it was scanned)
+        if ((k % SurfaceProfile::kRun == 0 || k == lo / B) &&
+            (s.run_top[k / SurfaceProfile::kRun] + reach_max <= best || line_rules_out(s.run_line[k / SurfaceProfile::kRun], x, r, best))) {
+            k = (k / SurfaceProfile::kRun + 1) * SurfaceProfile::kRun - 1;  // the whole run is too low (the hint's block included: it was scanned)
             continue;
         }
         if (k == first || s.block_top[k] + reach_max <= best) continue;
