@@ -1,7 +1,10 @@
 // experiment_calibrate_cli.cpp — `contactlab experiment calibrate PROTOCOL... --target TARGETS.json
 // --param NAME=LO:HI [--param ...] --fit NAME[,NAME...]|all [--participants N] [--seed S]
-// [--jobs J] [--evaluations E] [--pool-from RESULTS.csv...] --json OUT`: the simulated
-// participant's parameters fitted to published figures (engine/experiments/calibration/calibration.hpp).
+// [--jobs J] [--evaluations E] [--pool-from RESULTS.csv...] [--hand scripted|feel] --json OUT`: the
+// simulated participant's parameters fitted to published figures
+// (engine/experiments/calibration/calibration.hpp). --hand runs every evaluation with that hand, as
+// `experiment run --hand` does; with feel, the hand's population ("hand.NAME") can be fitted to
+// the movement figures.
 // --pool-from gives the start's runs (the protocols' own parameters) from results files made
 // elsewhere, e.g. on a cluster (docs/cluster.md). The same parameters go to every
 // protocol; targets not in --fit are held out and reported as they come out. Each evaluation's
@@ -30,7 +33,7 @@ namespace fs = std::filesystem;
 
 struct CalibrateArgs {
     std::vector<std::string> protocols, params, pool_from;
-    std::string target, fit, json;
+    std::string target, fit, json, hand;
     int participants = 10, jobs = 0, evaluations = 40;
     unsigned long long seed = 1;
 };
@@ -81,6 +84,11 @@ int run_calibrate(const CalibrateArgs& a) {
         o.jobs = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
         o.max_evaluations = a.evaluations;
         o.pool_from = a.pool_from;
+        if (!a.hand.empty()) {
+            experiments::HandModel h = experiments::HandModel::scripted;
+            if (!experiments::parse_hand_model(a.hand, h)) throw BadInput("--hand: expected scripted or feel, got \"" + a.hand + "\"");
+            o.hand = h;
+        }
         const fs::path out(a.json);
         o.work_dir = (out.parent_path() / (out.stem().string() + ".runs")).string();
         o.progress = [&](int k, double objective) {
@@ -127,6 +135,9 @@ void register_experiment_calibrate_command(CLI::App& app, int& rc) {
     c->add_option("--pool-from", args->pool_from,
                   "A finished results file of one of the protocols, as given, with this seed and these participants (e.g. merged "
                   "from a cluster's tasks): the start's runs of that protocol, not run again (repeat for more)");
+    c->add_option("--hand", args->hand,
+                  "The simulated person's hand in every evaluation, scripted or feel (default: each protocol's hand.model); "
+                  "with feel, hand.NAME parameters (the feel hand's population) can be fitted");
     c->add_option("--json", args->json, "Write the fitted parameters, every target's figure and the trace as JSON")->required();
     c->callback([args, &rc] {
         args->target = installed_data_path(args->target);

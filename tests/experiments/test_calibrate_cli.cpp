@@ -6,7 +6,10 @@
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 using namespace cli_test;
 
@@ -115,4 +118,49 @@ TEST_CASE("experiment calibrate --pool-from: a merged run of the protocol stands
     CHECK(few.exit_code == 2);
     CHECK(contains(few.err, "holds 2 participants, 3 asked"));
     CHECK_FALSE(std::filesystem::exists(dir.file("x.json")));
+}
+
+namespace {
+// Seed 002's task in small: force alone, a few trials, the hand that moves by feel fitted.
+const char* kSlide = R"({"format": "contactlab experiment protocol", "version": 1, "name": "small 002", "seed": "002",
+  "task": "bump-counting", "conditions": [{"name": "F", "contact_location": false}], "stimuli": [0, 1, 2], "trials": 3,
+  "answers": ["0", "1", "2"], "hand": {"speed": 0.05, "press": 0.003}, "finger": {"radius": 0.020, "length": 0.020},
+  "force": {"stiffness": 1300, "max_force": 1.5}, "bumps": {"small": 0.003, "large": 0.018, "length": 0.184, "base_span": 0.02},
+  "participant": {"hand": {"slide_speed_mps": 0.05}}})";
+// A time per trial the start (50 mm/s over 16.4 cm, over 3 s with no bump and more with them)
+// cannot give: only a faster slide reaches it.
+const char* kSlideTargets = R"({"format": "contactlab calibration targets", "version": 1, "targets": [
+  {"name": "time F", "protocol": "slide.json", "figure": "/conditions/F/time_s/mean", "value": 1.5, "scale": 0.5, "source": "made up for the test"},
+  {"name": "breaks F", "protocol": "slide.json", "figure": "/conditions/F/contact_breaks/mean", "value": 4.9, "scale": 1.2, "source": "held out"}]})";
+}  // namespace
+
+TEST_CASE("experiment calibrate --hand feel: the feel hand's free speed fitted to a time per trial, breaks held out") {
+    TempDir dir;
+    write_text(dir.file("slide.json"), kSlide);
+    write_text(dir.file("t.json"), kSlideTargets);
+    auto run = [&](std::vector<std::string> extra) {
+        std::vector<std::string> args = {"experiment", "calibrate", dir.file("slide.json"), "--target", dir.file("t.json"), "--param",
+                                         "hand.slide_speed_mps=0.02:0.2", "--fit", "time F", "--participants", "2", "--evaluations",
+                                         "8", "--jobs", "1", "--json", dir.file("c.json")};
+        args.insert(args.end(), extra.begin(), extra.end());
+        return run_contactlab(args);
+    };
+    // The protocol's own hand is the scripted one, which the feel hand's population does not move.
+    const auto scripted = run({});
+    CHECK(scripted.exit_code == 2);
+    CHECK(contains(scripted.err, "give --hand feel"));
+    const auto p = run({"--hand", "feel"});
+    INFO(p.out << p.err);
+    REQUIRE(p.exit_code == 0);
+    const auto j = nlohmann::json::parse(read_text(dir.file("c.json")));
+    CHECK(j["hand"] == "feel");
+    CHECK(j["start"]["hand.slide_speed_mps"].get<double>() == doctest::Approx(0.05));  // the protocol's own
+    // The time per trial falls as the free speed rises: the fit moves the speed up from its start,
+    // and the time toward the target.
+    CHECK(j["parameters"]["hand.slide_speed_mps"].get<double>() > 0.05 * 1.2);
+    const auto& time = j["targets"][0];
+    CHECK(time["fitted"] == true);
+    CHECK(std::abs(time["simulated"].get<double>() - 1.5) < std::abs(time["start"].get<double>() - 1.5) - 0.5);
+    CHECK(j["targets"][1]["fitted"] == false);
+    CHECK(j["targets"][1]["simulated"].is_number());
 }

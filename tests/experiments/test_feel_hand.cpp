@@ -305,3 +305,45 @@ TEST_CASE("feel hand: a guarded slide holds back against a rising face and climb
     CHECK(contact_breaks(free) <= 2);
     CHECK(contact_breaks(guarded) <= 2);
 }
+
+TEST_CASE("protocols: participant.hand sets the feel hand's population, and a bad key or value is refused naming it") {
+    const std::string text = cli_test::read_text(protocol_path("002-bump-counting.json"));
+    const auto with_hand = [&](const std::string& hand) {
+        std::string t = text;
+        t.insert(t.rfind('}'), R"(, "participant": {"hand": )" + hand + "}");
+        return t;
+    };
+    const Protocol p = parse_protocol(with_hand(R"({"slide_speed_mps": 0.07, "pace_log_sd": 0.1})"), "p.json");
+    CHECK(p.participant.hand.slide_speed_mps == 0.07);
+    CHECK(p.participant.hand.pace_log_sd == 0.1);
+    CHECK(p.participant.hand.delay_mean_s == kPopulation.delay_mean_s);  // the rest as shipped
+    // The person drawn from it: the population's speed, their own pace within its narrower spread.
+    const Person a = draw_person(5, p.participant.hand);
+    CHECK(a.slide_speed_mps == 0.07);
+    CHECK(std::abs(std::log(a.pace)) < 5.0 * 0.1);
+    CHECK_THROWS_WITH_AS(parse_protocol(with_hand(R"({"speed": 0.07})"), "p.json"), doctest::Contains("participant.hand.speed: unknown key"),
+                         ExperimentError);
+    CHECK_THROWS_WITH_AS(parse_protocol(with_hand(R"({"hold_back": 0.5})"), "p.json"),
+                         doctest::Contains("participant.hand.hold_back: must lie in"), ExperimentError);
+    CHECK_THROWS_WITH_AS(parse_protocol(with_hand(R"({"delay_min_s": 0.3, "delay_max_s": 0.2})"), "p.json"),
+                         doctest::Contains("delay_min_s must not exceed delay_max_s"), ExperimentError);
+}
+
+TEST_CASE("people: a trial's pace is the person's, varied by the population's trial spread from the trial's seed") {
+    const Person a = draw_person(42);
+    HandPopulation q = kPopulation;
+    q.trial_pace_log_sd = 0.0;
+    CHECK(trial_pace(a, q, 7) == a.pace);  // no spread: exactly theirs
+    q.trial_pace_log_sd = 0.2;
+    CHECK(trial_pace(a, q, 7) == trial_pace(a, q, 7));
+    // 4000 trials: the log pace's mean is the person's and its sd the spread, within 5 standard errors.
+    const int n = 4000;
+    double s = 0.0, s2 = 0.0;
+    for (int i = 0; i < n; ++i) {
+        const double l = std::log(trial_pace(a, q, static_cast<std::uint64_t>(i) * 104729u + 3u) / a.pace);
+        s += l, s2 += l * l;
+    }
+    const double m = s / n, sd = std::sqrt(s2 / n - m * m);
+    CHECK(std::abs(m) < 5.0 * 0.2 / std::sqrt(n));
+    CHECK(sd == doctest::Approx(0.2).epsilon(0.05));
+}

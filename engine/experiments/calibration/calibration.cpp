@@ -141,15 +141,22 @@ double figure_of(const json& analysis, const CalibrationTarget& t) {
     return b != 0.0 ? a / b : static_cast<double>(NAN);
 }
 
+// The feel hand's population (protocol.hpp's HandPopulation) is fitted by "hand.NAME".
+constexpr const char* kHandPrefix = "hand.";
+
 double* participant_parameter(ParticipantModel& m, const std::string& name) {
     for (const auto& [n, field] : fields())
         if (name == n) return &(m.*field);
+    if (name.rfind(kHandPrefix, 0) == 0)
+        for (const HandField& f : hand_population_fields())
+            if (name.substr(std::strlen(kHandPrefix)) == f.name) return &(m.hand.*f.member);
     return nullptr;
 }
 
 std::string participant_parameter_names() {
     std::string s;
     for (const auto& [n, field] : fields()) s += (s.empty() ? "" : ", ") + std::string(n);
+    for (const HandField& f : hand_population_fields()) s += ", " + std::string(kHandPrefix) + f.name;
     return s;
 }
 
@@ -179,6 +186,14 @@ json calibrate(const CalibrationOptions& o) {
         if (!(std::isfinite(p.lo) && std::isfinite(p.hi) && p.lo < p.hi))
             throw ExperimentError("calibrate: " + p.name + ": bounds need LO < HI, both finite");
     }
+    // The feel hand's population moves nothing on a protocol run with the scripted hand: a fit of it
+    // there would wander on a flat objective.
+    for (const CalibrationParameter& p : o.parameters)
+        if (p.name.rfind(kHandPrefix, 0) == 0)
+            for (const std::string& file : used)
+                if ((o.hand ? *o.hand : by_file[file]->hand_model) != HandModel::feel)
+                    throw ExperimentError("calibrate: " + p.name + " is the feel hand's, and " + file +
+                                          " runs with the scripted hand (give --hand feel)");
     // The start point: each parameter at the protocols' own value (the first protocol's), moved
     // inside its bounds' inner 98 % (the logistic below never reaches a bound).
     std::vector<double> v_start;
@@ -202,6 +217,10 @@ json calibrate(const CalibrationOptions& o) {
             throw ExperimentError("--pool-from " + path + ": not a run of any protocol a target needs (by its meta's protocol_sha256)");
         if (start_tables.count(file)) throw ExperimentError("--pool-from " + path + ": a second pool for " + file);
         const FinishedRun run = read_pool_run(path, *by_file[file], o.participants.size(), "--pool-from");
+        const char* hand = to_string(o.hand ? *o.hand : by_file[file]->hand_model);
+        if (run.meta.value("hand", std::string("scripted")) != hand)
+            throw ExperimentError("--pool-from " + path + ": run with the " + run.meta.value("hand", std::string("scripted")) +
+                                  " hand, the evaluations with the " + hand + " one");
         if (run.meta.value("seed", json()) != json(o.seed))
             throw ExperimentError("--pool-from " + path + ": run with seed " + run.meta.value("seed", json()).dump() +
                                   ", the evaluations with " + std::to_string(o.seed));
@@ -232,6 +251,7 @@ json calibrate(const CalibrationOptions& o) {
                 continue;
             }
             Protocol p = *by_file[file];
+            if (o.hand) p.hand_model = *o.hand;
             for (std::size_t i = 0; i < o.parameters.size(); ++i) *participant_parameter(p.participant, o.parameters[i].name) = values[i];
             RunOptions r;
             r.participants = o.participants;
@@ -336,7 +356,8 @@ json calibrate(const CalibrationOptions& o) {
     return {{"parameters", params},       {"start", start_params}, {"bounds", bounds},
             {"objective", objective_of(final_figures)}, {"start_objective", start_objective}, {"evaluations", evaluations},
             {"fit_to", o.fit_to},         {"participants", participants}, {"seed", o.seed},
-            {"targets", targets},         {"trace", trace}, {"pool_from", pool_from}};
+            {"targets", targets},         {"trace", trace}, {"pool_from", pool_from},
+            {"hand", o.hand ? json(to_string(*o.hand)) : json(nullptr)}};
 }
 
 }  // namespace contactlab::experiments

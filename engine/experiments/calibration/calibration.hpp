@@ -23,6 +23,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -67,6 +68,9 @@ struct CalibrationOptions {
     std::vector<CalibrationTarget> targets;
     std::vector<std::string> fit_to;        // target names in the objective; the rest are held out
     std::vector<CalibrationParameter> parameters;
+    // The hand every evaluation's runs use (`experiment run --hand`); unset: each protocol's own.
+    // A pool file must have been run with the same hand.
+    std::optional<HandModel> hand;
     std::vector<std::uint64_t> participants = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10};
     std::uint64_t seed = 1;
     int jobs = 1;
@@ -83,7 +87,7 @@ struct CalibrationOptions {
 // "start_objective", "evaluations", "fit_to", "participants", "seed", "targets": [{"name",
 // "protocol", "figure", "over", "value", "scale", "source", "fitted", "start", "simulated",
 // "error", "within_scale"}], "trace": [{"parameters", "objective"}], "pool_from": [{"file",
-// "sha256", "protocol"}]}. Throws ExperimentError for a target naming a protocol not given, an
+// "sha256", "protocol"}], "hand": "scripted", "feel" or null (each protocol's own)}. Throws ExperimentError for a target naming a protocol not given, an
 // unknown parameter, bad bounds, a fit target unknown, or a pool file that is not a finished run
 // of a given protocol with this seed and these participants, or whose protocol's own parameter
 // values are not the start (outside the bounds' inner 98 %).

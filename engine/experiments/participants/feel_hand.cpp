@@ -20,11 +20,10 @@ constexpr double kLoopGain = 0.4;
 constexpr double kNoiseTau = 0.05;   // s, the low-pass of the motor noise
 constexpr double kSpeedTau = 0.15;   // s, how fast the speed follows its command
 constexpr double kTouch = 0.02;      // N: a force below this is not felt as contact
-// A guarded slide (FeelHand::set_guarded): it stops advancing at kHoldBack times the target
-// force, and never means the finger to be more than kMaxStretch target-force stretches (F* / the
-// series stiffness) deeper than the arm feels it. Both this model's choice: twice the target is
-// where a person pressing at a few tenths of a newton meets an obstacle rather than the surface.
-constexpr double kHoldBack = 2.0;
+// A guarded slide (FeelHand::set_guarded): it stops advancing at the person's hold_back times the
+// target force (HandPopulation), and never means the finger to be more than kMaxStretch
+// target-force stretches (F* / the series stiffness) deeper than the arm feels it (this model's
+// choice).
 constexpr double kMaxStretch = 2.0;
 
 // An Ornstein-Uhlenbeck step of unit stationary variance over dt.
@@ -70,8 +69,8 @@ drivers::PathSample FeelHand::step(const drivers::TickRecord& now) {
     noise_force_ = ou(noise_force_, dt_, rng_);
     // A guarded move: pushing against more than the target force (the surface rose ahead of the
     // finger faster than the felt tangent turned), the hand holds back its advance, fully at
-    // kHoldBack times the target, until the press loop and the felt normal have caught up.
-    const double resist = std::clamp((felt_force_ - person_.press_force_n) / ((kHoldBack - 1.0) * person_.press_force_n), 0.0, 1.0);
+    // hold_back times the target, until the press loop and the felt normal have caught up.
+    const double resist = std::clamp((felt_force_ - person_.press_force_n) / ((person_.hold_back - 1.0) * person_.press_force_n), 0.0, 1.0);
     // Out of touch, the hand does not go on along a tangent it no longer feels: it reaches back
     // for the surface along the last felt normal (the press below) and advances again on touch.
     const double go = felt_contact_ ? 1.0 - (guard_ ? resist : 0.0) : 0.0;

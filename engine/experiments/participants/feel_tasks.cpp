@@ -78,7 +78,8 @@ constexpr double kEarlyMargin = 0.3;
 
 FeelTrial feel_contour_following(const Protocol& p, const Condition& c, const PlannedTrial& t, std::uint64_t& rng) {
     const ParticipantModel& m = p.participant;
-    const Person person = draw_person(t.person);
+    Person person = draw_person(t.person, m.hand);
+    person.pace = trial_pace(person, m.hand, t.seed);
     // The scripted person's draws, in its order: the same person notices the same way.
     const double loc_threshold = noisy(m.location_threshold_mm, m.location_noise_mm, rng) * 1e-3;    // m
     const double angle_threshold = noisy(m.force_angle_threshold_deg, m.force_angle_noise_deg, rng);  // deg
@@ -171,14 +172,13 @@ FeelTrial feel_contour_following(const Protocol& p, const Condition& c, const Pl
     return out;
 }
 
-FeelTrial feel_slide(const Condition& c, const PlannedTrial& t, const Stimulus& st) {
-    const Person person = draw_person(t.person);
+FeelTrial feel_slide(const HandPopulation& people, const Condition& c, const PlannedTrial& t, const Stimulus& st) {
+    Person person = draw_person(t.person, people);
+    person.pace = trial_pace(person, people, t.seed);
     // Seed 002's people were told to be quick: 18.4 cm in 4.1-4.5 s, 41-45 mm/s on average, the
-    // bumps' tops taken slower. The free speed, 55 mm/s at the median pace, is fitted to that
-    // average (10 participants, seed 1: 45 mm/s gave 5.5 s a trial, 50 mm/s 4.9 s with contact
-    // breaks differing between the conditions, 55 mm/s 4.5 s; with the guarded slide, 6.4 s, and
-    // 75 mm/s 5.4 s with large bumps counted worse: left at 55 mm/s, docs/experiments.md).
-    const double v_free = 0.055 * person.pace;  // m/s
+    // bumps taken slower. The free speed at the median pace (HandPopulation::slide_speed_mps,
+    // 80 mm/s) is fitted to that time per trial (docs/experiments.md gives the fit).
+    const double v_free = person.slide_speed_mps * person.pace;  // m/s
     const double x0 = st.path.samples().front().x.x;
     // The slide ends where the scripted one does: its path's x at slide_end.
     const double x1 = st.path.at(st.slide_end).x.x;
@@ -188,7 +188,9 @@ FeelTrial feel_slide(const Condition& c, const PlannedTrial& t, const Stimulus& 
     hand.set_approach(kReach);
     hand.follow_normal(0.0);
     double felt_since = -1.0;   // s
-    double last_angle = 0.0, turn_rate = 0.0;  // rad, rad/s (the felt normal's, low-passed over 0.1 s)
+    // rad; rad/s: the felt normal's rate of turn, unsigned and signed (counter-clockwise
+    // positive), low-passed over 0.1 s.
+    double last_angle = 0.0, turn_rate = 0.0, turn_signed = 0.0;
     bool sliding = false;
     FeelTrial out;
     const Steer steer = [&](const TickRecord& r, PathSample& next) {
@@ -213,7 +215,16 @@ FeelTrial feel_slide(const Condition& c, const PlannedTrial& t, const Stimulus& 
             if (da > kPi) da -= 2.0 * kPi;
             if (da < -kPi) da += 2.0 * kPi;
             last_angle = a;
-            turn_rate += (std::abs(da) * kTrialRate - turn_rate) * (1.0 - std::exp(-1.0 / (0.1 * kTrialRate)));
+            const double low = 1.0 - std::exp(-1.0 / (0.1 * kTrialRate));
+            turn_rate += (std::abs(da) * kTrialRate - turn_rate) * low;
+            turn_signed += (da * kTrialRate - turn_signed) * low;
+            // What the hand feels is a delay old: the contour has turned on by the felt rate of
+            // turn times the delay since, and the hand moves along the felt tangent turned that
+            // much further (a forward model predicting the felt normal over the feedback delay,
+            // Miall & Wolpert 1996): into the surface over a bump's top (the normal turning
+            // clockwise, da < 0), away from it where the contour rises ahead; never by more than
+            // the 0.5 rad of seed 000's deliberate tip.
+            hand.set_turn(std::clamp(-turn_signed * person.delay_s, -kTipTurn, kTipTurn));
             const double curvature = turn_rate / std::max(0.005, hand.speed());  // 1/m
             hand.set_speed(curvature > 50.0 ? v_free * std::cbrt(50.0 / curvature) : v_free);
         }

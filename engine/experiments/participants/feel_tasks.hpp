@@ -13,7 +13,8 @@
 //             pressing, the finger turned with the felt normal, at their free speed slowed
 //             where the felt contour turns (the two-thirds power law of drawing movements,
 //             Lacquaniti, Terzuolo & Viviani 1983: speed falls as curvature^(-1/3)) beyond
-//             1 / 20 mm.
+//             1 / 20 mm, and moving along the felt tangent turned on by the felt rate of turn
+//             times the delay (a forward model of what the delay hides, Miall & Wolpert 1996).
 #pragma once
 
 #include "engine/experiments/participants/servo_trial.hpp"
@@ -37,7 +38,7 @@ struct FeelTrial {
 FeelTrial feel_contour_following(const Protocol& p, const Condition& c, const PlannedTrial& t, std::uint64_t& rng);
 
 // Seed 002's slide by feel over `st` (the scripted stimulus: its scene, and its path as the rig's
-// envelope and the slide's start and end in x).
-FeelTrial feel_slide(const Condition& c, const PlannedTrial& t, const Stimulus& st);
+// envelope and the slide's start and end in x), by a person drawn from `people`.
+FeelTrial feel_slide(const HandPopulation& people, const Condition& c, const PlannedTrial& t, const Stimulus& st);
 
 }  // namespace contactlab::experiments

@@ -17,7 +17,15 @@ Person draw_person(std::uint64_t person_seed, const PersonPopulation& q) {
     p.pace = std::exp(q.pace_log_sd * normal01(rng));
     p.force_noise_cv = std::max(0.02, q.force_noise_cv_mean + q.force_noise_cv_sd * normal01(rng));
     p.speed_noise_cv = std::max(0.03, q.speed_noise_cv_mean + q.speed_noise_cv_sd * normal01(rng));
+    p.slide_speed_mps = q.slide_speed_mps;
+    p.hold_back = q.hold_back;
     return p;
+}
+
+double trial_pace(const Person& person, const HandPopulation& q, std::uint64_t trial_seed) {
+    if (q.trial_pace_log_sd <= 0.0) return person.pace;
+    std::uint64_t rng = mix64(trial_seed ^ 0x9ACEull);
+    return person.pace * std::exp(q.trial_pace_log_sd * normal01(rng));
 }
 
 }  // namespace contactlab::experiments

@@ -7,6 +7,8 @@
 // that moves by feel"); kPopulation below holds the distributions' numbers.
 #pragma once
 
+#include "engine/experiments/protocol/protocol.hpp"
+
 #include <cstdint>
 
 namespace contactlab::experiments {
@@ -25,18 +27,21 @@ struct Person {
     // speed as a share of the speed (Harris & Wolpert 1998; Jones, Hamilton & Wolpert 2002).
     double force_noise_cv = 0.1;
     double speed_noise_cv = 0.15;
+    // The population's, the same for everyone: seed 002's free speed at the median pace (m/s)
+    // and the guarded slide's hold-back (a multiple of the press force).
+    double slide_speed_mps = 0.08;
+    double hold_back = 2.0;
 };
 
-// The population the people are drawn from: each parameter's mean (or median) and spread.
-struct PersonPopulation {
-    double delay_mean_s = 0.12, delay_sd_s = 0.02, delay_min_s = 0.08, delay_max_s = 0.20;  // normal, clipped
-    double press_median_n = 0.7, press_log_sd = 0.2;                                        // log-normal
-    double pace_log_sd = 0.3;                                                               // log-normal, median 1
-    double force_noise_cv_mean = 0.1, force_noise_cv_sd = 0.02;                             // normal, at least 0.02
-    double speed_noise_cv_mean = 0.15, speed_noise_cv_sd = 0.03;                            // normal, at least 0.03
-};
-
+// The population the people are drawn from (protocol.hpp's HandPopulation, a protocol's
+// `participant.hand`): each parameter's mean (or median) and spread.
+using PersonPopulation = HandPopulation;
 inline constexpr PersonPopulation kPopulation{};
+
+// This trial's pace: the person's, varied from trial to trial by the population's
+// trial_pace_log_sd (log-normal, median their own), from the trial's seed (its own stream: the
+// trial's other draws are unchanged). Exactly theirs, drawing nothing, when that sd is 0.
+double trial_pace(const Person& person, const HandPopulation& population, std::uint64_t trial_seed);
 
 // The person of a participant's `person` seed (deterministic; a different stream from the
 // trials' noise).

@@ -237,7 +237,7 @@ TrialOutcome bump_counting(const Protocol& p, const Condition& c, const PlannedT
     const Stimulus st = make_stimulus(p, c, t);
     const bool feel = p.hand_model == HandModel::feel;
     FeelTrial f;
-    if (feel) f = feel_slide(c, t, st);
+    if (feel) f = feel_slide(m.hand, c, t, st);
     else f.trace = run_servo_trial(st.scene, st.path, c.contact_location), f.start = st.slide_start, f.end = st.slide_end;
     const TrialTrace& tr = f.trace;
     std::vector<double> angle, location, height, travel, when;

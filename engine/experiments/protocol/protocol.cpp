@@ -298,6 +298,27 @@ int comparison_interval(std::uint64_t trial_seed) { return static_cast<int>(mix6
 
 const char* to_string(HandModel h) { return h == HandModel::feel ? "feel" : "scripted"; }
 
+const std::vector<HandField>& hand_population_fields() {
+    using H = HandPopulation;
+    static const std::vector<HandField> f = {
+        {"delay_mean_s", &H::delay_mean_s, 0.02, 0.5, "s"},
+        {"delay_sd_s", &H::delay_sd_s, 0.0, 0.2, "s"},
+        {"delay_min_s", &H::delay_min_s, 0.01, 0.5, "s"},
+        {"delay_max_s", &H::delay_max_s, 0.01, 1.0, "s"},
+        {"press_median_n", &H::press_median_n, 0.05, 1.4, "N"},
+        {"press_log_sd", &H::press_log_sd, 0.0, 1.0, ""},
+        {"pace_log_sd", &H::pace_log_sd, 0.0, 1.0, ""},
+        {"trial_pace_log_sd", &H::trial_pace_log_sd, 0.0, 1.0, ""},
+        {"force_noise_cv_mean", &H::force_noise_cv_mean, 0.0, 1.0, ""},
+        {"force_noise_cv_sd", &H::force_noise_cv_sd, 0.0, 0.5, ""},
+        {"speed_noise_cv_mean", &H::speed_noise_cv_mean, 0.0, 1.0, ""},
+        {"speed_noise_cv_sd", &H::speed_noise_cv_sd, 0.0, 0.5, ""},
+        {"slide_speed_mps", &H::slide_speed_mps, 0.005, 0.3, "m/s"},
+        {"hold_back", &H::hold_back, 1.1, 10.0, ""},
+    };
+    return f;
+}
+
 bool parse_hand_model(const std::string& name, HandModel& out) {
     if (name == "scripted") out = HandModel::scripted;
     else if (name == "feel") out = HandModel::feel;
@@ -516,7 +537,7 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
         r.only(m, "participant", {"force_angle_threshold_deg", "force_angle_noise_deg", "location_threshold_mm",
                                   "location_noise_mm", "stiffness_noise", "reaction_time_s", "reaction_time_sd_s", "stop_time_s",
                                   "lapse_rate_hz", "lapse_duration_s", "tilt_range_noise", "edge_rate_noise",
-                                  "path_threshold_mm", "path_noise_mm"});
+                                  "path_threshold_mm", "path_noise_mm", "hand"});
         ParticipantModel& pm = p.participant;
         pm.force_angle_threshold_deg = r.number(m, "participant", "force_angle_threshold_deg", 0.0, 90.0, "deg", pm.force_angle_threshold_deg);
         pm.force_angle_noise_deg = r.number(m, "participant", "force_angle_noise_deg", 0.0, 90.0, "deg", pm.force_angle_noise_deg);
@@ -532,6 +553,14 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
         pm.edge_rate_noise = r.number(m, "participant", "edge_rate_noise", 0.0, 10.0, "", pm.edge_rate_noise);
         pm.path_threshold_mm = r.number(m, "participant", "path_threshold_mm", 0.0, 50.0, "mm", pm.path_threshold_mm);
         pm.path_noise_mm = r.number(m, "participant", "path_noise_mm", 0.0, 50.0, "mm", pm.path_noise_mm);
+        if (m.contains("hand")) {
+            std::set<std::string> keys;
+            for (const HandField& f : hand_population_fields()) keys.insert(f.name);
+            r.only(m["hand"], "participant.hand", keys);
+            for (const HandField& f : hand_population_fields())
+                pm.hand.*f.member = r.number(m["hand"], "participant.hand", f.name, f.lo, f.hi, f.unit, pm.hand.*f.member);
+            if (!(pm.hand.delay_min_s <= pm.hand.delay_max_s)) r.fail("participant.hand", "delay_min_s must not exceed delay_max_s");
+        }
     }
     return p;
 }

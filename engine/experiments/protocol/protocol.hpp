@@ -48,6 +48,37 @@ const char* to_string(HandModel h);
 // "scripted" or "feel"; false for anything else.
 bool parse_hand_model(const std::string& name, HandModel& out);
 
+// The people whose hands move by feel (`hand.model` "feel"): the population each simulated
+// participant's hand is drawn from once (participants/person.hpp), each parameter's mean or
+// median and spread, and the speeds and limits every such hand shares. A protocol's
+// `participant.hand` object may change any of them, and `experiment calibrate --hand feel` fits
+// them ("hand.NAME"); docs/experiments.md ("The hand that moves by feel") gives their sources.
+struct HandPopulation {
+    double delay_mean_s = 0.12, delay_sd_s = 0.02, delay_min_s = 0.08, delay_max_s = 0.20;  // normal, clipped
+    double press_median_n = 0.7, press_log_sd = 0.2;                                        // log-normal
+    double pace_log_sd = 0.3;                                                               // log-normal, median 1
+    double trial_pace_log_sd = 0.0;  // log-normal, median 1: each trial's pace about the person's
+    double force_noise_cv_mean = 0.1, force_noise_cv_sd = 0.02;                             // normal, at least 0.02
+    double speed_noise_cv_mean = 0.15, speed_noise_cv_sd = 0.03;                            // normal, at least 0.03
+    // Seed 002's free speed along the contour at the median pace (m/s): its people were told to
+    // be quick.
+    double slide_speed_mps = 0.08;
+    // The guarded slide (feel_hand.hpp): pushing at this multiple of the target force, the hand
+    // stops advancing (twice the target is where a person pressing at a few tenths of a newton
+    // meets an obstacle rather than the surface: this model's choice).
+    double hold_back = 2.0;
+};
+
+// HandPopulation's numbers by name (a protocol's `participant.hand` keys, calibrate's
+// "hand.NAME"), each with the range a protocol may give it.
+struct HandField {
+    const char* name;
+    double HandPopulation::*member;
+    double lo, hi;
+    const char* unit;
+};
+const std::vector<HandField>& hand_population_fields();
+
 // The simulated participant (sim_participant.hpp): one model of a person for every task. The
 // thresholds of the cues it reads from what the device displayed and the Gaussian noise on each,
 // in the units given, how it explores and how its attention lapses. The defaults are the person;
@@ -105,6 +136,8 @@ struct ParticipantModel {
     // Edge sharpness: relative (Weber) noise on each felt peak rate of change, of the force's
     // direction and of the contact location, per edge felt.
     double edge_rate_noise = 0.1;
+    // The people the hand that moves by feel belongs to (the scripted hand does not use them).
+    HandPopulation hand;
 };
 
 // How the next trial's stimulus is chosen (procedure.hpp runs the adaptive ones).
