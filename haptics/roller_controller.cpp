@@ -37,8 +37,20 @@ bool roller_gains_usable(const RollerGains& g) noexcept {
            gain(g.pole) && positive(g.max_pole_period) && gain(g.back_emf);
 }
 
+const RollerController::Derived& RollerController::derived(double dt) noexcept {
+    if (!(derived_.valid && derived_.dt == dt)) {
+        derived_.usable = roller_gains_usable(gains_);
+        derived_.alpha = 1.0 - std::exp(-2.0 * 3.141592653589793 * gains_.d_cutoff_hz * dt);
+        derived_.alpha_ff = 1.0 - std::exp(-2.0 * 3.141592653589793 * gains_.ff_cutoff_hz * dt);
+        derived_.sampled = sampled_roller_gains(gains_, dt);
+        derived_.dt = dt;
+        derived_.valid = true;
+    }
+    return derived_;
+}
+
 double RollerController::step(double l_d, double l, double dt) noexcept {
-    if (!std::isfinite(l_d) || !std::isfinite(l) || !(dt > 0.0) || !std::isfinite(dt) || !roller_gains_usable(gains_)) {
+    if (!std::isfinite(l_d) || !std::isfinite(l) || !(dt > 0.0) || !std::isfinite(dt) || !derived(dt).usable) {
         reset(l);
         return 0.0;
     }
@@ -51,13 +63,12 @@ double RollerController::step(double l_d, double l, double dt) noexcept {
     // Derivative on measurement, first-order low-pass (exact discretisation of 1/(tau s + 1)).
     const double raw_rate = (l - prev_l_) / dt;
     prev_l_ = l;
-    const double alpha = 1.0 - std::exp(-2.0 * 3.141592653589793 * gains_.d_cutoff_hz * dt);
-    rate_f_ += alpha * (raw_rate - rate_f_);
+    const Derived& k = derived_;  // made for this dt above
+    rate_f_ += k.alpha * (raw_rate - rate_f_);
     // The target's rate has its own, slower filter: it carries the encoders' steps (see ff_cutoff_hz).
-    const double alpha_ff = 1.0 - std::exp(-2.0 * 3.141592653589793 * gains_.ff_cutoff_hz * dt);
-    target_rate_f_ += alpha_ff * (target_rate - target_rate_f_);
+    target_rate_f_ += k.alpha_ff * (target_rate - target_rate_f_);
 
-    const RollerGains g = sampled_roller_gains(gains_, dt);
+    const RollerGains& g = k.sampled;
     const double umax = std::max(0.0, g.max_drive);
     const double p = g.kp * e;
     const double d = -g.kd * rate_f_ + g.kff * target_rate_f_;

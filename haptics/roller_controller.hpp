@@ -82,7 +82,10 @@ public:
     RollerController() = default;
     RollerController(const RollerGains& g, const RollerTravel& travel) : gains_(g), travel_(travel) {}
 
-    void set_gains(const RollerGains& g) noexcept { gains_ = g; }
+    void set_gains(const RollerGains& g) noexcept {
+        gains_ = g;
+        derived_.valid = false;
+    }
     const RollerGains& gains() const noexcept { return gains_; }
     void set_travel(const RollerTravel& t) noexcept { travel_ = t; }
     const RollerTravel& travel() const noexcept { return travel_; }
@@ -99,8 +102,22 @@ public:
     bool saturated() const noexcept { return saturated_; }
 
 private:
+    // What a tick derives from the gains and its period, kept while both hold: the filters' two
+    // exponentials, the gains sampled for dt and their check were a third of the roller's tick in
+    // a simulated study (the servo's period does not change from tick to tick).
+    struct Derived {
+        bool valid = false;
+        double dt = 0.0;        // s
+        bool usable = false;    // roller_gains_usable(gains_)
+        double alpha = 0.0;     // the measured rate's low-pass coefficient at dt
+        double alpha_ff = 0.0;  // the target rate's
+        RollerGains sampled;    // sampled_roller_gains(gains_, dt)
+    };
+    const Derived& derived(double dt) noexcept;
+
     RollerGains gains_;
     RollerTravel travel_;
+    Derived derived_;
     double integral_ = 0.0;   // drive units
     double rate_f_ = 0.0;     // filtered dl/dt (m/s)
     double target_rate_f_ = 0.0;  // filtered dl_d/dt (m/s)
