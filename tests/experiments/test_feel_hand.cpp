@@ -321,6 +321,11 @@ TEST_CASE("protocols: participant.hand sets the feel hand's population, and a ba
     const Person a = draw_person(5, p.participant.hand);
     CHECK(a.slide_speed_mps == 0.07);
     CHECK(std::abs(std::log(a.pace)) < 5.0 * 0.1);
+    // The force-alone pitch drift: the population's, everyone's, and a protocol may turn it off.
+    CHECK(a.angle_drift_rad_sqrt_m == kPopulation.angle_drift_rad_sqrt_m);
+    CHECK(parse_protocol(with_hand(R"({"angle_drift_rad_sqrt_m": 0})"), "p.json").participant.hand.angle_drift_rad_sqrt_m == 0.0);
+    CHECK_THROWS_WITH_AS(parse_protocol(with_hand(R"({"angle_drift_rad_sqrt_m": -0.1})"), "p.json"),
+                         doctest::Contains("participant.hand.angle_drift_rad_sqrt_m: must lie in"), ExperimentError);
     CHECK_THROWS_WITH_AS(parse_protocol(with_hand(R"({"speed": 0.07})"), "p.json"), doctest::Contains("participant.hand.speed: unknown key"),
                          ExperimentError);
     CHECK_THROWS_WITH_AS(parse_protocol(with_hand(R"({"hold_back": 0.5})"), "p.json"),

@@ -44,7 +44,7 @@ double angle_facing(Vec2 n) {
 
 FeelHand::FeelHand(const Person& person, drivers::PathSample start, double dt, std::uint64_t noise_seed)
     : person_(person), dt_(dt), rng_(mix64(noise_seed ^ 0x4A4Dull)), plan_(start.x), phi_(start.phi),
-      phi_goal_(start.phi) {
+      phi_goal_(start.phi), drift_rng_(mix64(noise_seed ^ 0xD81F7ull)) {
     const std::size_t n = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(person_.delay_s / dt_)));
     line_.resize(n);
     gain_ = kLoopGain / (person_.delay_s * kSeriesStiffness);
@@ -98,7 +98,11 @@ drivers::PathSample FeelHand::step(const drivers::TickRecord& now) {
     // The finger's angle: held, or turned with the felt normal and `lead` further round, never
     // past pointing straight down (the wrist's reach in a plane: -pi/2).
     if (follow_) phi_goal_ = std::max(-0.5 * kPi, angle_facing(normal_) - lead_);
-    phi_ = phi_goal_;
+    // Unfelt drift, once the strategy lets the angle drift: a random walk (a wrist held by
+    // proprioception alone wanders; with the contact location on the pad the person would see it).
+    if (drifting_ && person_.angle_drift_rad_sqrt_m > 0.0)
+        drift_ += person_.angle_drift_rad_sqrt_m * std::sqrt(v * dt_) * normal01(drift_rng_);
+    phi_ = phi_goal_ + drift_;
     // For the end of the device's next advance: the record was read at now.t, the device is at
     // now.t + dt and advances to now.t + 2 dt under this sample.
     return {now.t + 2.0 * dt_, intended, phi_};

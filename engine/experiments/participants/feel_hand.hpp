@@ -61,6 +61,11 @@ public:
     // caught up with a surface that rose ahead of it. Off while the strategy means to press into
     // the surface (tipping round seed 000's edge, where the force rises by intent).
     void set_guarded(bool on) { guard_ = on; }
+    // Let the finger's angle drift from the one the hand means, as a random walk with the
+    // hand's travel of the person's angle_drift_rad_sqrt_m (a posture held without feeling where
+    // on the pad the contact is: seed 000 without contact location). Its own noise stream: the
+    // rest of the trial's noise is unchanged.
+    void set_drifting(bool on) { drifting_ = on; }
 
     // What the hand has felt so far, `delay_s` late.
     bool felt_contact() const { return felt_contact_; }
@@ -89,6 +94,9 @@ private:
     bool guard_ = true;
     double gain_ = 0.0;                   // m/(s N), the press loop's integral gain
     double noise_speed_ = 0.0, noise_force_ = 0.0;  // unit-variance low-pass noises
+    bool drifting_ = false;
+    double drift_ = 0.0;        // rad, the angle's unfelt drift so far
+    std::uint64_t drift_rng_;   // its noise
 };
 
 }  // namespace contactlab::experiments

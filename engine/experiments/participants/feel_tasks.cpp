@@ -127,6 +127,9 @@ FeelTrial feel_contour_following(const Protocol& p, const Condition& c, const Pl
                 if (hand.felt_contact() && felt_since < 0.0) felt_since = r.t;
                 if (felt_since >= 0.0 && r.t - felt_since >= kSettle) {
                     hand.set_speed(v_top);
+                    // Without contact location the person does not feel where on the pad the
+                    // contact is, and their finger's pitch drifts unnoticed from here on.
+                    hand.set_drifting(!c.contact_location);
                     phase = Phase::slide;
                 }
                 break;

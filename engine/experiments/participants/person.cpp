@@ -19,6 +19,7 @@ Person draw_person(std::uint64_t person_seed, const PersonPopulation& q) {
     p.speed_noise_cv = std::max(0.03, q.speed_noise_cv_mean + q.speed_noise_cv_sd * normal01(rng));
     p.slide_speed_mps = q.slide_speed_mps;
     p.hold_back = q.hold_back;
+    p.angle_drift_rad_sqrt_m = q.angle_drift_rad_sqrt_m;
     return p;
 }
 

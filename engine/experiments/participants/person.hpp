@@ -31,6 +31,8 @@ struct Person {
     // and the guarded slide's hold-back (a multiple of the press force).
     double slide_speed_mps = 0.08;
     double hold_back = 2.0;
+    // The finger's unfelt pitch drift where the strategy lets it drift (rad per sqrt(m) travelled).
+    double angle_drift_rad_sqrt_m = 0.0;
 };
 
 // The population the people are drawn from (protocol.hpp's HandPopulation, a protocol's

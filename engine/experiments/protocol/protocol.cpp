@@ -315,6 +315,7 @@ const std::vector<HandField>& hand_population_fields() {
         {"speed_noise_cv_sd", &H::speed_noise_cv_sd, 0.0, 0.5, ""},
         {"slide_speed_mps", &H::slide_speed_mps, 0.005, 0.3, "m/s"},
         {"hold_back", &H::hold_back, 1.1, 10.0, ""},
+        {"angle_drift_rad_sqrt_m", &H::angle_drift_rad_sqrt_m, 0.0, 3.0, "rad/sqrt(m)"},
     };
     return f;
 }

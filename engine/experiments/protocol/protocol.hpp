@@ -67,6 +67,11 @@ struct HandPopulation {
     // stops advancing (twice the target is where a person pressing at a few tenths of a newton
     // meets an obstacle rather than the surface: this model's choice).
     double hold_back = 2.0;
+    // Seed 000 without contact location: the finger's pitch, which the person cannot see and,
+    // without the display's contact location, does not feel, drifts as a random walk with the
+    // hand's travel, of this many rad per sqrt(m) travelled (limb posture drifts with movement
+    // made without feedback; docs/experiments.md). 0: none.
+    double angle_drift_rad_sqrt_m = 0.3;
 };
 
 // HandPopulation's numbers by name (a protocol's `participant.hand` keys, calibrate's
