@@ -196,6 +196,8 @@ FeelTrial feel_slide(const HandPopulation& people, const Condition& c, const Pla
     double last_angle = 0.0, turn_rate = 0.0, turn_signed = 0.0;
     bool sliding = false;
     FeelTrial out;
+    // The felt turn's low-pass over 0.1 s: its coefficient a tick, the same every tick.
+    const double low = 1.0 - std::exp(-1.0 / (0.1 * kTrialRate));
     const Steer steer = [&](const TickRecord& r, PathSample& next) {
         if (!sliding) {
             if (hand.felt_contact() && felt_since < 0.0) felt_since = r.t;
@@ -218,7 +220,6 @@ FeelTrial feel_slide(const HandPopulation& people, const Condition& c, const Pla
             if (da > kPi) da -= 2.0 * kPi;
             if (da < -kPi) da += 2.0 * kPi;
             last_angle = a;
-            const double low = 1.0 - std::exp(-1.0 / (0.1 * kTrialRate));
             turn_rate += (std::abs(da) * kTrialRate - turn_rate) * low;
             turn_signed += (da * kTrialRate - turn_signed) * low;
             // What the hand feels is a delay old: the contour has turned on by the felt rate of
