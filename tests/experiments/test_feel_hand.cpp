@@ -211,6 +211,77 @@ TEST_CASE("simulated participant by feel: seed 000 without noise, the edge is fe
     CHECK(times.back().second - times.front().second == doctest::Approx(0.06 / v).epsilon(0.15));
 }
 
+TEST_CASE("simulated participant by feel: seed 000 with force alone, each person slides along the top at the pace their own threshold allows") {
+    // People differ in how far the force must turn before they notice it (participant.hand's
+    // angle_threshold_sd_deg): each person's speed along the top leaves the pad past *their* cue,
+    // R sin(their threshold) past the edge, for their reaction and a delay. Noiseless people (no
+    // trial-to-trial threshold noise, no lapses, no pitch drift), force alone: each trial's time
+    // grows from d = 4 to 10 cm by 6 cm at that speed, so the person with the higher threshold is
+    // the slower, by the ratio of the pad their cues leave.
+    Protocol p = load_protocol(protocol_path("000-contour-following.json"));
+    p.hand_model = HandModel::feel;
+    p.repetitions = 1;
+    p.conditions.erase(p.conditions.begin() + 1);  // force alone only
+    REQUIRE_FALSE(p.conditions.front().contact_location);
+    p.participant.force_angle_noise_deg = 0.0;
+    p.participant.reaction_time_sd_s = 0.0;
+    p.participant.lapse_rate_hz = 0.0;
+    p.participant.hand.angle_drift_rad_sqrt_m = 0.0;
+    p.participant.hand.angle_threshold_sd_deg = 3.0;
+    TempDir dir;
+    RunOptions o;
+    o.participants = {1, 2, 3};
+    o.traces = false;
+    o.output = dir.file("r.csv");
+    run_experiment(p, o);
+    const ResultsTable t = read_results_csv(o.output);
+    REQUIRE(t.rows.size() == 3 * p.stimuli.size());
+    std::vector<double> offsets;
+    for (int who = 1; who <= 3; ++who) {
+        const Person person = draw_person(person_seed(o.seed, who), p.participant.hand);
+        CAPTURE(who);
+        CAPTURE(person.angle_threshold_offset_deg);
+        offsets.push_back(person.angle_threshold_offset_deg);
+        double t4 = NAN, t10 = NAN;
+        for (const auto& row : t.rows) {
+            if (row[*t.column("participant")] != "sim" + std::to_string(who) || row[*t.column("failed")] != "0") continue;
+            const double d = std::stod(row[*t.column("stimulus")]);
+            if (std::abs(d - 0.04) < 1e-9) t4 = std::stod(row[*t.column("time_s")]);
+            if (std::abs(d - 0.10) < 1e-9) t10 = std::stod(row[*t.column("time_s")]);
+        }
+        REQUIRE(std::isfinite(t4));
+        REQUIRE(std::isfinite(t10));
+        const double reach = std::min(0.01, std::sqrt(2.0 * 0.026 * person.press_force_n / 240.0));  // m past the edge
+        const double cue = 0.026 * std::sin((15.0 + person.angle_threshold_offset_deg) * kPi / 180.0);  // m past the edge
+        const double v = std::clamp((reach - cue) * person.pace / (0.1 + person.delay_s), 0.002, 0.05);  // m/s
+        CHECK(t10 - t4 == doctest::Approx(0.06 / v).epsilon(0.15));
+    }
+    // The three people's thresholds differ (else the check above shows nothing of the spread).
+    CHECK(*std::max_element(offsets.begin(), offsets.end()) - *std::min_element(offsets.begin(), offsets.end()) > 1.0);
+}
+
+TEST_CASE("people: their own force-direction thresholds spread as the population says, the first five draws unchanged") {
+    HandPopulation q = kPopulation;
+    q.angle_threshold_sd_deg = 0.0;
+    const Person none = draw_person(42, q);
+    CHECK(none.angle_threshold_offset_deg == 0.0);
+    q.angle_threshold_sd_deg = 3.0;
+    const Person some = draw_person(42, q);
+    // The threshold is drawn after the others: the same person otherwise.
+    CHECK(some.delay_s == none.delay_s);
+    CHECK(some.pace == none.pace);
+    CHECK(some.speed_noise_cv == none.speed_noise_cv);
+    const int n = 4000;
+    double s = 0.0, s2 = 0.0;
+    for (int i = 0; i < n; ++i) {
+        const double o = draw_person(static_cast<std::uint64_t>(i) * 7919u + 1u, q).angle_threshold_offset_deg;
+        s += o, s2 += o * o;
+    }
+    const double m = s / n, sd = std::sqrt(s2 / n - m * m);
+    CHECK(std::abs(m) < 5.0 * 3.0 / std::sqrt(n));
+    CHECK(sd == doctest::Approx(3.0).epsilon(0.05));
+}
+
 TEST_CASE("experiment run --hand: feel is recorded in the meta, a bad name exits 2 naming the option") {
     TempDir dir;
     const std::string proto = protocol_path("000-contour-following.json");

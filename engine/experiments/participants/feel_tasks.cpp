@@ -44,10 +44,10 @@ double stop_time(const ParticipantModel& m, const Person& person) { return m.rea
 // beyond their first cue lasting stop_time(), that pad being what reach_past_edge leaves them;
 // a faster-paced person leaving it less time, at most the protocol's hand speed (their free
 // speed's cap). stop_time_s 0 keeps the hand speed, as for the scripted person.
-double top_speed(const Protocol& p, const Condition& c, const Person& person) {
+double top_speed(const Protocol& p, const Condition& c, const Person& person, double angle_threshold_deg) {
     const ParticipantModel& m = p.participant;
     if (m.stop_time_s <= 0.0) return p.hand_speed;
-    double cue = p.finger_radius * std::sin(std::min(90.0, m.force_angle_threshold_deg) / kDeg);  // m past the edge
+    double cue = p.finger_radius * std::sin(std::min(90.0, angle_threshold_deg) / kDeg);  // m past the edge
     if (c.contact_location) cue = std::min(cue, m.location_threshold_mm * 1e-3);
     const double left = std::max(0.0, reach_past_edge(p, person) - cue);  // m
     return std::clamp(left * person.pace / stop_time(m, person), 0.002, p.hand_speed);
@@ -82,10 +82,13 @@ FeelTrial feel_contour_following(const Protocol& p, const Condition& c, const Pl
     person.pace = trial_pace(person, m.hand, t.seed);
     // The scripted person's draws, in its order: the same person notices the same way.
     const double loc_threshold = noisy(m.location_threshold_mm, m.location_noise_mm, rng) * 1e-3;    // m
-    const double angle_threshold = noisy(m.force_angle_threshold_deg, m.force_angle_noise_deg, rng);  // deg
+    // The person's own force-direction threshold (deg): the model's, moved by where this person
+    // lies in the population; the trial's threshold varies about it.
+    const double person_angle = std::max(1.0, m.force_angle_threshold_deg + person.angle_threshold_offset_deg);
+    const double angle_threshold = noisy(person_angle, m.force_angle_noise_deg, rng);  // deg
     const double reaction = m.reaction_time_sd_s > 0.0 ? std::max(0.03, m.reaction_time_s + m.reaction_time_sd_s * normal01(rng))
                                                        : m.reaction_time_s;  // s
-    const double v_top = top_speed(p, c, person);                 // m/s along the top
+    const double v_top = top_speed(p, c, person, person_angle);                 // m/s along the top
     const double v_free = p.hand_speed * person.pace;             // m/s round the corner and down
     const double d = t.stimulus;                                  // m
     const double d_min = *std::min_element(p.stimuli.begin(), p.stimuli.end());  // m, the shortest block

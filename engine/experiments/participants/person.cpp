@@ -11,7 +11,7 @@ namespace contactlab::experiments {
 Person draw_person(std::uint64_t person_seed, const PersonPopulation& q) {
     std::uint64_t rng = mix64(person_seed ^ 0xFEE1ull);
     Person p;
-    // Always five draws in this order, so adding a parameter at the end keeps these people.
+    // Draws in this order, each new parameter's at the end, so adding one keeps these people.
     p.delay_s = std::clamp(q.delay_mean_s + q.delay_sd_s * normal01(rng), q.delay_min_s, q.delay_max_s);
     p.press_force_n = q.press_median_n * std::exp(q.press_log_sd * normal01(rng));
     p.pace = std::exp(q.pace_log_sd * normal01(rng));
@@ -20,6 +20,9 @@ Person draw_person(std::uint64_t person_seed, const PersonPopulation& q) {
     p.slide_speed_mps = q.slide_speed_mps;
     p.hold_back = q.hold_back;
     p.angle_drift_rad_sqrt_m = q.angle_drift_rad_sqrt_m;
+    // A sixth draw, after the five above: the same people as before it, each now with their own
+    // threshold.
+    p.angle_threshold_offset_deg = q.angle_threshold_sd_deg * normal01(rng);
     return p;
 }
 

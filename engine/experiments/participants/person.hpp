@@ -33,6 +33,9 @@ struct Person {
     double hold_back = 2.0;
     // The finger's unfelt pitch drift where the strategy lets it drift (rad per sqrt(m) travelled).
     double angle_drift_rad_sqrt_m = 0.0;
+    // Their own force-direction threshold less the participant model's (deg): people differ in
+    // how far the force must turn before they notice it.
+    double angle_threshold_offset_deg = 0.0;
 };
 
 // The population the people are drawn from (protocol.hpp's HandPopulation, a protocol's

@@ -316,6 +316,7 @@ const std::vector<HandField>& hand_population_fields() {
         {"slide_speed_mps", &H::slide_speed_mps, 0.005, 0.3, "m/s"},
         {"hold_back", &H::hold_back, 1.1, 10.0, ""},
         {"angle_drift_rad_sqrt_m", &H::angle_drift_rad_sqrt_m, 0.0, 3.0, "rad/sqrt(m)"},
+        {"angle_threshold_sd_deg", &H::angle_threshold_sd_deg, 0.0, 10.0, "deg"},
     };
     return f;
 }

@@ -71,7 +71,12 @@ struct HandPopulation {
     // without the display's contact location, does not feel, drifts as a random walk with the
     // hand's travel, of this many rad per sqrt(m) travelled (limb posture drifts with movement
     // made without feedback; docs/experiments.md). 0: none.
-    double angle_drift_rad_sqrt_m = 0.3;
+    double angle_drift_rad_sqrt_m = 0.4;
+    // The force-direction threshold differs between people, not only from trial to trial: each
+    // person's own mean is the participant model's force_angle_threshold_deg plus a normal draw
+    // of this sd (deg). A person who notices the force's turn late has learnt to slide slower
+    // along seed 000's top, where the pad left beyond their cue must last their stop time.
+    double angle_threshold_sd_deg = 3.0;
 };
 
 // HandPopulation's numbers by name (a protocol's `participant.hand` keys, calibrate's
