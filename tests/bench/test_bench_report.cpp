@@ -426,14 +426,18 @@ TEST_CASE("bench --quick --report: every PNG decodes at the plot size, render_ms
     }
     CHECK(md.find("## Where the energy comes from") != std::string::npos);
     // The simulated study (study_speed.hpp): seed 002's shipped protocol, found from the
-    // checkout's root, 10 trials per condition. Each trial's hand path is 4.08 s of servo ticks
-    // (0.3 s down, 0.3 s settling, 0.164 m at 5 cm/s, a 0.2 s hold), and the stages are parts of
-    // the wall time the speed is taken from.
+    // checkout's root, 10 trials per condition, its hand moving by feel. Each trial is the reach
+    // for the surface and 0.3 s of settling, then the 16.4 cm slide at the person's free speed
+    // (80 mm/s at the median pace: 2.05 s), slower over the bumps' tops: 4.9 s a trial over 10
+    // participants (docs/experiments.md). A trial of less than 3 s would have skipped the slide,
+    // one of more than 8 s stalled in it. The stages are parts of the wall time the speed is
+    // taken from.
     const nlohmann::json& st = j["simulated_study"];
     CAPTURE(st.dump());
     REQUIRE_FALSE(st.contains("skipped"));
     CHECK(st["trials"].get<int>() == 20);
-    CHECK(st["virtual_s"].get<double>() == doctest::Approx(20 * 4.08).epsilon(0.003 / 4.08));
+    CHECK(st["virtual_s"].get<double>() > 20 * 3.0);
+    CHECK(st["virtual_s"].get<double>() < 20 * 8.0);
     CHECK(st["x_real_time"].get<double>() == doctest::Approx(st["virtual_s"].get<double>() / st["wall_s"].get<double>()));
     CHECK(st["goal_x_real_time"].get<double>() == 500.0);
     double staged = 0.0;

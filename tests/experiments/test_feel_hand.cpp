@@ -160,8 +160,16 @@ TEST_CASE("people: drawn from the documented population, the same person for the
 }
 
 TEST_CASE("protocols: hand.model names the hand, scripted or feel, and anything else is refused") {
-    Protocol p = load_protocol(protocol_path("000-contour-following.json"));
-    CHECK(p.hand_model == HandModel::scripted);
+    // Seeds 000 and 002 ship with the hand that moves by feel; the other tasks' strategies keep
+    // the scripted slide or press, and a protocol without hand.model gets the scripted hand.
+    for (const char* name : {"000-contour-following.json", "002-bump-counting.json", "002-bump-counting-20cm.json"}) {
+        CAPTURE(name);
+        CHECK(load_protocol(protocol_path(name)).hand_model == HandModel::feel);
+    }
+    for (const char* name : {"003-curvature.json", "003-curvature-cld.json", "004-surface-orientation.json", "edge-sharpness.json"}) {
+        CAPTURE(name);
+        CHECK(load_protocol(protocol_path(name)).hand_model == HandModel::scripted);
+    }
     HandModel h = HandModel::scripted;
     CHECK(parse_hand_model("feel", h));
     CHECK(h == HandModel::feel);

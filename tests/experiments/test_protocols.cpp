@@ -130,6 +130,7 @@ TEST_CASE("simulated participant: at one hand speed, contact location shows the 
     // contact location nearly never. The person here keeps the protocol's speed (stop_time_s 0)
     // and neither lapses nor varies their reaction time.
     Protocol p = load_protocol(protocol_path("000-contour-following.json"));
+    p.hand_model = HandModel::scripted;  // its path keeps the speed exactly
     p.repetitions = 2;
     p.participant.stop_time_s = 0.0;
     p.participant.lapse_rate_hz = 0.0;
@@ -151,8 +152,11 @@ TEST_CASE("simulated participant: at one hand speed, contact location shows the 
 namespace {
 
 // Seed 000 as run by a person without noise: thresholds exact, no lapses, one reaction time.
+// The scripted hand's person (the shipped protocol's hand moves by feel: test_feel_hand.cpp):
+// the speeds and times below are its path's.
 Protocol noiseless_block_protocol() {
     Protocol p = load_protocol(protocol_path("000-contour-following.json"));
+    p.hand_model = HandModel::scripted;
     p.repetitions = 1;
     p.participant.force_angle_noise_deg = 0.0;
     p.participant.location_noise_mm = 0.0;
@@ -263,6 +267,7 @@ TEST_CASE("simulated participant: on a flat base, without noise or lapses, every
     // less than the threshold, and the element swings both ways over each bump. Bumps closer
     // than a pad length (they may be 15 mm apart) can still read as one: 95 % is asked, not all.
     Protocol p = load_protocol(protocol_path("002-bump-counting.json"));
+    p.hand_model = HandModel::scripted;  // its path at the finger's resting height: no motor noise either
     p.base_span = 0.0;
     p.trials = 30;
     p.warmup = 0;
@@ -370,7 +375,11 @@ TEST_CASE("simulated participant: seed 002 with curves flattened to 10 um answer
     // threshold of 0.7 mm (sd 0.2): only a bump whose rise falls within micrometres of the trial's
     // threshold can be counted differently. Over 2,700 trials (10 participants) 6 answers differed
     // (0.2 %); here 40 trials must agree in at least 36, and none may be invalid.
+    // The scripted hand: its path is the same in both runs, so only the rendering differs. (The
+    // feel hand's closed loop turns a chord's micrometres into another path: docs/experiments.md
+    // gives its figures.)
     Protocol exact = load_protocol(protocol_path("002-bump-counting.json"));
+    exact.hand_model = HandModel::scripted;
     exact.trials = 20;
     exact.warmup = 0;
     Protocol flat = exact;
