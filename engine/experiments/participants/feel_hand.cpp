@@ -26,11 +26,9 @@ constexpr double kTouch = 0.02;      // N: a force below this is not felt as con
 // choice).
 constexpr double kMaxStretch = 2.0;
 
-// An Ornstein-Uhlenbeck step of unit stationary variance over dt.
-double ou(double x, double dt, std::uint64_t& rng) {
-    const double a = std::exp(-dt / kNoiseTau);
-    return a * x + std::sqrt(1.0 - a * a) * normal01(rng);
-}
+// An Ornstein-Uhlenbeck step of unit stationary variance: `a` = exp(-dt / kNoiseTau) and `b` =
+// sqrt(1 - a^2), the same every tick (made once, in the constructor).
+double ou(double x, double a, double b, std::uint64_t& rng) { return a * x + b * normal01(rng); }
 
 // The finger angle that puts the pad's middle on a contact whose normal (toward the finger's
 // centre) is n: the pad's middle lies at phi - pi/2 from the centre (DESIGN.md).
@@ -48,25 +46,30 @@ FeelHand::FeelHand(const Person& person, drivers::PathSample start, double dt, s
     const std::size_t n = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(person_.delay_s / dt_)));
     line_.resize(n);
     gain_ = kLoopGain / (person_.delay_s * kSeriesStiffness);
+    noise_a_ = std::exp(-dt_ / kNoiseTau);
+    noise_b_ = std::sqrt(1.0 - noise_a_ * noise_a_);
+    speed_follow_ = 1.0 - std::exp(-dt_ / kSpeedTau);
 }
 
 drivers::PathSample FeelHand::step(const drivers::TickRecord& now) {
-    // The delay line: what was displayed delay_s ago reaches the hand now.
-    const drivers::TickRecord felt = line_[head_];
+    // The delay line: what was displayed delay_s ago reaches the hand now. Of it the hand reads
+    // the force, the contact and the finger's place, taken before `now` takes its slot.
+    const drivers::TickRecord& old = line_[head_];
+    const Vec2 felt_finger = old.finger;
     const bool have = filled_ >= line_.size();
+    if (have) {
+        const double f = std::hypot(old.force.x, old.force.y);
+        felt_contact_ = old.contact && f > kTouch;
+        felt_force_ = felt_contact_ ? f : 0.0;
+        if (felt_contact_) normal_ = old.force / f;
+    }
     line_[head_] = now;
     head_ = (head_ + 1) % line_.size();
     filled_ = std::min(filled_ + 1, line_.size());
-    if (have) {
-        const double f = std::hypot(felt.force.x, felt.force.y);
-        felt_contact_ = felt.contact && f > kTouch;
-        felt_force_ = felt_contact_ ? f : 0.0;
-        if (felt_contact_) normal_ = felt.force / f;
-    }
     // Speed: toward the command, with signal-dependent noise.
-    speed_ += (speed_goal_ - speed_) * (1.0 - std::exp(-dt_ / kSpeedTau));
-    noise_speed_ = ou(noise_speed_, dt_, rng_);
-    noise_force_ = ou(noise_force_, dt_, rng_);
+    speed_ += (speed_goal_ - speed_) * speed_follow_;
+    noise_speed_ = ou(noise_speed_, noise_a_, noise_b_, rng_);
+    noise_force_ = ou(noise_force_, noise_a_, noise_b_, rng_);
     // A guarded move: pushing against more than the target force (the surface rose ahead of the
     // finger faster than the felt tangent turned), the hand holds back its advance, fully at
     // hold_back times the target, until the press loop and the felt normal have caught up.
@@ -89,7 +92,7 @@ drivers::PathSample FeelHand::step(const drivers::TickRecord& now) {
     // reaching back for a surface lost, or pressing while the display's force is saturated, does
     // not wind the press up (a person feels their own finger and does not drive it on).
     if (have && guard_) {
-        const double depth = glm::dot(felt.finger - plan_, normal_);  // m into the surface, past the finger
+        const double depth = glm::dot(felt_finger - plan_, normal_);  // m into the surface, past the finger
         const double most = kMaxStretch * person_.press_force_n / kSeriesStiffness;
         if (depth > most) plan_ += (depth - most) * normal_;
     }

@@ -93,6 +93,8 @@ private:
     double approach_ = 0.0;               // m/s
     bool guard_ = true;
     double gain_ = 0.0;                   // m/(s N), the press loop's integral gain
+    // Per-tick constants of the motor noise's low-pass and the speed's lag (dimensionless).
+    double noise_a_ = 0.0, noise_b_ = 0.0, speed_follow_ = 0.0;
     double noise_speed_ = 0.0, noise_force_ = 0.0;  // unit-variance low-pass noises
     bool drifting_ = false;
     double drift_ = 0.0;        // rad, the angle's unfelt drift so far
