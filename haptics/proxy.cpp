@@ -324,7 +324,34 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
     if (turn != 0.0) recent_turn_ = dphi;
     if (!work_.warm_start) {
         work_.free_advance = advanced_reach < reach;
-        gather_for_motion(finger, phi, advanced_reach + kOnTolerance);
+        // A free finger's full gather reaches only as far as it moved and the pad turned: hovering,
+        // it finds nothing, tick after tick, and the tree's walk to say so was a fifth of a free
+        // tick (seed 002's feel hand hovers a fifth of its ticks). Gathered a little wider and
+        // kept (gather_warm), an empty answer also answers the next free ticks whose discs and
+        // turns lie inside it: no segment's pieces come near their motion, so the walk is free,
+        // as with the segments the full gather's looser bounds may hold (the same walk, bit for
+        // bit, as any warm start's). A wider gather that holds segments is not used (building
+        // them every turning tick cost more): the full gather is made as before.
+        // segment_ids_ left empty when nothing comes within `disc` (m) as the pad turns: a kept
+        // gather that covers it and holds no segment, or a new one (gather_warm's, kept).
+        auto gather_free = [&](const WarmDisc& disc) {
+            const double from = turn == 0.0 ? phi : phi_ + std::min(turn, 0.0);  // rad, as gather_warm's
+            const double width = std::abs(turn);                                // rad
+            if (width > kMaxKeptTurnSpan) return false;
+            if (kept_.valid && kept_.ids.empty() &&
+                glm::length(disc.center - kept_.disc.center) + disc.radius <= kept_.disc.radius) {
+                const double offset = wrap_pi(from - kept_.from);  // rad
+                if (offset >= 0.0 && offset + width <= kept_.width) {
+                    segment_ids_.clear();
+                    work_.kept_gather = true;
+                    return true;
+                }
+            }
+            gather_warm(disc, phi, turn);
+            return segment_ids_.empty();
+        };
+        if (!(local_allowed && !resting_ && advanced_reach == reach && gather_free(WarmDisc{finger, reach + kOnTolerance})))
+            gather_for_motion(finger, phi, advanced_reach + kOnTolerance);
         clock_.lap(stages_.gather);
         move_proxy(finger, phi, turn, max_push, start, start);
     }
