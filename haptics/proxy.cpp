@@ -10,6 +10,8 @@
 #include "haptics/proxy.hpp"
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <limits>
 #include <new>
 #include <type_traits>
@@ -57,6 +59,11 @@ constexpr double kMaxCornerPushFactor = 64.0;
 // done again with every gathered segment.
 constexpr double kRotationNear = 4.0;
 constexpr int kRotationWindow = 8;  // sub-steps per gather
+// ... unless the window's sub-steps would build at most this many segments (the tick's gather times
+// the sub-steps) without it: a query about the proxy costs about what building twenty segments at
+// one angle does (seed 002, feel hand: 11,400 instructions a query; ~30 % of them found no fewer
+// segments than the tick's own gather).
+constexpr int kRotationGatherFrom = 16;
 // Free-space anticipation first looks this far (m) beyond the nearest a piece can be: far enough
 // that a flat or gently curved surface's nearest piece is found in the first gather.
 constexpr double kAnticipationReachMargin = 1e-3;
@@ -116,6 +123,10 @@ constexpr double kMaxChainReach = 1e-4;
 constexpr double kMinRotationChord = 1e-6;
 constexpr double kMaxRotationChord = 2.5e-4;
 constexpr int kMaxRotationSteps = kProxyMaxRotationSteps;
+// The most pieces append_cspace_pieces makes of one segment: an arc's offset, inner and two pad-end
+// circles, each cut by the pad's span into at most two parts (8), and each of its two vertices'
+// outer and inner circles, likewise (8). Proxy::asked_pieces keeps room for this many.
+constexpr int kMostPiecesPerSegment = 16;
 
 // True when the straight motion from `at` (on the piece) toward `goal` heads into the obstacle
 // across this piece. For a line that is "goal behind the line"; for a circle it is not the same as
@@ -175,6 +186,14 @@ int circle_circle(Vec2 c0, double r0, Vec2 c1, double r1, Vec2 pts[2]) {
     return 2;
 }
 
+// Whether two circle pieces have the same box (piece_box): the same centre, radius and span, bit
+// for bit (so a -0 is not a 0).
+bool same_circle(const CPiece& a, const CPiece& b) {
+    auto same = [](double x, double y) { return std::bit_cast<std::uint64_t>(x) == std::bit_cast<std::uint64_t>(y); };
+    return b.kind == CPiece::Kind::circle && same(a.center.x, b.center.x) && same(a.center.y, b.center.y) &&
+           same(a.radius, b.radius) && same(a.span.start, b.span.start) && same(a.span.width, b.span.width);
+}
+
 }  // namespace
 
 ProxyDef proxy_def_of(const Scene& scene) {
@@ -207,6 +226,7 @@ Proxy::Proxy(const Environment& env, const ProxyDef& def) : env_(&env), def_(def
     local_.reserve(pieces);
     next_pieces_.reserve(pieces);
     nearest_pieces_.reserve(64);
+    ask_pool_.reserve(kAskCache * kMostPiecesPerSegment);
 
     aside_pieces_.reserve(pieces);
     aside_boxes_.reserve(pieces);
@@ -309,7 +329,34 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
     if (turn != 0.0) recent_turn_ = dphi;
     if (!work_.warm_start) {
         work_.free_advance = advanced_reach < reach;
-        gather_for_motion(finger, phi, advanced_reach + kOnTolerance);
+        // A free finger's full gather reaches only as far as it moved and the pad turned: hovering,
+        // it finds nothing, tick after tick, and the tree's walk to say so was a fifth of a free
+        // tick (seed 002's feel hand hovers a fifth of its ticks). Gathered a little wider and
+        // kept (gather_warm), an empty answer also answers the next free ticks whose discs and
+        // turns lie inside it: no segment's pieces come near their motion, so the walk is free,
+        // as with the segments the full gather's looser bounds may hold (the same walk, bit for
+        // bit, as any warm start's). A wider gather that holds segments is not used (building
+        // them every turning tick cost more): the full gather is made as before.
+        // segment_ids_ left empty when nothing comes within `disc` (m) as the pad turns: a kept
+        // gather that covers it and holds no segment, or a new one (gather_warm's, kept).
+        auto gather_free = [&](const WarmDisc& disc) {
+            const double from = turn == 0.0 ? phi : phi_ + std::min(turn, 0.0);  // rad, as gather_warm's
+            const double width = std::abs(turn);                                // rad
+            if (width > kMaxKeptTurnSpan) return false;
+            if (kept_.valid && kept_.ids.empty() &&
+                glm::length(disc.center - kept_.disc.center) + disc.radius <= kept_.disc.radius) {
+                const double offset = wrap_pi(from - kept_.from);  // rad
+                if (offset >= 0.0 && offset + width <= kept_.width) {
+                    segment_ids_.clear();
+                    work_.kept_gather = true;
+                    return true;
+                }
+            }
+            gather_warm(disc, phi, turn);
+            return segment_ids_.empty();
+        };
+        if (!(local_allowed && !resting_ && advanced_reach == reach && gather_free(WarmDisc{finger, reach + kOnTolerance})))
+            gather_for_motion(finger, phi, advanced_reach + kOnTolerance);
         clock_.lap(stages_.gather);
         move_proxy(finger, phi, turn, max_push, start, start);
     }
@@ -479,10 +526,18 @@ void Proxy::move_proxy(Vec2 finger, double phi, double turn, double max_push, Ve
                 if ((k - 1) % kRotationWindow == 0) {
                     const int last = std::min(k + kRotationWindow - 1, steps - 1);
                     const double near = kRotationNear * (last - k + 1) * sub_push;  // m
-                    gather_near(proxy_, phi_ + turn * k / steps, phi_ + turn * last / steps, near + kOnTolerance, rotation_ids_);
-                    // (A warm start's few segments can be fewer still: then those.)
-                    ids = rotation_ids_.size() < segment_ids_.size() ? &rotation_ids_ : &segment_ids_;
-                    within = WarmDisc{proxy_, near - sub_push};
+                    if (static_cast<int>(segment_ids_.size()) * (last - k + 1) <= kRotationGatherFrom) {
+                        // A warm start's few segments, built for the window's sub-steps, cost less
+                        // than the query that might find fewer: those, as the full sub-steps below
+                        // take them (every point allowed).
+                        ids = &segment_ids_;
+                        within = WarmDisc{proxy_, std::numeric_limits<double>::infinity()};
+                    } else {
+                        gather_near(proxy_, phi_ + turn * k / steps, phi_ + turn * last / steps, near + kOnTolerance, rotation_ids_);
+                        // (A warm start's few segments can be fewer still: then those.)
+                        ids = rotation_ids_.size() < segment_ids_.size() ? &rotation_ids_ : &segment_ids_;
+                        within = WarmDisc{proxy_, near - sub_push};
+                    }
                 }
                 build_substep_pieces(phi_ + turn * k / steps, *ids);
                 turned = depenetrate(sub_push, &within);
@@ -629,21 +684,35 @@ void Proxy::build_pieces(double phi) {
     std::size_t j = 0;  // position in built_ids_ (both lists are sorted)
     for (const int id : segment_ids_) {
         next_first_.push_back(static_cast<int>(next_pieces_.size()));
-        if (reuse) {
+        // The segment's pieces in the last build (at built_phi_), if it had any.
+        int old_from = 0, old_to = 0;
+        if (built_valid_) {
             while (j < built_ids_.size() && built_ids_[j] < id) ++j;
-            if (j < built_ids_.size() && built_ids_[j] == id) {
-                for (int k = built_first_[j]; k < built_first_[j + 1]; ++k) {
-                    next_pieces_.push_back(old_pieces[static_cast<std::size_t>(k)]);
-                    next_boxes_.push_back(old_boxes[static_cast<std::size_t>(k)]);
-                }
-                continue;
+            if (j < built_ids_.size() && built_ids_[j] == id) old_from = built_first_[j], old_to = built_first_[j + 1];
+        }
+        if (reuse && old_to > old_from) {
+            for (int k = old_from; k < old_to; ++k) {
+                next_pieces_.push_back(old_pieces[static_cast<std::size_t>(k)]);
+                next_boxes_.push_back(old_boxes[static_cast<std::size_t>(k)]);
             }
+            continue;
         }
         const std::size_t from = next_pieces_.size();
         append_cspace_pieces(*env_, id, pad, next_pieces_);
         ++work_.built_segments;
-        for (std::size_t k = from; k < next_pieces_.size(); ++k)
-            next_boxes_.push_back(piece_box(next_pieces_[k]).grown(kBoxSlack));
+        for (std::size_t k = from; k < next_pieces_.size(); ++k) {
+            // A circle's box is arc_bounds' two sincos: a piece the turn left as it was (an arc's
+            // offset or inner circle whose span the pad's still holds whole, made of the segment
+            // alone) keeps the box it had, the same function of the same bits.
+            const CPiece& piece = next_pieces_[k];
+            const int old = old_from + static_cast<int>(k - from);
+            if (piece.kind == CPiece::Kind::circle && old < old_to &&
+                same_circle(piece, old_pieces[static_cast<std::size_t>(old)])) {
+                next_boxes_.push_back(old_boxes[static_cast<std::size_t>(old)]);
+                continue;
+            }
+            next_boxes_.push_back(piece_box(piece).grown(kBoxSlack));
+        }
     }
     next_first_.push_back(static_cast<int>(next_pieces_.size()));
     std::swap(pieces_, next_pieces_);
@@ -1559,6 +1628,7 @@ void Proxy::anticipate(Vec2 finger, double phi) {
             search_best_segment_ = -1;
             search_best_foot_ = Vec2{0.0};
             search_started_ = ticks_;
+            search_seed_ = -1;
             // The last search's nearest segment, asked first: its distance now is within the
             // finger's motion of the answer, so from the start the depth-first search skips every
             // node whose bound is beyond it. Unseeded, the best shrank leaf by leaf: 1 cm above a
@@ -1575,6 +1645,7 @@ void Proxy::anticipate(Vec2 finger, double phi) {
                 const int seed = last_winner >= 0 ? last_winner : nearest_segment(finger);
                 if (seed >= 0) {
                     ask_anticipation(seed);
+                    search_seed_ = seed;
                     seeded = true;
                 }
             }
@@ -1678,12 +1749,16 @@ double Proxy::ask_anticipation(int id) {
                                   : std::abs(glm::length(finger - segment.center) - segment.radius);  // m
     const double beyond = to_segment - def_.finger.radius;
     if (beyond > search_.best + kOnTolerance) return std::numeric_limits<double>::infinity();
-    const PadFrame& pad = pad_frame(search_phi_);
+    // The seed again, in its turn: the same pieces at the same finger and angle give the same
+    // distances, none below the best (which already holds them) nor a tie it would win (its own
+    // segment's), and the search's min with any answer keeps the best: nothing to ask.
+    if (id == search_seed_) return std::numeric_limits<double>::infinity();
     ++out_.work.anticipated_segments;
-    nearest_pieces_.clear();
-    append_cspace_pieces(*env_, id, pad, nearest_pieces_);
+    int count = 0;
+    const CPiece* pieces = asked_pieces(id, count);
     double least = std::numeric_limits<double>::infinity();
-    for (const CPiece& piece : nearest_pieces_) {
+    for (int k = 0; k < count; ++k) {
+        const CPiece& piece = pieces[k];
         const PieceFoot foot = piece_foot(piece, finger);
         const double d = glm::length(foot.point - finger);
         least = std::min(least, d);
@@ -1695,6 +1770,30 @@ double Proxy::ask_anticipation(int id) {
         }
     }
     return least;
+}
+
+const CPiece* Proxy::asked_pieces(int id, int& count) {
+    if (ask_cache_size_ > 0 && ask_cache_phi_ != search_phi_) ask_cache_size_ = 0;  // another angle
+    for (int k = 0; k < ask_cache_size_; ++k) {
+        const AskedSegment& e = ask_cache_[static_cast<std::size_t>(k)];
+        if (e.segment == id) {
+            count = e.count;
+            return ask_pool_.data() + e.first;
+        }
+    }
+    const PadFrame& pad = pad_frame(search_phi_);
+    if (ask_cache_size_ == 0) ask_pool_.clear();
+    // Full (entries, or no room left for a segment's most pieces): start over.
+    if (ask_cache_size_ == kAskCache || ask_pool_.size() + kMostPiecesPerSegment > ask_pool_.capacity()) {
+        ask_cache_size_ = 0;
+        ask_pool_.clear();
+    }
+    const std::size_t first = ask_pool_.size();
+    append_cspace_pieces(*env_, id, pad, ask_pool_);
+    ask_cache_phi_ = search_phi_;
+    ask_cache_[static_cast<std::size_t>(ask_cache_size_++)] = {id, static_cast<int>(first), static_cast<int>(ask_pool_.size() - first)};
+    count = static_cast<int>(ask_pool_.size() - first);
+    return ask_pool_.data() + first;
 }
 
 // ---- validation ---------------------------------------------------------------------------------

@@ -168,7 +168,10 @@ public:
     // law keeps them. (The servo passes its slewed Ke and clamp every tick; dropping the pieces
     // each time made a 10-segment servo tick cost 3x the proxy's own.)
     void set_def(const ProxyDef& def) {
-        if (def.finger != def_.finger) built_valid_ = kept_.valid = false;
+        if (def.finger != def_.finger) {
+            built_valid_ = kept_.valid = false;
+            ask_cache_size_ = 0;  // the cached pieces were the old finger's
+        }
         def_ = def;
     }
 
@@ -296,6 +299,26 @@ private:
     // The exact distance (m) from the search's finger to segment id's pieces at the search's
     // angle; keeps the nearest (ties: the lowest segment) as the search's best.
     double ask_anticipation(int id);
+    // The segment this search asked first (anticipate's seed), -1 if none: when the search
+    // reaches it again in its turn, asking it again changes nothing (its pieces and distances are
+    // the same, and the best already holds them), so it is not built a second time.
+    int search_seed_ = -1;
+    // Pieces of the segments anticipation asked recently, at ask_cache_phi_ (rad): a hand
+    // hovering without turning asks the same few segments tick after tick, and their pieces
+    // depend on the segment and the pad's angle only. Entries index ask_pool_ (capacity fixed
+    // when the proxy is made: a full pool starts over, never grows in a tick).
+    struct AskedSegment {
+        int segment = -1;
+        int first = 0;  // in ask_pool_
+        int count = 0;
+    };
+    static constexpr int kAskCache = 16;
+    std::array<AskedSegment, kAskCache> ask_cache_{};
+    int ask_cache_size_ = 0;
+    double ask_cache_phi_ = 0.0;
+    std::vector<CPiece> ask_pool_;
+    // segment id's pieces at search_phi_, from the cache or built into it (or nearest_pieces_).
+    const CPiece* asked_pieces(int id, int& count);
     // The segment nearest p (by distance to the segment itself), -1 in an empty scene.
     int nearest_segment(Vec2 p) const;
     // An empty build keeps the last one here (cache_aside_), still described by built_*.
