@@ -97,6 +97,7 @@ TrialTrace run_steered_trial(const Scene& scene, const drivers::HandPath& envelo
     const ServoParams params = trial_servo_params(scene, contact_location);
     const ServoConfig config = drivers::servo_config_for(dev, kTrialRate);
     ServoTick tick(config, params);
+    tick.set_publish_snapshots(false);  // nobody reads them: the hand steers from the trial's records
     tick.scenes().publish(std::make_unique<ServoScene>(scene));
     drivers::ServoLoop loop(dev, tick, 1.0 / kTrialRate);
     TrialTrace trace;
