@@ -317,7 +317,7 @@ private:
     int ask_cache_size_ = 0;
     double ask_cache_phi_ = 0.0;
     std::vector<CPiece> ask_pool_;
-    // segment id's pieces at search_phi_, from the cache or built into it (or nearest_pieces_).
+    // segment id's pieces at search_phi_, from the cache or built into it.
     const CPiece* asked_pieces(int id, int& count);
     // The segment nearest p (by distance to the segment itself), -1 in an empty scene.
     int nearest_segment(Vec2 p) const;

@@ -88,7 +88,7 @@ FeelTrial feel_contour_following(const Protocol& p, const Condition& c, const Pl
     const double angle_threshold = noisy(person_angle, m.force_angle_noise_deg, rng);  // deg
     const double reaction = m.reaction_time_sd_s > 0.0 ? std::max(0.03, m.reaction_time_s + m.reaction_time_sd_s * normal01(rng))
                                                        : m.reaction_time_s;  // s
-    const double v_top = top_speed(p, c, person, person_angle);                 // m/s along the top
+    const double v_top = top_speed(p, c, person, person_angle);  // m/s along the top
     const double v_free = p.hand_speed * person.pace;             // m/s round the corner and down
     const double d = t.stimulus;                                  // m
     const double d_min = *std::min_element(p.stimuli.begin(), p.stimuli.end());  // m, the shortest block
@@ -114,6 +114,7 @@ FeelTrial feel_contour_following(const Protocol& p, const Condition& c, const Pl
     double felt_since = -1.0, act_at = 0.0;  // s
     bool touched = false;
     FeelTrial out;
+    out.person = person;
     const Steer steer = [&](const TickRecord& r, PathSample& next) {
         touched |= r.contact;
         if (out.start < 0.0 && touched && r.finger.x >= -d) out.start = r.t;
@@ -179,7 +180,9 @@ FeelTrial feel_contour_following(const Protocol& p, const Condition& c, const Pl
 }
 
 FeelTrial feel_slide(const HandPopulation& people, const Condition& c, const PlannedTrial& t, const Stimulus& st) {
-    Person person = draw_person(t.person, people);
+    FeelTrial out;
+    Person& person = out.person;
+    person = draw_person(t.person, people);
     person.pace = trial_pace(person, people, t.seed);
     // Seed 002's people were told to be quick: 18.4 cm in 4.1-4.5 s, 41-45 mm/s on average, the
     // bumps taken slower. The free speed at the median pace (HandPopulation::slide_speed_mps,
@@ -198,7 +201,6 @@ FeelTrial feel_slide(const HandPopulation& people, const Condition& c, const Pla
     // positive), low-passed over 0.1 s.
     double last_angle = 0.0, turn_rate = 0.0, turn_signed = 0.0;
     bool sliding = false;
-    FeelTrial out;
     // The felt turn's low-pass over 0.1 s: its coefficient a tick, the same every tick.
     const double low = 1.0 - std::exp(-1.0 / (0.1 * kTrialRate));
     const Steer steer = [&](const TickRecord& r, PathSample& next) {

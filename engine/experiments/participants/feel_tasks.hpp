@@ -17,6 +17,7 @@
 //             times the delay (a forward model of what the delay hides, Miall & Wolpert 1996).
 #pragma once
 
+#include "engine/experiments/participants/person.hpp"
 #include "engine/experiments/participants/servo_trial.hpp"
 #include "engine/experiments/protocol/protocol.hpp"
 #include "engine/experiments/protocol/stimulus.hpp"
@@ -31,6 +32,9 @@ struct FeelTrial {
     // s: the timed window. Seed 000: the start line (first contact at or past it) to the finish
     // line (-1: not reached); seed 002: the slide's start to the pad's centre passing its end.
     double start = -1.0, end = -1.0;
+    // The person the trial drew (the same for all a participant's trials): what they notice
+    // reads their own thresholds.
+    Person person;
 };
 
 // Seed 000 by feel. Draws from `rng` in the scripted person's order (the location and angle

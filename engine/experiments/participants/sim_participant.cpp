@@ -5,7 +5,6 @@
 #include "engine/experiments/base/random_stream.hpp"
 #include "engine/experiments/participants/cues.hpp"
 #include "engine/experiments/participants/feel_tasks.hpp"
-#include "engine/experiments/participants/person.hpp"
 #include "engine/experiments/participants/servo_trial.hpp"
 #include "engine/experiments/protocol/stimulus.hpp"
 #include "engine/experiments/participants/wearable_trial.hpp"
@@ -278,8 +277,8 @@ TrialOutcome bump_counting(const Protocol& p, const Condition& c, const PlannedT
                                    turns_over, felt);
     // The feel hand's person has their own force-direction threshold (as in seed 000); the
     // scripted person's is the model's.
-    const double angle_mean = feel ? std::max(1.0, m.force_angle_threshold_deg + draw_person(t.person, m.hand).angle_threshold_offset_deg)
-                                   : m.force_angle_threshold_deg;  // deg
+    const double angle_mean =
+        feel ? std::max(1.0, m.force_angle_threshold_deg + f.person.angle_threshold_offset_deg) : m.force_angle_threshold_deg;  // deg
     std::vector<std::size_t> swings = excursion_ends(band(angle, narrow, wide), noisy(angle_mean, m.force_angle_noise_deg, rng), felt);
     if (c.contact_location) {
         const auto element =
