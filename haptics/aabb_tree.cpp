@@ -25,7 +25,7 @@ AabbTree::AabbTree(const std::vector<Aabb>& item_boxes) {
     std::iota(items_.begin(), items_.end(), 0);
     if (!items_.empty()) {
         nodes_.reserve(2 * items_.size() / kLeafSize + 2);
-        build(item_boxes, nullptr, nullptr, 0, static_cast<int>(items_.size()));
+        build(item_boxes, nullptr, nullptr, nullptr, 0, static_cast<int>(items_.size()));
     }
 }
 
@@ -34,18 +34,27 @@ AabbTree::AabbTree(const std::vector<Aabb>& item_boxes, const std::vector<Normal
     std::iota(items_.begin(), items_.end(), 0);
     if (!items_.empty()) {
         nodes_.reserve(2 * items_.size() / kLeafSize + 2);
-        build(item_boxes, &item_normals, nullptr, 0, static_cast<int>(items_.size()));
+        build(item_boxes, &item_normals, nullptr, nullptr, 0, static_cast<int>(items_.size()));
     }
 }
 
 AabbTree::AabbTree(const std::vector<Aabb>& item_boxes, const std::vector<NormalCone>& item_normals,
                    const std::vector<OffsetBoxes>& item_offsets, double rho)
+    : AabbTree(item_boxes, item_normals, item_offsets, rho, {}) {}
+
+AabbTree::AabbTree(const std::vector<Aabb>& item_boxes, const std::vector<NormalCone>& item_normals,
+                   const std::vector<OffsetBoxes>& item_offsets, double rho, const std::vector<double>& item_outer_limits)
     : has_offsets_(true), rho_(rho) {
     items_.resize(item_boxes.size());
     std::iota(items_.begin(), items_.end(), 0);
+    const std::vector<double>* limits = item_outer_limits.empty() ? nullptr : &item_outer_limits;
     if (!items_.empty()) {
         nodes_.reserve(2 * items_.size() / kLeafSize + 2);
-        build(item_boxes, &item_normals, &item_offsets, 0, static_cast<int>(items_.size()));
+        build(item_boxes, &item_normals, &item_offsets, limits, 0, static_cast<int>(items_.size()));
+    }
+    if (limits) {
+        item_outer_limits_.reserve(items_.size());
+        for (const int i : items_) item_outer_limits_.push_back((*limits)[static_cast<std::size_t>(i)]);
     }
     // In leaf order, beside items_: a leaf's items are read together.
     item_boxes_.reserve(items_.size());
@@ -59,22 +68,30 @@ AabbTree::AabbTree(const std::vector<Aabb>& item_boxes, const std::vector<Normal
 }
 
 int AabbTree::build(const std::vector<Aabb>& boxes, const std::vector<NormalCone>* normals,
-                    const std::vector<OffsetBoxes>* offsets, int first, int count) {
+                    const std::vector<OffsetBoxes>* offsets, const std::vector<double>* limits, int first, int count) {
     const int index = static_cast<int>(nodes_.size());
     nodes_.push_back({});
     Aabb box;
     OffsetBoxes offset;
+    Aabb outer_firm;
+    double outer_limit = 0.0;  // m
     NormalCone cone = normals ? NormalCone{} : NormalCone{0.0, kTwoPi};
     for (int i = first; i < first + count; ++i) {
-        box.grow(boxes[items_[i]]);
-        if (normals) cone = merge_cones(cone, (*normals)[static_cast<std::size_t>(items_[i])]);
+        const auto item = static_cast<std::size_t>(items_[i]);
+        box.grow(boxes[item]);
+        if (normals) cone = merge_cones(cone, (*normals)[item]);
         if (offsets) {
-            offset.outer.grow((*offsets)[static_cast<std::size_t>(items_[i])].outer);
-            offset.inner.grow((*offsets)[static_cast<std::size_t>(items_[i])].inner);
+            offset.outer.grow((*offsets)[item].outer);
+            offset.inner.grow((*offsets)[item].inner);
+            const double limit = limits ? (*limits)[item] : std::numeric_limits<double>::infinity();
+            if (limit == std::numeric_limits<double>::infinity()) outer_firm.grow((*offsets)[item].outer);
+            else outer_limit = std::max(outer_limit, limit);
         }
     }
     nodes_[index].box = box;
     nodes_[index].offset = offset;
+    nodes_[index].outer_firm = outer_firm;
+    nodes_[index].outer_limit = outer_limit;
     nodes_[index].normals = cone;
     if (cone.width >= 0.0 && cone.width < kPi) {
         nodes_[index].cone_from = unit_at(cone.start);
@@ -99,8 +116,8 @@ int AabbTree::build(const std::vector<Aabb>& boxes, const std::vector<NormalCone
                      items_.begin() + first + count, [&](int a, int b) {
                          return boxes[a].center()[axis] < boxes[b].center()[axis];
                      });
-    const int left = build(boxes, normals, offsets, first, half);
-    const int right = build(boxes, normals, offsets, first + half, count - half);
+    const int left = build(boxes, normals, offsets, limits, first, half);
+    const int right = build(boxes, normals, offsets, limits, first + half, count - half);
     nodes_[index].left = left;
     nodes_[index].right = right;
     return index;
@@ -144,7 +161,9 @@ bool AabbTree::consistent(const std::vector<Aabb>& item_boxes) const {
             ok = n.box.contains(item_boxes[static_cast<std::size_t>(items_[at])]);
             if (has_offsets_)  // the per-item arrays are in leaf order
                 ok = ok && n.box.contains(item_boxes_[at]) && n.offset.outer.contains(item_offsets_[at].outer) &&
-                     n.offset.inner.contains(item_offsets_[at].inner) && cone_holds(n.normals, item_normals_[at]);
+                     n.offset.inner.contains(item_offsets_[at].inner) && cone_holds(n.normals, item_normals_[at]) &&
+                     (item_outer_limits_.empty() || item_outer_limits_[at] <= n.outer_limit ||
+                      n.outer_firm.contains(item_offsets_[at].outer));
         }
         return range;
     };
@@ -183,9 +202,12 @@ Aabb AabbTree::cone_sweep(const Node& n, double d) {
 }
 
 Aabb AabbTree::moved_offset(const Node& n, const OffsetBoxes& at_rho, double r, double side) const {
+    return moved_box(n, side > 0.0 ? at_rho.outer : at_rho.inner, r, side);
+}
+
+Aabb AabbTree::moved_box(const Node& n, const Aabb& box, double r, double side) const {
     // q + r n = (q + rho n) + (r - rho) n, and q - r n = (q - rho n) - (r - rho) n: the offset box
     // at rho, moved by d n for every n of the node's cone (which holds its items' cones).
-    const Aabb& box = side > 0.0 ? at_rho.outer : at_rho.inner;
     const double d = side > 0.0 ? r - rho_ : rho_ - r;  // m
     if (d == 0.0) return box;
     const Aabb sweep = cone_sweep(n, d);
@@ -194,6 +216,9 @@ Aabb AabbTree::moved_offset(const Node& n, const OffsetBoxes& at_rho, double r, 
 
 Aabb AabbTree::offset_box(const Node& n, double r, double side) const {
     if (!has_offsets_) return n.box.grown(r);
+    // Under a pad at least as wide as every limited item's limit, only the firm items have outer
+    // pieces (with no limited item below, outer_firm is offset.outer, the same bits).
+    if (side > 0.0 && r >= n.outer_limit) return moved_box(n, n.outer_firm, r, side);
     return moved_offset(n, n.offset, r, side);
 }
 
@@ -230,7 +255,7 @@ double AabbTree::item_lower_bound(const Node& leaf, int position, Vec2 p, double
     if (!has_offsets_) return 0.0;
     const auto pos = static_cast<std::size_t>(position);
     double lower = std::numeric_limits<double>::infinity();
-    if (cones_meet(item_normals_[pos], normals.outer))
+    if (item_outer_at(pos, r) && cones_meet(item_normals_[pos], normals.outer))
         lower = moved_offset(leaf, item_offsets_[pos], r, 1.0).distance_to(p);
     if (inner && cones_meet(item_normals_[pos], normals.inner))
         lower = std::min(lower, moved_offset(leaf, item_offsets_[pos], r, -1.0).distance_to(p));
@@ -293,7 +318,7 @@ void AabbTree::query_pad_reach(Vec2 p, double r, double reach, bool inner, const
             // The leaf's test with each item's own boxes and cone (a leaf spans several items).
             if (!has_offsets_) return true;
             const auto pos = static_cast<std::size_t>(position);
-            if (moved_offset(leaf, item_offsets_[pos], r, 1.0).distance_squared_to(p) <= reach2 &&
+            if (item_outer_at(pos, r) && moved_offset(leaf, item_offsets_[pos], r, 1.0).distance_squared_to(p) <= reach2 &&
                 cones_meet(item_normals_[pos], normals.outer))
                 return true;
             if (inner && cones_meet(item_normals_[pos], normals.inner) &&

@@ -96,6 +96,14 @@ public:
     // r is the offset at rho moved by (r - rho) n, the node's box grown by that over its cone.
     AabbTree(const std::vector<Aabb>& item_boxes, const std::vector<NormalCone>& item_normals,
              const std::vector<OffsetBoxes>& item_offsets, double rho);
+    // ... and, per item, the pad radius (m) from which its outer offset makes no piece (+inf: at
+    // every radius). A bowl arc of radius rho with no vertex pieces offsets to nothing under a pad
+    // of radius r >= rho (cspace.cpp: only the pad's ends reach it), yet its offset box lies about
+    // the bowl's centre. Why: at the bottom of a valley tighter than the pad, thousands of such
+    // arcs offset to within micrometres of the resting proxy; gathered, they built no piece and
+    // made a tick's gather 70 us on 100,000 curves. The query leaves them to the pad-end test.
+    AabbTree(const std::vector<Aabb>& item_boxes, const std::vector<NormalCone>& item_normals,
+             const std::vector<OffsetBoxes>& item_offsets, double rho, const std::vector<double>& item_outer_limits);
 
     // Appends to `out` the index of every item whose box overlaps `box`. `out` keeps its capacity,
     // so a caller that reserves once does not allocate per query.
@@ -183,13 +191,20 @@ private:
         Vec2 cone_from{1.0, 0.0}, cone_to{1.0, 0.0};
         std::uint8_t cone_axes = 0;
         OffsetBoxes offset;  // of every item below, at rho_ (when has_offsets_)
+        // The outer box of the items below with no outer limit, and the greatest limit (m) of
+        // those with one (0: none): under a pad of radius r >= outer_limit, `outer_firm` bounds
+        // every outer piece below (offset_box).
+        Aabb outer_firm;
+        double outer_limit = 0.0;
         int left = -1;   // child node index; -1 for a leaf
         int right = -1;
         int first = 0;   // leaf: items_[first, first + count)
         int count = 0;
     };
     int build(const std::vector<Aabb>& boxes, const std::vector<NormalCone>* normals,
-              const std::vector<OffsetBoxes>* offsets, int first, int count);
+              const std::vector<OffsetBoxes>* offsets, const std::vector<double>* limits, int first, int count);
+    // Whether the item at leaf position pos may have outer pieces under a pad of radius r (m).
+    bool item_outer_at(std::size_t pos, double r) const { return item_outer_limits_.empty() || r < item_outer_limits_[pos]; }
     // Whether items below node n may have an offset point q + r n (side +1) or q - r n (side -1)
     // within reach of p: query_pad_reach's test.
     bool offset_may_reach(const Node& n, Vec2 p, double r, double reach, double side) const;
@@ -206,6 +221,7 @@ private:
     static Aabb cone_sweep(const Node& n, double d);
     // Offset boxes at rho_ (the node's, or one of its items') moved to radius r over n's cone.
     Aabb moved_offset(const Node& n, const OffsetBoxes& at_rho, double r, double side) const;
+    Aabb moved_box(const Node& n, const Aabb& box_at_rho, double r, double side) const;  // one side's box
     // pad_lower_bound for the item at `position` in items_, under `leaf`: its own boxes.
     double item_lower_bound(const Node& leaf, int position, Vec2 p, double r, bool inner, const Vec2* ends,
                             int end_count, const PadNormals& normals) const;
@@ -226,6 +242,7 @@ private:
     std::vector<Aabb> item_boxes_;
     std::vector<OffsetBoxes> item_offsets_;
     std::vector<NormalCone> item_normals_;
+    std::vector<double> item_outer_limits_;  // m, in leaf order; empty: no limits
     double rho_ = 0.0;  // m, the radius of the nodes' offset boxes
     static constexpr int kLeafSize = 4;
 };

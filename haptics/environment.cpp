@@ -68,12 +68,26 @@ AngleSpan convex_cone(const EnvSegment& a, const EnvSegment& b) {
     return {wrap_2pi(from), width};
 }
 
+// The pad radius (m) from which the segment's outer side makes no c-space piece (cspace.cpp): a
+// bowl arc tighter than the pad touches only the pad's ends, and with no convex vertex at either
+// end nothing else of it offsets along its normals. +inf for every other segment, and for bowls
+// wider than `rho` (m), the index's pad radius: a node that holds them beside tighter ones would
+// otherwise keep every outer box for that pad (AabbTree's outer_firm).
+double outer_offset_limit(const EnvSegment& e, double rho) {
+    const bool bowl = e.kind == EnvSegment::Kind::arc && !e.free_outside;
+    if (!bowl || e.radius > rho || e.end_cone.width > 0.0 || e.start_cone.width > 0.0)
+        return std::numeric_limits<double>::infinity();
+    return e.radius;
+}
+
 // Validation: every c-space piece a pad of the scene's radius builds, at eight finger angles, lies
 // in its segment's offset boxes (outer for the pieces the pad's outer side presses, inner for the
 // concave side's), and the tree holds them. The index prunes with these boxes alone: a piece
 // outside its box would be a wall the proxy cannot find. O(N); at scene load.
+// A segment whose outer side the index leaves out from its limit on (outer_offset_limit) has no
+// such piece at the scene's radius when that is past the limit.
 void validate_index(const Environment& env, const std::vector<Aabb>& boxes, const std::vector<OffsetBoxes>& offsets,
-                    const FingerDef& finger) {
+                    const std::vector<double>& outer_limits, const FingerDef& finger) {
     if constexpr (!kValidation) return;
     CONTACTLAB_VALIDATE(env.tree.consistent(boxes), "the segment index holds every segment's boxes and cones");
     const FingerShape shape = finger_from_def(finger);
@@ -89,11 +103,12 @@ void validate_index(const Environment& env, const std::vector<Aabb>& boxes, cons
                 const bool inner = piece.source == CPiece::Source::vertex_inner || piece.source == CPiece::Source::arc_inner;
                 const Aabb& bound = inner ? o.inner : o.outer;
                 if (piece.source == CPiece::Source::endpoint) continue;  // bounded by the pad's ends
-                inside = inside && bound.contains(b);
+                inside = inside && bound.contains(b) && (inner || shape.radius < outer_limits[static_cast<std::size_t>(i)]);
             }
         }
     }
-    CONTACTLAB_VALIDATE(inside, "every segment's c-space pieces lie in its offset boxes at the scene's pad radius");
+    CONTACTLAB_VALIDATE(inside, "every segment's c-space pieces lie in its offset boxes at the scene's pad radius, "
+                                "and none on the outer side past its limit");
 }
 
 // The scene's shortest segment (m): the least segment_length over its segments, the same double,
@@ -260,7 +275,9 @@ Environment build_environment(const Scene& scene) {
     std::vector<Aabb> boxes;
     std::vector<NormalCone> normals;  // free-side normals a c-space piece of the segment offsets along
     std::vector<OffsetBoxes> offsets;  // the segment's offsets at the scene's pad radius
+    std::vector<double> outer_limits;  // m: the pad radius from which the outer offset makes no piece
     boxes.reserve(env.segments.size());
+    outer_limits.reserve(env.segments.size());
     normals.reserve(env.segments.size());
     offsets.reserve(env.segments.size());
     const double rho = std::max(scene.finger.radius, 0.0);  // m
@@ -279,9 +296,10 @@ Environment build_environment(const Scene& scene) {
         if (e.prev < 0 && e.start_cone.width > 0.0) cone = merge_cones(cone, {e.start_cone.start, e.start_cone.width});
         normals.push_back(cone);
         offsets.push_back(offset_boxes(e, rho));
+        outer_limits.push_back(outer_offset_limit(e, rho));
     }
-    env.tree = AabbTree(boxes, normals, offsets, rho);
-    validate_index(env, boxes, offsets, scene.finger);
+    env.tree = AabbTree(boxes, normals, offsets, rho, outer_limits);
+    validate_index(env, boxes, offsets, outer_limits, scene.finger);
     return env;
 }
 

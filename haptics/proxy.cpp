@@ -480,7 +480,7 @@ Proxy::WarmDisc Proxy::gather_warm(const WarmDisc& warm, double phi, double turn
     // for every piece more; one or two gave the same mean and a worse p99 on 100,000 segments),
     // four times the warm disc (a handful of ticks of motion), kMaxKeptReach; and twice the last
     // turn each way (a wrist turning steadily), at most kMaxKeptTurn.
-    const double extra = std::min({4.0 * env_->min_feature, 4.0 * warm.radius, kMaxKeptReach});  // m
+    const double extra = std::min({2.0 * env_->min_feature, 4.0 * warm.radius, kMaxKeptReach});  // m
     const double margin = std::min(2.0 * recent_turn_, kMaxKeptTurn);                          // rad
     kept_.disc = WarmDisc{warm.center, warm.radius + extra};
     kept_.from = from - margin;

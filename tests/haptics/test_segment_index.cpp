@@ -14,6 +14,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -120,4 +121,57 @@ TEST_CASE("index: a small scene at an unchanged angle gathers every segment, a t
     }
     CHECK(all == 98);
     CHECK(fewer == 100);
+}
+
+TEST_CASE("index: a bowl tighter than the pad is asked for by the pad's ends only, and nothing is lost (bit for bit)") {
+    // A parabolic valley y = h (x / w)^2 (one quadratic curve, exact mode: a G1 chain of arcs),
+    // curvature radius w^2 / (2 h) = 25 mm at its bottom, the pad's 26 mm: the arcs within ~4 mm
+    // of the bottom are bowls tighter than the pad, which touch only its ends (cspace.cpp), and
+    // their offsets by R all crowd about the point 26 mm above the bottom, where the pad rests.
+    const double w = 0.025, h = 0.0125;  // m
+    Scene scene;
+    Contour valley;
+    valley.segments.push_back(QuadSegment{{-w, h}, {0.0, -h}, {w, h}});
+    scene.contours.push_back(valley);
+    const Environment env = build_environment(scene);
+    const double R = scene.finger.radius;
+    std::vector<int> tight;  // bowl arcs tighter than the pad, no vertex pieces
+    for (int i = 0; i < static_cast<int>(env.segments.size()); ++i) {
+        const EnvSegment& e = env.segments[static_cast<std::size_t>(i)];
+        if (e.kind == EnvSegment::Kind::arc && !e.free_outside && e.radius <= R && e.end_cone.width <= 0.0 &&
+            e.start_cone.width <= 0.0)
+            tight.push_back(i);
+    }
+    MESSAGE(env.segments.size(), " arcs, ", tight.size(), " of them tighter than the pad");
+    REQUIRE(tight.size() >= 2);
+    // Above the bottom, 1 mm round the point their offsets crowd to, no pad ends asked: the outer
+    // side's query holds none of them for the scene's pad, every one for a pad tighter than they are.
+    const Vec2 above{0.0, R};
+    const NormalCone every{0.0, kTwoPi};
+    auto gathered_tight = [&](double r) {
+        std::vector<int> out;
+        env.tree.query_pad_reach(above, r, 1e-3, false, nullptr, 0, 0.0, every, out);
+        int n = 0;
+        for (const int id : out) n += std::find(tight.begin(), tight.end(), id) != tight.end() ? 1 : 0;
+        return n;
+    };
+    CHECK(gathered_tight(R) == 0);
+    std::vector<int> all;
+    env.tree.query_pad_reach(Vec2{0.0, 0.02}, 0.02, 2e-3, false, nullptr, 0, 0.0, every, all);
+    int tighter_pad = 0;
+    for (const int id : tight)
+        if (env.segments[static_cast<std::size_t>(id)].radius > 0.02) ++tighter_pad;
+    int found = 0;
+    for (const int id : tight)
+        if (env.segments[static_cast<std::size_t>(id)].radius > 0.02 && std::find(all.begin(), all.end(), id) != all.end()) ++found;
+    CHECK(found == tighter_pad);
+    // Lowered from 5 mm above onto the walls, then sliding across the bottom 0.5 mm deep, the
+    // pad's ends on the walls: the same proxy, force and l_d as a proxy building every segment
+    // every tick.
+    std::vector<verify::HandSample> path;
+    for (int k = 0; k < 100; ++k) path.push_back({Vec2{-0.003, R + 0.005 - 5.5e-5 * k}, 0.0});
+    for (int k = 0; k <= 600; ++k) path.push_back({Vec2{-0.003 + 1e-5 * k, R - 0.0005}, 0.0});
+    contactlab::test::AgainstEverySegment counts;
+    contactlab::test::replay_against_every_segment(env, proxy_def_of(scene), path, counts);
+    CHECK(counts.contact_rows >= 601);
 }
