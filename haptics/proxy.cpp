@@ -81,6 +81,14 @@ constexpr double kAdvanceFrom = 1e-3;
 // at most this much wider each way (rad; the pad's end moves R times it): Proxy::gather_warm.
 constexpr double kMaxKeptReach = 1e-3;
 constexpr double kMaxKeptTurn = 1e-2;
+// A steady slide re-gathered every tick: the kept disc, centred on the warm one, was only a few
+// shortest segments wider, and the proxy moves 50 um a tick at 5 cm/s. It is also led this many
+// ticks of the proxy's last motion ahead (Proxy::gather_warm), so the next ticks' discs lie in it,
+// as long as the contour there is no denser than kKeptLeadBudget segments over the disc (the
+// last kept gather's count scaled to the led disc's radius): where pieces crowd (a valley shaped
+// like the pad), a wider disc only makes its rarer re-gathers slower.
+constexpr double kKeptLeadTicks = 2.0;
+constexpr double kKeptLeadBudget = 256.0;  // segments
 // ... and a turn larger than this (rad) keeps nothing: a kept range stays far below a half-turn,
 // where the gather's "shortest way between the two angles" would go round the other way.
 constexpr double kMaxKeptTurnSpan = 1.0;
@@ -485,7 +493,19 @@ Proxy::WarmDisc Proxy::gather_warm(const WarmDisc& warm, double phi, double turn
     // turn each way (a wrist turning steadily), at most kMaxKeptTurn.
     const double extra = std::min({2.0 * env_->min_feature, 4.0 * warm.radius, kMaxKeptReach});  // m
     const double margin = std::min(2.0 * recent_turn_, kMaxKeptTurn);                          // rad
-    kept_.disc = WarmDisc{warm.center, warm.radius + extra};
+    // Led ahead along the proxy's last motion (kKeptLeadTicks), at most as far as the last kept
+    // gather's density allows within kKeptLeadBudget segments, four warm discs or kMaxKeptReach;
+    // not at all after an empty or no kept gather (nothing to scale by). The disc still holds the
+    // warm one: it is widened by the lead.
+    Vec2 ahead = kKeptLeadTicks * last_motion_;  // m
+    double ahead_cap = 0.0;                      // m
+    if (kept_.valid && !kept_.ids.empty()) {
+        const double per_m = static_cast<double>(kept_.ids.size()) / kept_.disc.radius;  // segments per m of radius
+        ahead_cap = std::min({4.0 * warm.radius, kMaxKeptReach, kKeptLeadBudget / per_m - (warm.radius + extra)});
+    }
+    const double ahead_len = glm::length(ahead);  // m
+    if (ahead_len > ahead_cap) ahead = ahead_cap > 0.0 ? ahead * (ahead_cap / ahead_len) : Vec2{0.0};
+    kept_.disc = WarmDisc{warm.center + ahead, warm.radius + extra + glm::length(ahead)};
     kept_.from = from - margin;
     kept_.width = width + 2.0 * margin;
     gather_near(kept_.disc.center, kept_.from, kept_.from + kept_.width, kept_.disc.radius, segment_ids_);
