@@ -1,6 +1,6 @@
 // experiment_power_cli.cpp — `contactlab experiment power PROTOCOL --measure NAME --participants
 // A-B --pool N --resamples M [--alpha 0.05] [--seed S] [--jobs J] --json OUT [--report DIR]
-// [--conditions A,B] [--overwrite] [--pool-from FILE]`: how many participants a protocol needs
+// [--conditions A,B] [--overwrite] [--pool-from FILE] [--hand scripted|feel]`: how many participants a protocol needs
 // (engine/experiments/analysis/power_analysis.hpp). The pool of N simulated participants runs once through
 // the servo into OUT's stem + ".pool.csv" (an `experiment run` results file with its meta: kept,
 // resumable, and reused when the same command runs again), then groups of A..B participants are
@@ -8,7 +8,8 @@
 // protocol instead (a cluster's merged run, docs/cluster.md): its participants, or its first N
 // with --pool; --seed then seeds the draws only. The JSON carries the pool file's provenance (version, protocol and its hash,
 // seed, device, rate) and its own hash; --report draws power against group size
-// (engine/reports/power_report.hpp).
+// (engine/reports/power_report.hpp). --hand runs the pool with that simulated hand, as `experiment
+// run --hand` does, and asks a --pool-from file to have been run with it.
 #include "engine/app/command_line.hpp"
 #include "engine/app/number_options.hpp"
 #include "engine/app/progress_bar.hpp"
@@ -45,6 +46,7 @@ struct PowerArgs {
     bool overwrite = false;
     bool conditions_given = false;  // "--conditions ''" is refused, not taken for the default
     std::string pool_from;          // a finished results file taken as the pool instead of running one
+    std::string hand;               // "" keeps the protocol's hand.model
     bool pool_given = false;        // --pool given: with --pool-from, the file's first N participants
 };
 
@@ -94,7 +96,9 @@ int run_power(const PowerArgs& a) {
         a.pool_from.empty() ? (out.parent_path() / (out.stem().string() + ".pool.csv")).string() : a.pool_from;
     json result;
     try {
-        const experiments::Protocol p = experiments::load_protocol(a.protocol);
+        experiments::Protocol p = experiments::load_protocol(a.protocol);
+        if (!a.hand.empty() && !experiments::parse_hand_model(a.hand, p.hand_model))
+            throw BadInput("--hand: expected scripted or feel, got \"" + a.hand + "\"");
         if (a.pool_from.empty()) {
             experiments::RunOptions ro;
             for (int i = 1; i <= a.pool; ++i) ro.participants.push_back(static_cast<std::uint64_t>(i));
@@ -118,6 +122,11 @@ int run_power(const PowerArgs& a) {
         const bool own = a.pool_from.empty();
         const experiments::FinishedRun run = experiments::read_pool_run(
             pool_path, p, own || a.pool_given ? static_cast<std::size_t>(a.pool) : 2, own ? "the pool" : "--pool-from");
+        // A pool run with another hand is another population: refused when --hand names one.
+        const std::string pool_hand = run.meta.value("hand", std::string("scripted"));
+        if (!a.hand.empty() && pool_hand != experiments::to_string(p.hand_model))
+            throw BadInput("--pool-from " + pool_path + ": its participants moved with the " + pool_hand + " hand, --hand asks " +
+                           experiments::to_string(p.hand_model));
         const std::size_t take = own || a.pool_given ? static_cast<std::size_t>(a.pool) : run.rows_of.size();
         if (!own)
             std::fprintf(stderr, "experiment power: pool of %zu of its %zu participants from %s\n", take, run.rows_of.size(),
@@ -172,6 +181,9 @@ void register_experiment_power_command(CLI::App& app, int& rc) {
     c->add_option("--json", args->json, "Write the power per group size as JSON (the pool goes to OUT's stem + .pool.csv)")->required();
     c->add_option("--report", args->report, "Write report.md and power.png into this folder");
     c->add_flag("--overwrite", args->overwrite, "Replace a pool file made by another run (without it such a file is refused)");
+    c->add_option("--hand", args->hand,
+                  "The pool's simulated hand, scripted or feel, as experiment run --hand (default: the protocol's hand.model); "
+                  "a --pool-from file must have been run with it");
     c->callback([args, conditions, pool, &rc] {
         args->conditions_given = conditions->count() > 0;
         args->pool_given = pool->count() > 0;

@@ -129,3 +129,35 @@ TEST_CASE("experiment power --pool-from: a merged file as the pool gives the num
     CHECK(contains(unfinished.err, dir.file("a.csv") + ": an unfinished run"));
     CHECK_FALSE(std::filesystem::exists(dir.file("x.json")));
 }
+
+TEST_CASE("experiment power --hand: the pool runs with the hand named, a --pool-from file of another hand is refused") {
+    TempDir dir;
+    const std::string proto = (source_dir() / "scenes/experiments/003-curvature-cld.json").string();
+    auto power = [&](const std::string& out, std::vector<std::string> extra) {
+        std::vector<std::string> a = {"experiment", "power", proto, "--measure", "proportion_correct", "--participants", "2-3",
+                                      "--pool", "2", "--resamples", "50", "--jobs", "2", "--json", dir.file(out)};
+        a.insert(a.end(), extra.begin(), extra.end());
+        return run_contactlab(a);
+    };
+    // The protocol names no hand (scripted); --hand feel is the pool's, in its meta and the JSON's provenance.
+    const ProcessResult feel = power("feel.json", {"--hand", "feel"});
+    INFO(feel.err);
+    REQUIRE(feel.exit_code == 0);
+    CHECK(nlohmann::json::parse(read_text(dir.file("feel.pool.csv.meta.json")))["hand"] == "feel");
+    CHECK(nlohmann::json::parse(read_text(dir.file("feel.json")))["pool_results"]["meta"]["hand"] == "feel");
+    // The same pool file asked with the protocol's own hand is another run: refused unless --overwrite.
+    const ProcessResult again = run_contactlab({"experiment", "power", proto, "--measure", "proportion_correct", "--participants",
+                                                "2-3", "--pool", "2", "--resamples", "50", "--json", dir.file("feel.json")});
+    CHECK(again.exit_code == 2);
+    CHECK(contains(again.err, "another hand"));
+    // A finished file of the feel hand as the pool: taken with --hand feel or no --hand, refused with --hand scripted.
+    REQUIRE(power("from.json", {"--pool-from", dir.file("feel.pool.csv"), "--hand", "feel"}).exit_code == 0);
+    REQUIRE(power("plain.json", {"--pool-from", dir.file("feel.pool.csv")}).exit_code == 0);
+    const ProcessResult other = power("x.json", {"--pool-from", dir.file("feel.pool.csv"), "--hand", "scripted"});
+    CHECK(other.exit_code == 2);
+    CHECK(contains(other.err, "--pool-from " + dir.file("feel.pool.csv") + ": its participants moved with the feel hand, --hand asks scripted"));
+    const ProcessResult bogus = power("x.json", {"--hand", "telepathic"});
+    CHECK(bogus.exit_code == 2);
+    CHECK(contains(bogus.err, "--hand: expected scripted or feel, got \"telepathic\""));
+    CHECK_FALSE(std::filesystem::exists(dir.file("x.json")));
+}
