@@ -89,6 +89,9 @@ constexpr double kMaxKeptTurn = 1e-2;
 // like the pad), a wider disc only makes its rarer re-gathers slower.
 constexpr double kKeptLeadTicks = 2.0;
 constexpr double kKeptLeadBudget = 256.0;  // segments
+// A kept gather of at least this many segments has the next one made a tick ahead when the
+// motion will leave it (Proxy::prefetch_gather).
+constexpr int kPrefetchFrom = 512;
 // ... and a turn larger than this (rad) keeps nothing: a kept range stays far below a half-turn,
 // where the gather's "shortest way between the two angles" would go round the other way.
 constexpr double kMaxKeptTurnSpan = 1.0;
@@ -231,6 +234,7 @@ Proxy::Proxy(const Environment& env, const ProxyDef& def) : env_(&env), def_(def
     segment_ids_.reserve(ids);
     rotation_ids_.reserve(ids);
     kept_.ids.reserve(ids);
+    pending_.ids.reserve(ids);
     pieces_.reserve(pieces);
     piece_boxes_.reserve(pieces);
     group_boxes_.reserve(pieces / 8 + 1);
@@ -297,6 +301,7 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
     const Vec2 start = proxy_;
     clock_.start(def_.profile);
     work_.kept_gather = false;
+    work_.prefetched_gather = false;
     work_.built_segments = 0;  // (with validation on, its reference run's builds count too)
     // Validation: the tick the slow way first (every segment within reach, every scan over all
     // pieces), the reference the shortcuts below must match bit for bit.
@@ -337,6 +342,10 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
         move_proxy(finger, phi, turn, max_push, start, disc.center);
         work_.warm_start = path_extent_ + 2.0 * max_push + kWarmStartMargin <= disc.radius;
         if (!work_.warm_start) proxy_ = start;
+        if (work_.warm_start && turn == 0.0) {
+            prefetch_gather(warm, phi);
+            clock_.lap(stages_.gather);
+        }
     }
     if (turn != 0.0) recent_turn_ = dphi;
     if (!work_.warm_start) {
@@ -479,14 +488,26 @@ Proxy::WarmDisc Proxy::gather_warm(const WarmDisc& warm, double phi, double turn
         gather_near(warm.center, phi_, phi, warm.radius, segment_ids_);
         return warm;
     }
-    if (kept_.valid && glm::length(warm.center - kept_.disc.center) + warm.radius <= kept_.disc.radius) {
-        const double offset = wrap_pi(from - kept_.from);  // rad
-        if (offset >= 0.0 && offset + width <= kept_.width) {
-            segment_ids_.assign(kept_.ids.begin(), kept_.ids.end());
-            work_.kept_gather = true;
-            return kept_.disc;
-        }
+    auto covers = [&](const KeptGather& g) {
+        if (!(g.valid && glm::length(warm.center - g.disc.center) + warm.radius <= g.disc.radius)) return false;
+        const double offset = wrap_pi(from - g.from);  // rad
+        return offset >= 0.0 && offset + width <= g.width;
+    };
+    if (covers(kept_)) {
+        segment_ids_.assign(kept_.ids.begin(), kept_.ids.end());
+        work_.kept_gather = true;
+        return kept_.disc;
     }
+    // The gather the last tick made ahead (prefetch_gather) becomes the kept one: this tick's
+    // query was made then, only its pieces are built now.
+    if (covers(pending_)) {
+        std::swap(kept_, pending_);
+        pending_.valid = false;
+        segment_ids_.assign(kept_.ids.begin(), kept_.ids.end());
+        work_.prefetched_gather = true;
+        return kept_.disc;
+    }
+    pending_.valid = false;
     // How much wider: at most two of the scene's shortest segments (so at most two segments more
     // at each side of each strand of contour crossing the disc: a dense contour's walk pays for
     // every piece more). Measured on 100,000 dense curves in contact (least of 3 passes), p99 /
@@ -495,8 +516,18 @@ Proxy::WarmDisc Proxy::gather_warm(const WarmDisc& warm, double phi, double turn
     // but slower ticks; narrower than 2, more of the p99's ticks re-gather. Also at most
     // four times the warm disc (a handful of ticks of motion), kMaxKeptReach; and twice the last
     // turn each way (a wrist turning steadily), at most kMaxKeptTurn.
+    const double margin = std::min(2.0 * recent_turn_, kMaxKeptTurn);  // rad
+    kept_.disc = kept_disc_for(warm);
+    kept_.from = from - margin;
+    kept_.width = width + 2.0 * margin;
+    gather_near(kept_.disc.center, kept_.from, kept_.from + kept_.width, kept_.disc.radius, segment_ids_);
+    kept_.ids.assign(segment_ids_.begin(), segment_ids_.end());
+    kept_.valid = true;
+    return kept_.disc;
+}
+
+Proxy::WarmDisc Proxy::kept_disc_for(const WarmDisc& warm) const {
     const double extra = std::min({2.0 * env_->min_feature, 4.0 * warm.radius, kMaxKeptReach});  // m
-    const double margin = std::min(2.0 * recent_turn_, kMaxKeptTurn);                          // rad
     // Led ahead along the proxy's last motion (kKeptLeadTicks), at most as far as the last kept
     // gather's density allows within kKeptLeadBudget segments, four warm discs or kMaxKeptReach;
     // not at all after an empty or no kept gather (nothing to scale by). The disc still holds the
@@ -509,13 +540,29 @@ Proxy::WarmDisc Proxy::gather_warm(const WarmDisc& warm, double phi, double turn
     }
     const double ahead_len = glm::length(ahead);  // m
     if (ahead_len > ahead_cap) ahead = ahead_cap > 0.0 ? ahead * (ahead_cap / ahead_len) : Vec2{0.0};
-    kept_.disc = WarmDisc{warm.center + ahead, warm.radius + extra + glm::length(ahead)};
-    kept_.from = from - margin;
-    kept_.width = width + 2.0 * margin;
-    gather_near(kept_.disc.center, kept_.from, kept_.from + kept_.width, kept_.disc.radius, segment_ids_);
-    kept_.ids.assign(segment_ids_.begin(), segment_ids_.end());
-    kept_.valid = true;
-    return kept_.disc;
+    return WarmDisc{warm.center + ahead, warm.radius + extra + glm::length(ahead)};
+}
+
+// After a warm tick at an unchanged angle: if the next tick's warm disc, guessed from this one
+// moved by this tick's motion, will not lie in the kept disc, that tick's gather is made now
+// (pending_), for the disc it would make there and this angle. Why: where pieces crowd (a pad in
+// a valley of its own shape) a re-gather's query and its builds were each half of a 130 us tick
+// every few ticks; split over two ticks, neither reaches 100 us. A wrong guess costs a query: the
+// next tick gathers as before. Only where the last kept gather held more than kPrefetchFrom
+// segments: elsewhere a re-gather is cheap, and the guess's query would be spent for nothing as
+// often as not.
+void Proxy::prefetch_gather(const WarmDisc& warm, double phi) {
+    if (!kept_.valid || static_cast<int>(kept_.ids.size()) < kPrefetchFrom) return;
+    const Vec2 moved = proxy_ - turned_;  // m, this tick's walk
+    const WarmDisc next{warm.center + moved, warm.radius};
+    if (glm::length(next.center - kept_.disc.center) + next.radius <= kept_.disc.radius) return;  // kept will do
+    if (pending_.valid && glm::length(next.center - pending_.disc.center) + next.radius <= pending_.disc.radius) return;
+    const double margin = std::min(2.0 * recent_turn_, kMaxKeptTurn);  // rad
+    pending_.disc = kept_disc_for(next);
+    pending_.from = phi - margin;
+    pending_.width = 2.0 * margin;
+    gather_near(pending_.disc.center, pending_.from, pending_.from + pending_.width, pending_.disc.radius, pending_.ids);
+    pending_.valid = true;
 }
 
 // Turns the pad from phi_ to phi (re-projecting) and walks the proxy from `start` toward the

@@ -79,6 +79,9 @@ struct ProxyWork {
     bool warm_start = false;
     // The warm start's segments were those a recent tick gathered (Proxy::gather_warm), no query.
     bool kept_gather = false;
+    // ... or a gather made a tick ahead, when the last tick's motion was about to leave the kept
+    // one (Proxy::prefetch_gather): only its pieces were built this tick.
+    bool prefetched_gather = false;
     // The walk's first move entered the piece under the resting proxy, found among the pieces
     // near it alone (Proxy::walk), not by a scan along the whole move toward the finger.
     bool near_start = false;
@@ -169,7 +172,7 @@ public:
     // each time made a 10-segment servo tick cost 3x the proxy's own.)
     void set_def(const ProxyDef& def) {
         if (def.finger != def_.finger) {
-            built_valid_ = kept_.valid = false;
+            built_valid_ = kept_.valid = pending_.valid = false;
             ask_cache_size_ = 0;  // the cached pieces were the old finger's
         }
         def_ = def;
@@ -345,6 +348,12 @@ private:
         bool valid = false;
     };
     KeptGather kept_;
+    // The next tick's kept gather, made ahead where the motion is about to leave kept_.
+    KeptGather pending_;
+    // The kept gather's disc for a warm disc (gather_warm): a few shortest segments wider, led
+    // along the proxy's motion.
+    WarmDisc kept_disc_for(const WarmDisc& warm) const;
+    void prefetch_gather(const WarmDisc& warm, double phi);
     double recent_turn_ = 0.0;  // rad, the size of the last tick's turn that was not 0
     // Warm start (Proxy::update): the centre of the gathered disc, and how far from it the path went (m).
     Vec2 path_center_{0.0};

@@ -709,6 +709,59 @@ TEST_CASE("a kept gather (slow slides, the angle stepping by encoder counts) mov
     }
 }
 
+TEST_CASE("in a valley of the pad's own shape, the gathers made a tick ahead move the proxy as a search of every segment") {
+    // One valley of the bench's dense sinusoid (amplitude 10 mm, period 0.1 m: curvature radius
+    // 25.3 mm at its floor, under the 26 mm pad) in 10,000 lines of 4 um, the bench's density at
+    // 100,000 segments. The pad's ends rest on its walls and hundreds of segments' offset pieces
+    // crowd round the proxy, so a warm tick whose motion is about to leave a kept gather of 512
+    // segments or more makes the next one ahead (Proxy::prefetch_gather), and the next tick uses
+    // it. Pressed 1 mm in and slid across the floor at 5 cm/s and back at 2 cm/s: the proxy, force
+    // and l_d must be those of a proxy that builds every segment's pieces, bit for bit, and
+    // gathers made ahead must have served (17 of the stroke's 315 re-gathers).
+    constexpr double kAmplitude = 0.010;              // m
+    const double k_wave = 2.0 * kPi * 4.0 / 0.4;      // 1/m
+    auto surface = [&](double x) { return kAmplitude * std::sin(k_wave * (x + 0.2)); };
+    Contour valley;
+    constexpr int kSegments = 10000;
+    for (int i = 0; i < kSegments; ++i) {
+        const double x0 = -0.045 + 0.04 * i / kSegments, x1 = -0.045 + 0.04 * (i + 1) / kSegments;  // m
+        valley.segments.push_back(LineSegment{{x0, surface(x0)}, {x1, surface(x1)}});
+    }
+    IndexedAndBrute pair(scene_of({valley}));
+    Vec2 finger{-0.035, surface(-0.035) + R + 0.005};
+    pair.indexed.reset(finger, 0.0);
+    pair.brute.reset(finger, 0.0);
+    int contacts = 0, prefetched = 0, regathered = 0, ticks = 0;
+    auto tick = [&](Vec2 f) {
+        const ProxyOutput a = pair.indexed.update(f, 0.0);
+        const ProxyOutput& b = pair.brute.update(f, 0.0);
+        ++ticks;
+        CAPTURE(ticks);
+        REQUIRE(a.contact == b.contact);
+        CHECK(a.proxy == b.proxy);
+        CHECK(a.force == b.force);
+        CHECK(a.l_d == b.l_d);
+        contacts += a.contact ? 1 : 0;
+        prefetched += a.work.prefetched_gather ? 1 : 0;
+        regathered += a.contact && a.work.warm_start && !a.work.kept_gather && !a.work.prefetched_gather ? 1 : 0;
+    };
+    // Lowered 0.5 mm a tick until it touches, then 1 mm below the proxy as it slides.
+    for (int k = 0; k < 40 && !pair.brute.output().contact; ++k) tick(finger -= Vec2{0.0, 0.0005});
+    REQUIRE(pair.brute.output().contact);
+    for (const double speed : {0.05, -0.02}) {  // m/s
+        const int steps = static_cast<int>(std::lround(0.02 / std::abs(speed) / 1e-3));
+        for (int k = 0; k < steps; ++k) {
+            finger.x += speed * 1e-3;
+            finger.y = pair.brute.output().proxy.y - 0.001;
+            tick(finger);
+        }
+    }
+    MESSAGE(ticks, " ticks, ", contacts, " in contact, ", prefetched, " on a gather made a tick ahead, ", regathered,
+            " gathered anew");
+    CHECK(contacts > 1300);
+    CHECK(prefetched > 10);
+}
+
 TEST_CASE("point finger: the proxy is the god-object on the contour itself with l = 0") {
     FingerShape point{FingerKind::point, 0.0, 0.0};
     ProxyRig rig(block_scene(), point);
