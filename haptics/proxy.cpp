@@ -91,7 +91,7 @@ constexpr double kKeptLeadTicks = 2.0;
 constexpr double kKeptLeadBudget = 256.0;  // segments
 // A kept gather of at least this many segments has the next one made a tick ahead when the
 // motion will leave it (Proxy::prefetch_gather).
-constexpr int kPrefetchFrom = 512;
+constexpr int kPrefetchFrom = 256;
 // ... and a turn larger than this (rad) keeps nothing: a kept range stays far below a half-turn,
 // where the gather's "shortest way between the two angles" would go round the other way.
 constexpr double kMaxKeptTurnSpan = 1.0;
