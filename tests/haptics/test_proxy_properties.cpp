@@ -228,6 +228,17 @@ struct IndexedAndBrute {
     }
     explicit IndexedAndBrute(const Scene& scene)
         : env(build_environment(scene)), indexed(env, proxy_def_of(scene)), brute(env, without_index(proxy_def_of(scene))) {}
+    // Both proxies one tick: the same contact, proxy, force and l_d, bit for bit. Returns the
+    // indexed proxy's output.
+    ProxyOutput update_both(Vec2 finger, double phi) {
+        const ProxyOutput a = indexed.update(finger, phi);
+        const ProxyOutput& b = brute.update(finger, phi);
+        REQUIRE(a.contact == b.contact);
+        CHECK(a.proxy == b.proxy);
+        CHECK(a.force == b.force);
+        CHECK(a.l_d == b.l_d);
+        return a;
+    }
 };
 }  // namespace
 
@@ -602,14 +613,9 @@ TEST_CASE("a press from far above (the free-space advance) lands the proxy as a 
             pair.indexed.update(above, phi0);
             const Vec2 pressed{std::clamp(above.x + 0.04 * (u(rng) - 0.5), -0.18, 0.18), 0.015 + 0.035 * u(rng)};
             const double phi = k % 2 == 0 ? phi0 : std::clamp(phi0 + 0.7 * (u(rng) - 0.5), -0.7, 0.7);
-            const ProxyOutput a = pair.indexed.update(pressed, phi);
-            const ProxyOutput& b = pair.brute.update(pressed, phi);
             ++presses;
             CAPTURE(k);
-            REQUIRE(a.contact == b.contact);
-            CHECK(a.proxy == b.proxy);
-            CHECK(a.force == b.force);
-            CHECK(a.l_d == b.l_d);
+            const ProxyOutput a = pair.update_both(pressed, phi);
             contacts += a.contact ? 1 : 0;
             if (a.work.free_advance) {
                 ++advanced;
@@ -733,14 +739,9 @@ TEST_CASE("in a valley of the pad's own shape, the gathers made a tick ahead mov
     pair.brute.reset(finger, 0.0);
     int contacts = 0, prefetched = 0, regathered = 0, ticks = 0;
     auto tick = [&](Vec2 f) {
-        const ProxyOutput a = pair.indexed.update(f, 0.0);
-        const ProxyOutput& b = pair.brute.update(f, 0.0);
         ++ticks;
         CAPTURE(ticks);
-        REQUIRE(a.contact == b.contact);
-        CHECK(a.proxy == b.proxy);
-        CHECK(a.force == b.force);
-        CHECK(a.l_d == b.l_d);
+        const ProxyOutput a = pair.update_both(f, 0.0);
         contacts += a.contact ? 1 : 0;
         prefetched += a.work.prefetched_gather ? 1 : 0;
         regathered += a.contact && a.work.warm_start && !a.work.kept_gather && !a.work.prefetched_gather ? 1 : 0;
