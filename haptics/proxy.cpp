@@ -89,6 +89,8 @@ constexpr double kMaxKeptTurn = 1e-2;
 // like the pad), a wider disc only makes its rarer re-gathers slower.
 constexpr double kKeptLeadTicks = 2.0;
 constexpr double kKeptLeadBudget = 256.0;  // segments
+// ... and only after this many ticks without a turn of the finger.
+constexpr std::int64_t kKeptLeadStillTicks = 16;
 // A kept gather of at least this many segments has the next one made a tick ahead when the
 // motion will leave it (Proxy::prefetch_gather).
 constexpr int kPrefetchFrom = 256;
@@ -347,7 +349,10 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
             clock_.lap(stages_.gather);
         }
     }
-    if (turn != 0.0) recent_turn_ = dphi;
+    if (turn != 0.0) {
+        recent_turn_ = dphi;
+        last_turn_tick_ = ticks_;
+    }
     if (!work_.warm_start) {
         work_.free_advance = advanced_reach < reach;
         // A free finger's full gather reaches only as far as it moved and the pad turned: hovering,
@@ -534,7 +539,11 @@ Proxy::WarmDisc Proxy::kept_disc_for(const WarmDisc& warm) const {
     // warm one: it is widened by the lead.
     Vec2 ahead = kKeptLeadTicks * last_motion_;  // m
     double ahead_cap = 0.0;                      // m
-    if (kept_.valid && !kept_.ids.empty()) {
+    // Not while the finger turns: every turn builds the kept segments again at the new angle, and
+    // a wider gather made seed 002's hand (its angle stepping by encoder counts every few ticks)
+    // build 9 % more.
+    const bool still = ticks_ - last_turn_tick_ > kKeptLeadStillTicks;
+    if (still && kept_.valid && !kept_.ids.empty()) {
         const double per_m = static_cast<double>(kept_.ids.size()) / kept_.disc.radius;  // segments per m of radius
         ahead_cap = std::min({4.0 * warm.radius, kMaxKeptReach, kKeptLeadBudget / per_m - (warm.radius + extra)});
     }

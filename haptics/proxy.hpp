@@ -355,6 +355,7 @@ private:
     WarmDisc kept_disc_for(const WarmDisc& warm) const;
     void prefetch_gather(const WarmDisc& warm, double phi);
     double recent_turn_ = 0.0;  // rad, the size of the last tick's turn that was not 0
+    std::int64_t last_turn_tick_ = 0;  // ticks_ at that turn
     // Warm start (Proxy::update): the centre of the gathered disc, and how far from it the path went (m).
     Vec2 path_center_{0.0};
     double path_extent_ = 0.0;
