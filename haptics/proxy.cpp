@@ -369,14 +369,10 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
             const double from = turn == 0.0 ? phi : phi_ + std::min(turn, 0.0);  // rad, as gather_warm's
             const double width = std::abs(turn);                                // rad
             if (width > kMaxKeptTurnSpan) return false;
-            if (kept_.valid && kept_.ids.empty() &&
-                glm::length(disc.center - kept_.disc.center) + disc.radius <= kept_.disc.radius) {
-                const double offset = wrap_pi(from - kept_.from);  // rad
-                if (offset >= 0.0 && offset + width <= kept_.width) {
-                    segment_ids_.clear();
-                    work_.kept_gather = true;
-                    return true;
-                }
+            if (kept_.ids.empty() && covers(kept_, disc, from, width)) {
+                segment_ids_.clear();
+                work_.kept_gather = true;
+                return true;
             }
             gather_warm(disc, phi, turn);
             return segment_ids_.empty();
@@ -493,19 +489,14 @@ Proxy::WarmDisc Proxy::gather_warm(const WarmDisc& warm, double phi, double turn
         gather_near(warm.center, phi_, phi, warm.radius, segment_ids_);
         return warm;
     }
-    auto covers = [&](const KeptGather& g) {
-        if (!(g.valid && glm::length(warm.center - g.disc.center) + warm.radius <= g.disc.radius)) return false;
-        const double offset = wrap_pi(from - g.from);  // rad
-        return offset >= 0.0 && offset + width <= g.width;
-    };
-    if (covers(kept_)) {
+    if (covers(kept_, warm, from, width)) {
         segment_ids_.assign(kept_.ids.begin(), kept_.ids.end());
         work_.kept_gather = true;
         return kept_.disc;
     }
     // The gather the last tick made ahead (prefetch_gather) becomes the kept one: this tick's
     // query was made then, only its pieces are built now.
-    if (covers(pending_)) {
+    if (covers(pending_, warm, from, width)) {
         std::swap(kept_, pending_);
         pending_.valid = false;
         segment_ids_.assign(kept_.ids.begin(), kept_.ids.end());
@@ -529,6 +520,12 @@ Proxy::WarmDisc Proxy::gather_warm(const WarmDisc& warm, double phi, double turn
     kept_.ids.assign(segment_ids_.begin(), segment_ids_.end());
     kept_.valid = true;
     return kept_.disc;
+}
+
+bool Proxy::covers(const KeptGather& g, const WarmDisc& disc, double from, double width) {
+    if (!(g.valid && glm::length(disc.center - g.disc.center) + disc.radius <= g.disc.radius)) return false;
+    const double offset = wrap_pi(from - g.from);  // rad
+    return offset >= 0.0 && offset + width <= g.width;
 }
 
 Proxy::WarmDisc Proxy::kept_disc_for(const WarmDisc& warm) const {
@@ -564,8 +561,7 @@ void Proxy::prefetch_gather(const WarmDisc& warm, double phi) {
     if (!kept_.valid || static_cast<int>(kept_.ids.size()) < kPrefetchFrom) return;
     const Vec2 moved = proxy_ - turned_;  // m, this tick's walk
     const WarmDisc next{warm.center + moved, warm.radius};
-    if (glm::length(next.center - kept_.disc.center) + next.radius <= kept_.disc.radius) return;  // kept will do
-    if (pending_.valid && glm::length(next.center - pending_.disc.center) + next.radius <= pending_.disc.radius) return;
+    if (covers(kept_, next, phi, 0.0) || covers(pending_, next, phi, 0.0)) return;  // the next tick has its gather
     const double margin = std::min(2.0 * recent_turn_, kMaxKeptTurn);  // rad
     pending_.disc = kept_disc_for(next);
     pending_.from = phi - margin;
@@ -765,17 +761,8 @@ void Proxy::build_pieces(double phi) {
     next_boxes_.clear();
     next_first_.clear();
     std::size_t j = 0;  // position in built_ids_ (both lists are sorted)
-    // Copies are gathered into runs of the old pieces, each copied at once (a valley's re-gather
-    // copies 1,500 pieces, one by one a third of its slow tick).
-    int run_from = 0, run_to = 0;  // [run_from, run_to) of old_pieces, not yet copied
-    auto flush_run = [&] {
-        if (run_to == run_from) return;
-        next_pieces_.insert(next_pieces_.end(), old_pieces.begin() + run_from, old_pieces.begin() + run_to);
-        next_boxes_.insert(next_boxes_.end(), old_boxes.begin() + run_from, old_boxes.begin() + run_to);
-        run_from = run_to = 0;
-    };
     for (const int id : segment_ids_) {
-        next_first_.push_back(static_cast<int>(next_pieces_.size()) + (run_to - run_from));
+        next_first_.push_back(static_cast<int>(next_pieces_.size()));
         // The segment's pieces in the last build (at built_phi_), if it was built then. A segment
         // that had none at that angle has none now: copied as nothing, not built again (at the
         // bottom of a valley tighter than the pad, most segments gathered have no piece, and
@@ -790,15 +777,12 @@ void Proxy::build_pieces(double phi) {
             }
         }
         if (reuse && was_built) {
-            if (old_to == old_from) continue;
-            if (run_to != old_from) {
-                flush_run();
-                run_from = old_from;
+            for (int k = old_from; k < old_to; ++k) {
+                next_pieces_.push_back(old_pieces[static_cast<std::size_t>(k)]);
+                next_boxes_.push_back(old_boxes[static_cast<std::size_t>(k)]);
             }
-            run_to = old_to;
             continue;
         }
-        flush_run();
         const std::size_t from = next_pieces_.size();
         append_cspace_pieces(*env_, id, pad, next_pieces_);
         ++work_.built_segments;
@@ -816,7 +800,6 @@ void Proxy::build_pieces(double phi) {
             next_boxes_.push_back(piece_box(piece).grown(kBoxSlack));
         }
     }
-    flush_run();
     next_first_.push_back(static_cast<int>(next_pieces_.size()));
     std::swap(pieces_, next_pieces_);
     std::swap(piece_boxes_, next_boxes_);

@@ -350,6 +350,9 @@ private:
     KeptGather kept_;
     // The next tick's kept gather, made ahead where the motion is about to leave kept_.
     KeptGather pending_;
+    // Whether g holds every segment a gather of `disc` over the angles [from, from + width] (rad)
+    // would: its disc holds the disc and its angles the angles.
+    static bool covers(const KeptGather& g, const WarmDisc& disc, double from, double width);
     // The kept gather's disc for a warm disc (gather_warm): a few shortest segments wider, led
     // along the proxy's motion.
     WarmDisc kept_disc_for(const WarmDisc& warm) const;
