@@ -62,8 +62,7 @@ int run_protocol(const RunArgs& a) {
     o.progress = print_progress;
     try {
         experiments::Protocol p = experiments::load_protocol(a.protocol);
-        if (!a.hand.empty() && !experiments::parse_hand_model(a.hand, p.hand_model))
-            throw BadInput("--hand: expected scripted or feel, got \"" + a.hand + "\"");
+        if (!a.hand.empty()) experiments::apply_hand_option(p, a.hand);
         const auto t0 = std::chrono::steady_clock::now();
         const experiments::RunSummary s = experiments::run_experiment(p, o);
         const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -97,8 +97,7 @@ int run_power(const PowerArgs& a) {
     json result;
     try {
         experiments::Protocol p = experiments::load_protocol(a.protocol);
-        if (!a.hand.empty() && !experiments::parse_hand_model(a.hand, p.hand_model))
-            throw BadInput("--hand: expected scripted or feel, got \"" + a.hand + "\"");
+        if (!a.hand.empty()) experiments::apply_hand_option(p, a.hand);
         if (a.pool_from.empty()) {
             experiments::RunOptions ro;
             for (int i = 1; i <= a.pool; ++i) ro.participants.push_back(static_cast<std::uint64_t>(i));

@@ -164,3 +164,17 @@ TEST_CASE("experiment calibrate --hand feel: the feel hand's free speed fitted t
     CHECK(j["targets"][1]["fitted"] == false);
     CHECK(j["targets"][1]["simulated"].is_number());
 }
+
+TEST_CASE("experiment calibrate --hand feel on a task without such a hand exits 2 naming the protocol") {
+    // Seed 004's person answers from a scripted press: --hand feel would fit nothing the hand does
+    // while the runs' meta said feel.
+    TempDir dir;
+    write_text(dir.file("small.json"), kProtocol);
+    write_text(dir.file("t.json"), kTargets);
+    const auto p = run_contactlab({"experiment", "calibrate", dir.file("small.json"), "--target", dir.file("t.json"), "--param",
+                                   "stiffness_noise=0.02:0.3", "--fit", "phi e0.40", "--participants", "2", "--evaluations", "4", "--hand", "feel",
+                                   "--json", dir.file("c.json")});
+    CHECK(p.exit_code == 2);
+    CHECK(contains(p.err, "calibrate --hand feel: small.json is a surface-orientation protocol, whose simulated person has no hand"));
+    CHECK_FALSE(std::filesystem::exists(dir.file("c.json")));
+}

@@ -175,6 +175,20 @@ TEST_CASE("protocols: hand.model names the hand, scripted or feel, and anything 
     CHECK(h == HandModel::feel);
     CHECK_FALSE(parse_hand_model("Feel", h));
     CHECK(std::string(to_string(HandModel::feel)) == "feel");
+    // Only contour following and bump counting have such a hand: elsewhere "feel" would run the
+    // scripted strategy while the meta said feel, so it is refused naming the key.
+    CHECK(task_has_feel_hand(Task::contour_following));
+    CHECK(task_has_feel_hand(Task::bump_counting));
+    for (const Task t : {Task::curvature, Task::surface_orientation, Task::edge_sharpness}) CHECK_FALSE(task_has_feel_hand(t));
+    const std::string curvature = R"({"format": "contactlab experiment protocol", "version": 1, "name": "x", "seed": "003",
+  "task": "curvature", "conditions": [{"name": "A", "motion": "A"}], "stimuli": [0.01, 0.02], "answers": ["10", "20"],
+  "hand": {"model": "feel"}})";
+    CHECK_THROWS_WITH_AS(parse_protocol(curvature, "c.json"),
+                         doctest::Contains("c.json: hand.model: \"feel\": the curvature task's simulated person has no hand that moves by feel"),
+                         ExperimentError);
+    std::string scripted = curvature;
+    scripted.replace(scripted.find("\"feel\""), 6, "\"scripted\"");
+    CHECK(parse_protocol(scripted, "c.json").hand_model == HandModel::scripted);
 }
 
 TEST_CASE("simulated participant by feel: seed 000 without noise, the edge is felt in time with contact location, and time rises with d") {
@@ -309,6 +323,14 @@ TEST_CASE("experiment run --hand: feel is recorded in the meta, a bad name exits
         {"experiment", "run", proto, "--participant", "sim", "--hand", "scripted", "--no-traces", "--jobs", "1", "-o", dir.file("r.csv")});
     CHECK(other.exit_code == 2);
     CHECK(other.err.find("another hand") != std::string::npos);
+    // --hand feel on a task without such a hand: refused before anything runs, naming the file.
+    const std::string curvature = protocol_path("003-curvature.json");
+    const auto none = cli_test::run_contactlab(
+        {"experiment", "run", curvature, "--participant", "sim", "--hand", "feel", "--no-traces", "-o", dir.file("c.csv")});
+    CHECK(none.exit_code == 2);
+    CHECK(none.err.find("--hand feel: " + curvature + " is a curvature protocol, whose simulated person has no hand that moves by feel") !=
+          std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(dir.file("c.csv")));
 }
 
 namespace {

@@ -132,9 +132,14 @@ TEST_CASE("experiment power --pool-from: a merged file as the pool gives the num
 
 TEST_CASE("experiment power --hand: the pool runs with the hand named, a --pool-from file of another hand is refused") {
     TempDir dir;
-    const std::string proto = (source_dir() / "scenes/experiments/003-curvature-cld.json").string();
+    // Seed 000's task, whose person has a hand that moves by feel; its protocol made to name none.
+    std::string text = read_text((source_dir() / "scenes/experiments/000-contour-following.json").string());
+    const auto model = text.find("\"model\": \"feel\", ");
+    REQUIRE(model != std::string::npos);
+    write_text(dir.file("slide.json"), text.erase(model, std::string("\"model\": \"feel\", ").size()));
+    const std::string proto = dir.file("slide.json");
     auto power = [&](const std::string& out, std::vector<std::string> extra) {
-        std::vector<std::string> a = {"experiment", "power", proto, "--measure", "proportion_correct", "--participants", "2-3",
+        std::vector<std::string> a = {"experiment", "power", proto, "--measure", "time_s", "--participants", "2-3",
                                       "--pool", "2", "--resamples", "50", "--jobs", "2", "--json", dir.file(out)};
         a.insert(a.end(), extra.begin(), extra.end());
         return run_contactlab(a);
@@ -159,5 +164,12 @@ TEST_CASE("experiment power --hand: the pool runs with the hand named, a --pool-
     const ProcessResult bogus = power("x.json", {"--hand", "telepathic"});
     CHECK(bogus.exit_code == 2);
     CHECK(contains(bogus.err, "--hand: expected scripted or feel, got \"telepathic\""));
+    // Seed 003's task has no hand that moves by feel: refused, naming the file, before any pool runs.
+    const std::string curvature = (source_dir() / "scenes/experiments/003-curvature-cld.json").string();
+    const ProcessResult none = run_contactlab({"experiment", "power", curvature, "--measure", "proportion_correct", "--participants",
+                                               "2-3", "--pool", "2", "--hand", "feel", "--json", dir.file("none.json")});
+    CHECK(none.exit_code == 2);
+    CHECK(contains(none.err, "--hand feel: " + curvature + " is a curvature protocol"));
+    CHECK_FALSE(std::filesystem::exists(dir.file("none.pool.csv")));
     CHECK_FALSE(std::filesystem::exists(dir.file("x.json")));
 }

@@ -186,6 +186,14 @@ json calibrate(const CalibrationOptions& o) {
         if (!(std::isfinite(p.lo) && std::isfinite(p.hi) && p.lo < p.hi))
             throw ExperimentError("calibrate: " + p.name + ": bounds need LO < HI, both finite");
     }
+    // --hand feel asks every protocol's person to move by feel: one whose task has no such hand
+    // would run its scripted strategy while the runs' meta said feel.
+    if (o.hand && *o.hand == HandModel::feel)
+        for (const std::string& file : used)
+            if (!task_has_feel_hand(by_file[file]->task))
+                throw ExperimentError("calibrate --hand feel: " + file + " is a " + to_string(by_file[file]->task) +
+                                      " protocol, whose simulated person has no hand that moves by feel (contour-following "
+                                      "and bump-counting have one)");
     // The feel hand's population moves nothing on a protocol run with the scripted hand: a fit of it
     // there would wander on a flat objective.
     for (const CalibrationParameter& p : o.parameters)

@@ -47,6 +47,10 @@ enum class HandModel { scripted, feel };
 const char* to_string(HandModel h);
 // "scripted" or "feel"; false for anything else.
 bool parse_hand_model(const std::string& name, HandModel& out);
+// Whether the task's simulated person has a hand that moves by feel: contour following (seed 000)
+// and bump counting (seed 002). The others' strategies (a scripted press or slide) have none, so
+// "feel" there would change nothing but the meta's record of which hand ran.
+bool task_has_feel_hand(Task task);
 
 // The people whose hands move by feel (`hand.model` "feel"): the population each simulated
 // participant's hand is drawn from once (participants/person.hpp), each parameter's mean or
@@ -260,6 +264,10 @@ int comparison_interval(std::uint64_t trial_seed);
 
 // The CSV text of a stimulus value: seed 003 in mm ("10"), others as written ("0.06", "2", "45").
 std::string stimulus_label(const Protocol& p, double stimulus);
+
+// A command's --hand NAME for protocol p: sets p.hand_model, or throws ExperimentError saying why
+// not (not scripted or feel; feel for a task without such a hand, naming the protocol's file).
+void apply_hand_option(Protocol& p, const std::string& name);
 
 // Throws ExperimentError (results_table.hpp) naming the file, path and problem.
 Protocol parse_protocol(const std::string& json_text, const std::string& origin);
