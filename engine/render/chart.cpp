@@ -81,6 +81,13 @@ std::pair<double, double> axis_range(const Chart& c, bool is_x) {
             if (!a.max) h = hi * 10.0;
         }
         if (!(l < h)) throw ChartError(where(c, name) + ": min must be below max");
+        // A reference line on the frame's edge reads as the frame (the bench's 1 ms line, a whole
+        // decade, sat on the top edge): out to the next minor tick (2 or 5 x 10^k) beyond it.
+        for (const ChartReference& r : c.references) {
+            if (r.vertical != is_x) continue;
+            if (!a.max && r.value == h) h *= 2.0;
+            if (!a.min && r.value == l) l /= 2.0;
+        }
         return {l, h};
     }
     if (!(lo < hi)) {  // one value: a unit (or 10 %) either side
@@ -92,8 +99,14 @@ std::pair<double, double> axis_range(const Chart& c, bool is_x) {
     // Out to whole tick steps, so the frame ends on labelled ticks.
     const std::vector<ChartTick> ticks = axis_ticks(AxisMap{AxisScale::linear, lo, hi, 0.0, 1.0});
     const double step = ticks.size() >= 2 ? ticks[1].value - ticks[0].value : hi - lo;
-    const double l = a.min ? lo : std::floor(lo / step + 1e-9) * step;
-    const double h = a.max ? hi : std::ceil(hi / step - 1e-9) * step;
+    double l = a.min ? lo : std::floor(lo / step + 1e-9) * step;
+    double h = a.max ? hi : std::ceil(hi / step - 1e-9) * step;
+    // ... and a reference line on the frame's edge: one step beyond it (as on a log axis).
+    for (const ChartReference& r : c.references) {
+        if (r.vertical != is_x) continue;
+        if (!a.max && r.value == h) h += step;
+        if (!a.min && r.value == l && !(a.include_zero && l == 0.0)) l -= step;
+    }
     return {l, h};
 }
 

@@ -121,6 +121,34 @@ TEST_CASE("chart: ranges from the data widen to whole decades (log) and tick ste
     CHECK(layout_chart(c).y.lo == doctest::Approx(0.0));
 }
 
+TEST_CASE("chart: a reference line that would lie on the frame's edge gets room beyond it") {
+    // The bench's tail chart: p99.9 from 3 us to 90 us and the 1 ms line, a whole decade, which
+    // the range out to whole decades put on the top edge, where it reads as the frame.
+    Chart c;
+    c.title = "edge";
+    c.x.scale = AxisScale::log10;
+    c.y.scale = AxisScale::log10;
+    c.series.push_back(series("s", {10.0, 1e5}, {3e3, 9e4}, chart_color(0)));
+    c.references.push_back({"", false, 1e5});
+    c.references.push_back({"", false, 1e6});
+    ChartLayout l = layout_chart(c);
+    CHECK(l.y.lo == doctest::Approx(1e3));  // from the data, no reference there
+    CHECK(l.y.hi == doctest::Approx(2e6));  // the next minor tick beyond 1e6
+    CHECK(l.y.to_px(1e6) > l.y.to_px(l.y.hi) + 20.0);  // well inside the frame (pixel y grows downwards)
+    // Linear: a reference on the last tick step gets one step more; one inside the range changes nothing.
+    c.y.scale = AxisScale::linear;
+    c.series[0].y = {1.0, 8.7};
+    c.references = {{"", false, 9.0}};
+    l = layout_chart(c);
+    CHECK(l.y.hi == doctest::Approx(10.0));
+    c.references = {{"", false, 5.0}};
+    CHECK(layout_chart(c).y.hi == doctest::Approx(9.0));
+    // An explicit limit is kept as asked.
+    c.references = {{"", false, 9.0}};
+    c.y.max = 9.0;
+    CHECK(layout_chart(c).y.hi == doctest::Approx(9.0));
+}
+
 TEST_CASE("chart: ticks and their labels") {
     const auto lin = axis_ticks(AxisMap{AxisScale::linear, 0.0, 9.0, 0.0, 1.0});
     REQUIRE(lin.size() == 10);
