@@ -161,6 +161,9 @@ public:
         int end_count = 0;
         NormalCone outer_normals;
         double best = std::numeric_limits<double>::infinity();  // m, the least distance so far
+        // m, the least lower bound of the nodes and items it pruned (each beyond the best then):
+        // with the items it asked, a bound under every item's distance (Proxy::anticipate's hold).
+        double pruned = std::numeric_limits<double>::infinity();
         int stack[kMaxStack]{};
         double bound[kMaxStack]{};  // each stacked node's lower bound (m)
         int top = 0;
@@ -316,6 +319,7 @@ inline void AabbTree::start_pad_search(PadSearch& s, Vec2 p, double r, bool inne
     for (int k = 0; k < s.end_count; ++k) s.ends[k] = ends[k];
     s.outer_normals = outer_normals;
     s.best = std::numeric_limits<double>::infinity();
+    s.pruned = std::numeric_limits<double>::infinity();
     s.top = 0;
     s.active = !nodes_.empty();
     if (!s.active) return;
@@ -336,11 +340,18 @@ bool AabbTree::continue_pad_search(PadSearch& s, int budget, ItemDistance&& item
     while (s.top > 0) {
         if (budget > 0 && asked >= budget) return false;  // the rest next call
         --s.top;
-        if (s.bound[s.top] > s.best + kRounding) continue;
+        if (s.bound[s.top] > s.best + kRounding) {
+            s.pruned = std::min(s.pruned, s.bound[s.top]);
+            continue;
+        }
         const Node& n = nodes_[s.stack[s.top]];
         if (n.left < 0) {
             for (int i = n.first; i < n.first + n.count; ++i) {
-                if (item_lower_bound(n, i, s.p, s.r, s.inner, s.ends, s.end_count, normals) > s.best + kRounding) continue;
+                const double item_bound = item_lower_bound(n, i, s.p, s.r, s.inner, s.ends, s.end_count, normals);  // m
+                if (item_bound > s.best + kRounding) {
+                    s.pruned = std::min(s.pruned, item_bound);
+                    continue;
+                }
                 s.best = std::min(s.best, item_distance(items_[i]));
                 ++asked;
             }

@@ -1710,7 +1710,28 @@ void Proxy::anticipate(Vec2 finger, double phi) {
         // finds, bit for bit. With a budget the search may end ticks later (ProxyDef).
         const int budget = std::max(def_.anticipation_budget, 0);
         bool seeded = false;  // this tick began a search and asked the last one's nearest segment
-        if (budget == 0 || !search_.active || search_phi_ != phi) {
+        // Exact mode: the last search's nearest few segments may answer alone (hold_). Why: seed
+        // 002's hand hovers a fifth of its ticks over 2 mm segments, and each tick's search walked
+        // about 50 of the tree's nodes to prove that its seed still won.
+        // Where holds keep failing (a finger moving more in a tick than the few segments' lead
+        // over the rest: dense contours, where the few nearest are also costly to gather), a
+        // hold is neither asked nor gathered for 1, 3, 7, 15 ticks after each failure in a row.
+        bool held = false;
+        const bool may_hold = budget == 0 && hold_skip_ == 0;
+        if (budget == 0 && hold_skip_ > 0) --hold_skip_;
+        if (may_hold && hold_.valid && std::abs(wrap_pi(phi - hold_.phi)) <= kHoldTurn) {
+            held = held_anticipation(finger, phi);
+            if (held) {
+                ++hold_.uses;
+            } else {
+                hold_.valid = false;
+                if (hold_.uses == 0) note_hold_failure();  // (one that served some ticks did its job)
+                else hold_failures_ = 0;
+            }
+        }
+        if (held) {
+            // (the answer is set: published below as a finished search's)
+        } else if (budget == 0 || !search_.active || search_phi_ != phi) {
             const PadFrame& pad = pad_frame(phi);
             const bool ends = pad_has_endpoints(def_.finger);
             const Vec2 end_points[2] = {finger + R * pad.end_dir[0], finger + R * pad.end_dir[1]};
@@ -1723,6 +1744,12 @@ void Proxy::anticipate(Vec2 finger, double phi) {
             search_best_foot_ = Vec2{0.0};
             search_started_ = ticks_;
             search_seed_ = -1;
+            search_best_distance_ = std::numeric_limits<double>::infinity();
+            collect_hold_ = may_hold;
+            hold_asks_ = 0;
+            hold_motion_ = glm::length(last_finger_motion_);
+            near_count_ = 0;
+            search_floor_ = std::numeric_limits<double>::infinity();
             // The last search's nearest segment, asked first: its distance now is within the
             // finger's motion of the answer, so from the start the depth-first search skips every
             // node whose bound is beyond it. Unseeded, the best shrank leaf by leaf: 1 cm above a
@@ -1745,9 +1772,22 @@ void Proxy::anticipate(Vec2 finger, double phi) {
             }
         }
         // A spread search's seed is one of its tick's budget (budget - 1 >= 1 here).
-        if (continue_anticipation(seeded && budget > 1 ? budget - 1 : budget)) {
+        if (held || continue_anticipation(seeded && budget > 1 ? budget - 1 : budget)) {
+            if (collect_hold_ && !held) {
+                // The next ticks' hold: this search's nearest few, and under every other segment
+                // the least of the tree's pruned bounds, the segments answered by bound, and the
+                // distances of those asked but not held.
+                hold_.valid = near_count_ > 0;
+                hold_.uses = 0;
+                hold_.finger = search_.p;
+                hold_.phi = search_phi_;
+                hold_.count = std::min(near_count_, kHeldSegments);
+                for (int k = 0; k < hold_.count; ++k) hold_.ids[static_cast<std::size_t>(k)] = near_segment_[static_cast<std::size_t>(k)];
+                hold_.floor = std::min(search_.pruned, search_floor_);
+                if (near_count_ > kHeldSegments) hold_.floor = std::min(hold_.floor, near_distance_[kHeldSegments]);
+            }
             if constexpr (kValidation)
-                validate_anticipation(search_.p, pad_frame(search_phi_), search_best_segment_, search_best_foot_);
+                validate_anticipation(held ? finger : search_.p, pad_frame(search_phi_), search_best_segment_, search_best_foot_);
             anticipated_.valid = search_best_segment_ >= 0;
             anticipated_.searched_at = search_started_;
             if (anticipated_.valid) {
@@ -1756,6 +1796,7 @@ void Proxy::anticipate(Vec2 finger, double phi) {
             }
         }
         out_.work.anticipation_searching = search_.active;
+        out_.work.anticipation_held = held;
         out_.anticipating = anticipated_.valid;
         if (anticipated_.valid) {
             out_.l_d = anticipated_.l_d;
@@ -1842,7 +1883,10 @@ double Proxy::ask_anticipation(int id) {
                                   ? distance_to_segment(segment, finger)
                                   : std::abs(glm::length(finger - segment.center) - segment.radius);  // m
     const double beyond = to_segment - def_.finger.radius;
-    if (beyond > search_.best + kOnTolerance) return std::numeric_limits<double>::infinity();
+    if (beyond > search_.best + kOnTolerance) {
+        search_floor_ = std::min(search_floor_, beyond);
+        return std::numeric_limits<double>::infinity();
+    }
     // The seed again, in its turn: the same pieces at the same finger and angle give the same
     // distances, none below the best (which already holds them) nor a tie it would win (its own
     // segment's), and the search's min with any answer keeps the best: nothing to ask.
@@ -1856,14 +1900,102 @@ double Proxy::ask_anticipation(int id) {
         const PieceFoot foot = piece_foot(piece, finger);
         const double d = glm::length(foot.point - finger);
         least = std::min(least, d);
-        if (d < search_.best || (d == search_.best && id < search_best_segment_)) {
-            search_.best = d;
+        if (d < search_best_distance_ || (d == search_best_distance_ && id < search_best_segment_)) {
+            search_best_distance_ = d;
             search_best_segment_ = id;
             search_best_foot_ = foot.point;
             anticipated_piece_ = piece;
+            if (!collect_hold_) search_.best = d;
         }
     }
-    return least;
+    if (!collect_hold_) return least;
+    // Exact mode gathers the next ticks' hold: the tree prunes beyond the (kHeldSegments + 1)-th
+    // nearest so far instead of the nearest, so the few nearest are all asked (the answer is the
+    // same: every segment that could win or tie is still asked, and more).
+    // ... at most kHoldAsks segments: where more lie that close (a dense contour), the search
+    // goes back to pruning beyond the nearest, and makes no hold.
+    // ... and none once the few nearest lead the next by less than twice the finger's last motion
+    // (the hold would fail at the next tick: a dense contour, where ties crowd).
+    note_asked(id, least);
+    const bool hopeless = near_count_ > kHeldSegments && near_distance_[kHeldSegments] - near_distance_[0] <= 2.0 * hold_motion_;
+    if (++hold_asks_ > kHoldAsks || hopeless) {
+        collect_hold_ = false;
+        near_count_ = 0;
+        note_hold_failure();
+        search_.best = search_best_distance_;
+        return least;
+    }
+    const double kth = near_count_ > kHeldSegments ? near_distance_[kHeldSegments] : std::numeric_limits<double>::infinity();
+    search_.best = std::min(search_.best, kth);
+    return kth;
+}
+
+void Proxy::note_hold_failure() {
+    hold_failures_ = std::min(hold_failures_ + 1, 4);
+    hold_skip_ = (1 << hold_failures_) - 1;
+}
+
+void Proxy::note_asked(int id, double least) {
+    constexpr int kKept = kHeldSegments + 1;
+    for (int k = 0; k < near_count_; ++k)
+        if (near_segment_[static_cast<std::size_t>(k)] == id) return;  // (asked again: the same distance)
+    if (near_count_ == kKept) {
+        if (!(least < near_distance_[kKept - 1])) {
+            search_floor_ = std::min(search_floor_, least);
+            return;
+        }
+        search_floor_ = std::min(search_floor_, near_distance_[kKept - 1]);  // drops out of the few
+        --near_count_;
+    }
+    int k = near_count_++;
+    for (; k > 0 && near_distance_[static_cast<std::size_t>(k - 1)] > least; --k) {
+        near_distance_[static_cast<std::size_t>(k)] = near_distance_[static_cast<std::size_t>(k - 1)];
+        near_segment_[static_cast<std::size_t>(k)] = near_segment_[static_cast<std::size_t>(k - 1)];
+    }
+    near_distance_[static_cast<std::size_t>(k)] = least;
+    near_segment_[static_cast<std::size_t>(k)] = id;
+}
+
+bool Proxy::held_anticipation(Vec2 finger, double phi) {
+    if (!hold_.valid) return false;
+    // How far the finger moved, and how far any point of the pad moved as it turned (its chord):
+    // a segment's distance is the finger's distance to the set of places where the pad meets
+    // it, which the turn moves by at most the chord.
+    const double turn = std::abs(wrap_pi(phi - hold_.phi));                      // rad
+    const double chord = 2.0 * def_.finger.radius * std::sin(0.5 * turn) * (1.0 + 1e-9);  // m
+    const double moved = glm::length(finger - hold_.finger) + chord;             // m
+    // The held segments at this finger and angle, as ask_anticipation asks them: the first piece
+    // at the least distance, ties to the lowest segment.
+    search_phi_ = phi;  // (asked_pieces builds at this tick's angle)
+    double best = std::numeric_limits<double>::infinity();  // m
+    int best_segment = -1;
+    Vec2 best_foot{0.0};
+    const CPiece* best_piece = nullptr;
+    for (int k = 0; k < hold_.count; ++k) {
+        const int id = hold_.ids[static_cast<std::size_t>(k)];
+        int count = 0;
+        const CPiece* pieces = asked_pieces(id, count);
+        for (int j = 0; j < count; ++j) {
+            const PieceFoot foot = piece_foot(pieces[j], finger);
+            const double d = glm::length(foot.point - finger);
+            if (d < best || (d == best && id < best_segment)) {
+                best = d;
+                best_segment = id;
+                best_foot = foot.point;
+                best_piece = &pieces[j];
+            }
+        }
+    }
+    out_.work.anticipated_segments += hold_.count;
+    // Every other segment's pieces lie at least floor - moved away: strictly beyond the best (by
+    // far more than any rounding of the bounds or distances), none can win or tie.
+    if (!(best_piece && best < hold_.floor - moved - kOnTolerance)) return false;
+    search_best_distance_ = best;
+    search_best_segment_ = best_segment;
+    search_best_foot_ = best_foot;
+    anticipated_piece_ = *best_piece;
+    search_started_ = ticks_;
+    return true;
 }
 
 const CPiece* Proxy::asked_pieces(int id, int& count) {

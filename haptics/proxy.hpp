@@ -96,6 +96,9 @@ struct ProxyWork {
     // search is still running. -1: no search has finished since the last contact.
     int anticipation_behind = 0;
     bool anticipation_searching = false;
+    // Free space, exact mode: the last search's nearest few segments answered, no search made
+    // (Proxy::anticipate's hold: the finger had not moved far enough for another to come nearer).
+    bool anticipation_held = false;
     // The proxy left free space from afar and the gather reached only from where a disc free of
     // pieces let it go straight toward the finger (Proxy::free_advance).
     bool free_advance = false;
@@ -172,7 +175,7 @@ public:
     // each time made a 10-segment servo tick cost 3x the proxy's own.)
     void set_def(const ProxyDef& def) {
         if (def.finger != def_.finger) {
-            built_valid_ = kept_.valid = pending_.valid = false;
+            built_valid_ = kept_.valid = pending_.valid = hold_.valid = false;
             ask_cache_size_ = 0;  // the cached pieces were the old finger's
         }
         def_ = def;
@@ -302,6 +305,49 @@ private:
     // The exact distance (m) from the search's finger to segment id's pieces at the search's
     // angle; keeps the nearest (ties: the lowest segment) as the search's best.
     double ask_anticipation(int id);
+    // Exact mode's hold (Proxy::anticipate): the last full search's kHeldSegments nearest
+    // segments, and a floor (m) under the distance of every other segment's pieces, at that
+    // search's finger and angle. A finger that moved m (m) from there, its pad turned so that no
+    // pad point moved more than c (m, the turn's chord), has no other segment's piece nearer than
+    // floor - m - c (a segment's pieces are where the pad meets it: they move no further than
+    // the pad's points, and a distance changes no faster than the finger): when one of the held
+    // segments is nearer than that, the nearest of them is the search's answer, bit for bit, and
+    // the search is not made.
+    static constexpr int kHeldSegments = 3;
+    // A hold is asked only while the pad has turned at most this much (rad) from its search's
+    // angle (beyond, the chord eats what lead the few segments had over the rest).
+    static constexpr double kHoldTurn = 0.05;
+    struct AnticipationHold {
+        bool valid = false;
+        Vec2 finger{0.0};  // m
+        double phi = 0.0;  // rad
+        std::array<int, kHeldSegments> ids{};
+        int count = 0;
+        double floor = 0.0;  // m
+        int uses = 0;        // ticks it answered
+    };
+    AnticipationHold hold_;
+    int hold_failures_ = 0;  // holds that failed in a row (at most 4)
+    int hold_skip_ = 0;      // free ticks left that search without trying the hold
+    // While a search runs: its kHeldSegments + 1 least exact distances (m, ascending) and their
+    // segments, and the least bound (m) of the segments it answered by bound or dropped from them.
+    std::array<double, kHeldSegments + 1> near_distance_{};
+    std::array<int, kHeldSegments + 1> near_segment_{};
+    int near_count_ = 0;
+    double search_floor_ = 0.0;
+    bool collect_hold_ = false;            // this search gathers a hold (exact mode)
+    int hold_asks_ = 0;                    // segments it asked for the hold so far
+    double hold_motion_ = 0.0;             // m, the finger's motion in the tick before
+    // The most segments a search asks while it gathers a hold (the seed, the few nearest and what
+    // the tree's bounds cannot tell from them; seed 002's curves, flattened into arcs, took up to
+    // 20; 8 gave up on half its holds).
+    static constexpr int kHoldAsks = 32;
+    void note_hold_failure();             // backs the hold off (hold_skip_)
+    double search_best_distance_ = 0.0;    // m, the search's nearest piece so far
+    void note_asked(int id, double least);
+    // The hold's answer for this finger and angle, if it holds: the search's best (segment, foot,
+    // piece) set as a finished search sets them; false (nothing changed) when a search is needed.
+    bool held_anticipation(Vec2 finger, double phi);
     // The segment this search asked first (anticipate's seed), -1 if none: when the search
     // reaches it again in its turn, asking it again changes nothing (its pieces and distances are
     // the same, and the best already holds them), so it is not built a second time.
