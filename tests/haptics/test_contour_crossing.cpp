@@ -497,9 +497,16 @@ TEST_CASE("crossing: 100,000 segments are checked in well under a second, found 
     MESSAGE("100,000 segments: validate_scene ", ms_valid, " ms, crossing search ", ms_search, " ms (none), ", ms_found,
             " ms (found)");
     // Measured 0.07 s (0.05 s found; validate_scene in all 0.1-0.15 s) on a 2-core machine running
-    // other builds; 1 s leaves room for a loaded CI machine.
-    CHECK(ms_search < 1000.0);
-    CHECK(ms_found < 1000.0);
+    // other builds; 1 s leaves room for a loaded CI machine. Under AddressSanitizer (scripts/test's
+    // second build, -O1) a slow VM took 1.003 s: there the bound is 4 s, still far under the
+    // quadratic search's minutes.
+#if defined(__SANITIZE_ADDRESS__)
+    constexpr double kLimitMs = 4000.0;
+#else
+    constexpr double kLimitMs = 1000.0;
+#endif
+    CHECK(ms_search < kLimitMs);
+    CHECK(ms_found < kLimitMs);
 }
 
 //-------------------------------------------------------------------------------------------------
