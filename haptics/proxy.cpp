@@ -91,6 +91,14 @@ constexpr double kKeptLeadTicks = 2.0;
 constexpr double kKeptLeadBudget = 256.0;  // segments
 // ... and only after this many ticks without a turn of the finger.
 constexpr std::int64_t kKeptLeadStillTicks = 16;
+// The most segments a search asks while it gathers anticipation's hold (the seed, the few nearest
+// and what the tree's bounds cannot tell from them). Hovering 1 cm above the bench's sinusoids, a
+// cap of 32 made the slowest ticks of 100 to 1,000-segment scenes ask 30-44 segments where the
+// plain search asks 10-24 (p99.9 twice as slow); 8 asks at most 14-17 there, and keeps 70-75 % of
+// the holds on 100 segments.
+constexpr int kHoldAsks = 8;
+// A hold that fails backs off for 2^n - 1 ticks after its n-th failure in a row, n at most this.
+constexpr int kHoldFailures = 4;
 // A kept gather of at least this many segments has the next one made a tick ahead when the
 // motion will leave it (Proxy::prefetch_gather).
 constexpr int kPrefetchFrom = 256;
@@ -1716,14 +1724,19 @@ void Proxy::anticipate(Vec2 finger, double phi) {
         // Where holds keep failing (a finger moving more in a tick than the few segments' lead
         // over the rest: dense contours, where the few nearest are also costly to gather), a
         // hold is neither asked nor gathered for 1, 3, 7, 15 ticks after each failure in a row.
+        // A tick whose hold failed searches without gathering the next: the failed hold's asks
+        // and a gathering search's extra ones on one tick made the slowest hover ticks of 100 to
+        // 1,000-segment scenes (p99.9 twice the plain search's); the next free tick gathers.
         bool held = false;
         const bool may_hold = budget == 0 && hold_skip_ == 0;
+        bool gather = may_hold;
         if (budget == 0 && hold_skip_ > 0) --hold_skip_;
         if (may_hold && hold_.valid && std::abs(wrap_pi(phi - hold_.phi)) <= kHoldTurn) {
             held = held_anticipation(finger, phi);
             if (held) {
                 ++hold_.uses;
             } else {
+                gather = false;
                 hold_.valid = false;
                 if (hold_.uses == 0) note_hold_failure();  // (one that served some ticks did its job)
                 else hold_failures_ = 0;
@@ -1745,7 +1758,7 @@ void Proxy::anticipate(Vec2 finger, double phi) {
             search_started_ = ticks_;
             search_seed_ = -1;
             search_best_distance_ = std::numeric_limits<double>::infinity();
-            collect_hold_ = may_hold;
+            collect_hold_ = gather;
             hold_asks_ = 0;
             hold_motion_ = glm::length(last_finger_motion_);
             near_count_ = 0;
@@ -1892,21 +1905,14 @@ double Proxy::ask_anticipation(int id) {
     // segment's), and the search's min with any answer keeps the best: nothing to ask.
     if (id == search_seed_) return std::numeric_limits<double>::infinity();
     ++out_.work.anticipated_segments;
-    int count = 0;
-    const CPiece* pieces = asked_pieces(id, count);
-    double least = std::numeric_limits<double>::infinity();
-    for (int k = 0; k < count; ++k) {
-        const CPiece& piece = pieces[k];
-        const PieceFoot foot = piece_foot(piece, finger);
-        const double d = glm::length(foot.point - finger);
-        least = std::min(least, d);
-        if (d < search_best_distance_ || (d == search_best_distance_ && id < search_best_segment_)) {
-            search_best_distance_ = d;
-            search_best_segment_ = id;
-            search_best_foot_ = foot.point;
-            anticipated_piece_ = piece;
-            if (!collect_hold_) search_.best = d;
-        }
+    const NearestPiece nearest = nearest_asked_piece(id, finger);
+    const double least = nearest.distance;  // m
+    if (nearest.piece && (least < search_best_distance_ || (least == search_best_distance_ && id < search_best_segment_))) {
+        search_best_distance_ = least;
+        search_best_segment_ = id;
+        search_best_foot_ = nearest.foot;
+        anticipated_piece_ = *nearest.piece;
+        if (!collect_hold_) search_.best = least;
     }
     if (!collect_hold_) return least;
     // Exact mode gathers the next ticks' hold: the tree prunes beyond the (kHeldSegments + 1)-th
@@ -1931,7 +1937,7 @@ double Proxy::ask_anticipation(int id) {
 }
 
 void Proxy::note_hold_failure() {
-    hold_failures_ = std::min(hold_failures_ + 1, 4);
+    hold_failures_ = std::min(hold_failures_ + 1, kHoldFailures);
     hold_skip_ = (1 << hold_failures_) - 1;
 }
 
@@ -1970,32 +1976,42 @@ bool Proxy::held_anticipation(Vec2 finger, double phi) {
     double best = std::numeric_limits<double>::infinity();  // m
     int best_segment = -1;
     Vec2 best_foot{0.0};
-    const CPiece* best_piece = nullptr;
+    // A copy, not a pointer into the ask cache's pool: asking the next held segment may start
+    // the pool over (a full cache) and write another segment's pieces where this one was.
+    CPiece best_piece{};
     for (int k = 0; k < hold_.count; ++k) {
         const int id = hold_.ids[static_cast<std::size_t>(k)];
-        int count = 0;
-        const CPiece* pieces = asked_pieces(id, count);
-        for (int j = 0; j < count; ++j) {
-            const PieceFoot foot = piece_foot(pieces[j], finger);
-            const double d = glm::length(foot.point - finger);
-            if (d < best || (d == best && id < best_segment)) {
-                best = d;
-                best_segment = id;
-                best_foot = foot.point;
-                best_piece = &pieces[j];
-            }
+        const NearestPiece nearest = nearest_asked_piece(id, finger);
+        if (nearest.piece && (nearest.distance < best || (nearest.distance == best && id < best_segment))) {
+            best = nearest.distance;
+            best_segment = id;
+            best_foot = nearest.foot;
+            best_piece = *nearest.piece;
         }
     }
     out_.work.anticipated_segments += hold_.count;
     // Every other segment's pieces lie at least floor - moved away: strictly beyond the best (by
     // far more than any rounding of the bounds or distances), none can win or tie.
-    if (!(best_piece && best < hold_.floor - moved - kOnTolerance)) return false;
+    if (!(best_segment >= 0 && best < hold_.floor - moved - kOnTolerance)) return false;
     search_best_distance_ = best;
     search_best_segment_ = best_segment;
     search_best_foot_ = best_foot;
-    anticipated_piece_ = *best_piece;
+    anticipated_piece_ = best_piece;
     search_started_ = ticks_;
     return true;
+}
+
+Proxy::NearestPiece Proxy::nearest_asked_piece(int id, Vec2 finger) {
+    int count = 0;
+    const CPiece* pieces = asked_pieces(id, count);
+    NearestPiece nearest;
+    nearest.distance = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < count; ++k) {
+        const PieceFoot foot = piece_foot(pieces[k], finger);
+        const double d = glm::length(foot.point - finger);  // m
+        if (d < nearest.distance) nearest = NearestPiece{d, &pieces[k], foot.point};
+    }
+    return nearest;
 }
 
 const CPiece* Proxy::asked_pieces(int id, int& count) {
@@ -2045,6 +2061,9 @@ void Proxy::validate_anticipation(Vec2 finger, const PadFrame& pad, int best_seg
     }
     CONTACTLAB_VALIDATE(segment == best_segment && foot == best_foot,
                         "anticipation's nearest-first search finds the piece a search of every segment finds");
+    // ... and the piece it kept (l_d is read from it) is that piece, not a stale copy.
+    CONTACTLAB_VALIDATE(best_segment < 0 || piece_foot(anticipated_piece_, finger).point == best_foot,
+                        "anticipation keeps the piece its nearest foot lies on");
 }
 
 }  // namespace contactlab

@@ -327,7 +327,7 @@ private:
         int uses = 0;        // ticks it answered
     };
     AnticipationHold hold_;
-    int hold_failures_ = 0;  // holds that failed in a row (at most 4)
+    int hold_failures_ = 0;  // holds that failed in a row (at most kHoldFailures, proxy.cpp)
     int hold_skip_ = 0;      // free ticks left that search without trying the hold
     // While a search runs: its kHeldSegments + 1 least exact distances (m, ascending) and their
     // segments, and the least bound (m) of the segments it answered by bound or dropped from them.
@@ -338,10 +338,6 @@ private:
     bool collect_hold_ = false;            // this search gathers a hold (exact mode)
     int hold_asks_ = 0;                    // segments it asked for the hold so far
     double hold_motion_ = 0.0;             // m, the finger's motion in the tick before
-    // The most segments a search asks while it gathers a hold (the seed, the few nearest and what
-    // the tree's bounds cannot tell from them; seed 002's curves, flattened into arcs, took up to
-    // 20; 8 gave up on half its holds).
-    static constexpr int kHoldAsks = 32;
     void note_hold_failure();             // backs the hold off (hold_skip_)
     double search_best_distance_ = 0.0;    // m, the search's nearest piece so far
     void note_asked(int id, double least);
@@ -368,6 +364,14 @@ private:
     std::vector<CPiece> ask_pool_;
     // segment id's pieces at search_phi_, from the cache or built into it.
     const CPiece* asked_pieces(int id, int& count);
+    // The first of segment id's pieces (at search_phi_) at the least distance from `finger`: the
+    // one a search asking that segment keeps. piece is null for a segment with no pieces.
+    struct NearestPiece {
+        double distance = 0.0;  // m (+inf without pieces)
+        const CPiece* piece = nullptr;
+        Vec2 foot{0.0};  // m, the foot of finger on that piece
+    };
+    NearestPiece nearest_asked_piece(int id, Vec2 finger);
     // The segment nearest p (by distance to the segment itself), -1 in an empty scene.
     int nearest_segment(Vec2 p) const;
     // An empty build keeps the last one here (cache_aside_), still described by built_*.
