@@ -337,8 +337,11 @@ bool pieces_cross(const std::vector<Piece>& pieces, int i, int j, Vec2& at) {
 // [SECTION] Search
 //-------------------------------------------------------------------------------------------------
 
-std::optional<ContourCrossing> find_contour_crossing(const std::vector<Contour>& contours) {
+std::optional<ContourCrossing> find_contour_crossing(const std::vector<Contour>& contours, CrossingSearchWork* work) {
     const std::vector<Piece> pieces = closed_pieces(contours);
+    CrossingSearchWork ignored;
+    CrossingSearchWork& done = work ? *work : ignored;
+    done = CrossingSearchWork{static_cast<int>(pieces.size()), 0};
     if (pieces.empty()) return std::nullopt;
     std::vector<Aabb> boxes;
     boxes.reserve(pieces.size());
@@ -353,6 +356,7 @@ std::optional<ContourCrossing> find_contour_crossing(const std::vector<Contour>&
         std::sort(near.begin(), near.end());
         for (const int j : near) {
             if (j <= i) continue;
+            ++done.pairs_tested;
             Vec2 at;
             if (!pieces_cross(pieces, i, j, at)) continue;
             const Piece& a = pieces[static_cast<std::size_t>(i)];

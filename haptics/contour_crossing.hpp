@@ -25,13 +25,14 @@
 // a joint whose two directions differ by theta, within kCrossingPointTolerance / sin(theta).
 //
 // Cost: the pieces of the closed contours go into an AabbTree; each piece is tested only against
-// those whose boxes overlap its own: O(n log n + k), never all pairs (about 0.1 s for a closed
-// contour of 100,000 lines, tests/haptics/test_contour_crossing.cpp). Open contours cost nothing.
+// those whose boxes overlap its own: O(n log n + k), never all pairs (measured by
+// tests/bench/bench_scene_checks.cpp; counted by tests/haptics/test_contour_crossing.cpp). Open contours cost nothing.
 #pragma once
 
 #include "haptics/scene.hpp"
 #include "haptics/vec2.hpp"
 
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -54,8 +55,18 @@ struct ContourCrossing {
     Vec2 point{0.0};  // m, where they cross (within the tolerances above)
 };
 
+// What one search did: the closed contours' pieces (curves as their chords), and the pairs of
+// them it tested exactly (those whose boxes overlap; all pairs would be n (n - 1) / 2). Tests
+// hold the search to its O(n log n + k) with these counts, not with a clock.
+struct CrossingSearchWork {
+    int pieces = 0;
+    std::int64_t pairs_tested = 0;
+};
+
 // The first crossing of the closed contours (in the order of their pieces), or none. The
 // contours must already be valid segment by segment, with joined ends (scene_io's rules).
-std::optional<ContourCrossing> find_contour_crossing(const std::vector<Contour>& contours);
+// `work`, if given, receives what the search did.
+std::optional<ContourCrossing> find_contour_crossing(const std::vector<Contour>& contours,
+                                                     CrossingSearchWork* work = nullptr);
 
 }  // namespace contactlab
