@@ -184,7 +184,7 @@ TEST_CASE("protocols: hand.model names the hand, scripted or feel, and anything 
   "task": "curvature", "conditions": [{"name": "A", "motion": "A"}], "stimuli": [0.01, 0.02], "answers": ["10", "20"],
   "hand": {"model": "feel"}})";
     CHECK_THROWS_WITH_AS(parse_protocol(curvature, "c.json"),
-                         doctest::Contains("c.json: hand.model: \"feel\": the curvature task's simulated person has no hand that moves by feel"),
+                         doctest::Contains("c.json: hand.model: \"feel\": this is a curvature protocol, whose simulated person has no hand that moves by feel"),
                          ExperimentError);
     std::string scripted = curvature;
     scripted.replace(scripted.find("\"feel\""), 6, "\"scripted\"");

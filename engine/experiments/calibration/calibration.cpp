@@ -191,9 +191,7 @@ json calibrate(const CalibrationOptions& o) {
     if (o.hand && *o.hand == HandModel::feel)
         for (const std::string& file : used)
             if (!task_has_feel_hand(by_file[file]->task))
-                throw ExperimentError("calibrate --hand feel: " + file + " is a " + to_string(by_file[file]->task) +
-                                      " protocol, whose simulated person has no hand that moves by feel (contour-following "
-                                      "and bump-counting have one)");
+                throw ExperimentError("calibrate --hand feel: " + file + " is " + no_feel_hand_reason(by_file[file]->task));
     // The feel hand's population moves nothing on a protocol run with the scripted hand: a fit of it
     // there would wander on a flat objective.
     for (const CalibrationParameter& p : o.parameters)

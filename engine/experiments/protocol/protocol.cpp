@@ -330,13 +330,17 @@ bool parse_hand_model(const std::string& name, HandModel& out) {
 
 bool task_has_feel_hand(Task task) { return task == Task::contour_following || task == Task::bump_counting; }
 
+std::string no_feel_hand_reason(Task task) {
+    return std::string("a ") + to_string(task) +
+           " protocol, whose simulated person has no hand that moves by feel (contour-following and bump-counting "
+           "have one)";
+}
+
 void apply_hand_option(Protocol& p, const std::string& name) {
     HandModel h = HandModel::scripted;
     if (!parse_hand_model(name, h)) throw ExperimentError("--hand: expected scripted or feel, got \"" + name + "\"");
     if (h == HandModel::feel && !task_has_feel_hand(p.task))
-        throw ExperimentError("--hand feel: " + p.origin + " is a " + to_string(p.task) +
-                              " protocol, whose simulated person has no hand that moves by feel (contour-following and "
-                              "bump-counting have one)");
+        throw ExperimentError("--hand feel: " + p.origin + " is " + no_feel_hand_reason(p.task));
     p.hand_model = h;
 }
 
@@ -497,9 +501,7 @@ Protocol parse_protocol(const std::string& text, const std::string& origin) {
             !parse_hand_model(r.text(root["hand"]["model"], "hand.model"), p.hand_model))
             r.fail("hand.model", "expected \"scripted\" or \"feel\"");
         if (p.hand_model == HandModel::feel && !task_has_feel_hand(p.task))
-            r.fail("hand.model", std::string("\"feel\": the ") + to_string(p.task) +
-                                     " task's simulated person has no hand that moves by feel (contour-following and "
-                                     "bump-counting have one); use \"scripted\"");
+            r.fail("hand.model", "\"feel\": this is " + no_feel_hand_reason(p.task) + "; use \"scripted\"");
         p.hand_speed = r.number(root["hand"], "hand", "speed", 0.005, 1.0, "m/s", p.hand_speed);
         p.hand_press = r.number(root["hand"], "hand", "press", 0.0, 0.02, "m", p.hand_press);
     }

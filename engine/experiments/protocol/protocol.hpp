@@ -51,6 +51,10 @@ bool parse_hand_model(const std::string& name, HandModel& out);
 // and bump counting (seed 002). The others' strategies (a scripted press or slide) have none, so
 // "feel" there would change nothing but the meta's record of which hand ran.
 bool task_has_feel_hand(Task task);
+// Why "feel" is refused for such a task, to follow "X is ": "a curvature protocol, whose simulated
+// person has no hand that moves by feel (contour-following and bump-counting have one)". One text
+// for the protocol loader, --hand and calibrate.
+std::string no_feel_hand_reason(Task task);
 
 // The people whose hands move by feel (`hand.model` "feel"): the population each simulated
 // participant's hand is drawn from once (participants/person.hpp), each parameter's mean or
