@@ -91,12 +91,7 @@ constexpr double kKeptLeadTicks = 2.0;
 constexpr double kKeptLeadBudget = 256.0;  // segments
 // ... and only after this many ticks without a turn of the finger.
 constexpr std::int64_t kKeptLeadStillTicks = 16;
-// The most segments a search asks while it gathers anticipation's hold (the seed, the few nearest
-// and what the tree's bounds cannot tell from them). Hovering 1 cm above the bench's sinusoids, a
-// cap of 32 made the slowest ticks of 100 to 1,000-segment scenes ask 30-44 segments where the
-// plain search asks 10-24 (p99.9 twice as slow); 8 asks at most 14-17 there, and keeps 70-75 % of
-// the holds on 100 segments.
-constexpr int kHoldAsks = 8;
+constexpr int kHoldAsks = kAnticipationHoldAsks;  // (proxy.hpp says why 8)
 // A hold that fails backs off for 2^n - 1 ticks after its n-th failure in a row, n at most this.
 constexpr int kHoldFailures = 4;
 // A kept gather of at least this many segments has the next one made a tick ahead when the
@@ -1759,6 +1754,7 @@ void Proxy::anticipate(Vec2 finger, double phi) {
             search_seed_ = -1;
             search_best_distance_ = std::numeric_limits<double>::infinity();
             collect_hold_ = gather;
+            out_.work.anticipation_gathered = gather;
             hold_asks_ = 0;
             hold_motion_ = glm::length(last_finger_motion_);
             near_count_ = 0;

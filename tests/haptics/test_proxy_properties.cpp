@@ -325,6 +325,46 @@ TEST_CASE("anticipation's hold: hovering over segments millimetres long, the las
     }
 }
 
+TEST_CASE("anticipation's hold: a tick that gathers it asks at most twice the segments of the slowest plain search") {
+    // Gathering, the search prunes beyond the fourth nearest segment instead of the nearest, so
+    // it asks more; it gives up after kAnticipationHoldAsks. Hovering 1 cm above the bench's
+    // sinusoid (0.4 m, 1 cm amplitude, 4 periods) in 100 and 1,000 lines, sliding 50 um a tick:
+    // the gathering ticks are the slowest free ticks, and were up to 3.8 times the slowest plain
+    // search (16 against 5 segments over 100 lines, 38 against 10 over 1,000) when the cap was 32
+    // and a failed hold gathered on its own tick. Counted, not timed: segments asked a tick.
+    for (const int n : {100, 1000}) {
+        CAPTURE(n);
+        const Scene scene = scene_of({sinusoid_contour(n, 0.01, 4.0)});
+        const Environment env = build_environment(scene);
+        Proxy proxy(env, proxy_def_of(scene));
+        int held = 0, gathered = 0, plain = 0, most_plain = 0, most_gathering = 0;
+        for (int k = 0; k < 4000; ++k) {
+            const double x = -0.1 + 5e-5 * k;  // m
+            const Vec2 finger{x, 0.01 * std::sin(2.0 * kPi * 4.0 * (x + 0.2) / 0.4) + R + 0.01};
+            const ProxyOutput& o = proxy.update(finger, 0.0);
+            REQUIRE_FALSE(o.contact);
+            if (k == 0) continue;  // the first free tick's search starts from no earlier answer
+            const int asked = o.work.anticipated_segments;
+            held += o.work.anticipation_held ? 1 : 0;
+            if (o.work.anticipation_gathered) {
+                ++gathered;
+                most_gathering = std::max(most_gathering, asked);
+            } else if (!o.work.anticipation_held) {
+                ++plain;
+                most_plain = std::max(most_plain, asked);
+            }
+        }
+        MESSAGE(n << " lines: held " << held << ", gathered " << gathered << " (at most " << most_gathering
+                  << " segments), plain " << plain << " (at most " << most_plain << ")");
+        CHECK(gathered > 10);
+        CHECK(plain > 10);
+        // What the cap allows: the seed, kAnticipationHoldAsks gathered, then a plain search's rest.
+        CHECK(most_gathering <= most_plain + kAnticipationHoldAsks + 1);
+        CHECK(most_gathering <= 2 * most_plain);
+        if (n == 100) CHECK(held > 2000);  // 2 mm... 4 mm chords: the hold answers most ticks
+    }
+}
+
 TEST_CASE("anticipation's hold: a finger straight above a vertex of a flat floor, two segments tie and the lower one wins, held or not") {
     // Chords 2 mm long along y = 0: above a vertex the two chords' pieces are equally near, and
     // the search's tie goes to the lower segment. Lowered straight down 20 um a tick the hold
