@@ -25,8 +25,9 @@
 // a joint whose two directions differ by theta, within kCrossingPointTolerance / sin(theta).
 //
 // Cost: the pieces of the closed contours go into an AabbTree; each piece is tested only against
-// those whose boxes overlap its own: O(n log n + k), never all pairs (measured by
-// tests/bench/bench_scene_checks.cpp; counted by tests/haptics/test_contour_crossing.cpp). Open contours cost nothing.
+// those whose boxes overlap its own: O(n log n + k), never all pairs (timed by
+// tests/bench/bench_scene_checks.cpp, counted by tests/haptics/test_contour_crossing.cpp). Open
+// contours cost nothing.
 #pragma once
 
 #include "haptics/scene.hpp"

@@ -62,16 +62,16 @@ struct ProxyContact {
 // The work one update did: how tick cost is bounded whatever the input (the extremes suite
 // checks these; `contactlab bench` measures the time they take).
 inline constexpr int kProxyMaxWalkSteps = 256;       // constrained-motion iterations per tick
-// The most segments anticipation's search asks while it gathers its hold (Proxy::anticipate):
-// beyond, it gives the hold up and prunes as a plain search. Hovering 1 cm above the bench's
-// sinusoids, 32 made the slowest ticks of 100 to 1,000-segment scenes ask 30-44 segments where a
-// plain search asks 10-24 (p99.9 twice as slow); 8 asks at most 14-17 there and keeps 70-75 % of
-// the holds over 100 segments.
-inline constexpr int kAnticipationHoldAsks = 8;
 inline constexpr int kProxyMaxRotationSteps = 1024;  // finger-angle re-projection sub-steps per tick
 // Scenes of at most this many environment segments skip the index: every tick gathers all of them
 // (no warm start), which costs less than walking the tree and keeps last tick's pieces.
 inline constexpr int kProxySmallScene = 16;
+// The most segments anticipation's search asks while it gathers its hold (Proxy::anticipate):
+// beyond, it gives the hold up and prunes as a plain search. Hovering 1 cm above the bench's
+// sinusoids, 32 made the slowest ticks of 100 to 1,000-segment scenes ask 30-44 segments where a
+// plain search asks 10-24 (p99.9 twice as slow); 8 asks at most 14-24 there and keeps 72-74 % of
+// the holds over 100 lines or arcs (42 % over curves).
+inline constexpr int kAnticipationHoldAsks = 8;
 struct ProxyWork {
     int walk_steps = 0;      // iterations of the constrained motion (<= kProxyMaxWalkSteps)
     int rotation_steps = 0;  // re-projection sub-steps for a change of phi (<= kProxyMaxRotationSteps)

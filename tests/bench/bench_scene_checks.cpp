@@ -4,7 +4,7 @@
 //
 // The contour is the bench's 0.4 m sinusoid (1 cm amplitude, 4 periods) in n - 3 chords, closed by
 // a box 5 cm below; "found" raises the box's bottom through the sinusoid, so the search stops at
-// a crossing near the contour's end (the worst place for a search in segment order). A user feels
+// the first chord the raised side crosses, near the contour's start. A user feels
 // this cost once, when a scene is opened or an edit is applied: the crossing search is a tree of
 // boxes, O(n log n), where testing all pairs took minutes at 100,000 segments.
 #include "haptics/contour_crossing.hpp"
@@ -25,12 +25,11 @@ LineSegment line(Vec2 a, Vec2 b) { return LineSegment{a, b}; }
 // n line segments closed (see the file's comment); `found` makes it cross itself.
 Scene closed_sinusoid(int n, bool found) {
     constexpr double kWidth = 0.4, kAmplitude = 0.01, kPeriods = 4.0;  // m, m, -
-    const double two_pi = 2.0 * std::acos(-1.0);
     Contour c;
     const int chords = n - 3;
     auto at = [&](int i) {
         const double x = -0.5 * kWidth + kWidth * i / chords;
-        return Vec2{x, kAmplitude * std::sin(two_pi * kPeriods * (x + 0.5 * kWidth) / kWidth)};
+        return Vec2{x, kAmplitude * std::sin(2.0 * kPi * kPeriods * (x + 0.5 * kWidth) / kWidth)};
     };
     for (int i = 0; i < chords; ++i) c.segments.push_back(line(at(i), at(i + 1)));
     const Vec2 start = at(0), end = at(chords);
