@@ -298,37 +298,77 @@ AabbTree::PadNormals AabbTree::pad_normals(const NormalCone& outer_normals) {
 
 void AabbTree::query_pad_reach(Vec2 p, double r, double reach, bool inner, const Vec2* ends, int end_count,
                                double end_reach, const NormalCone& outer_normals, std::vector<int>& out) const {
+    PadReach q;
+    start_pad_reach(q, p, r, reach, inner, ends, end_count, end_reach, outer_normals);
+    continue_pad_reach(q, 0, out);
+}
+
+void AabbTree::start_pad_reach(PadReach& q, Vec2 p, double r, double reach, bool inner, const Vec2* ends,
+                               int end_count, double end_reach, const NormalCone& outer_normals) const {
     const PadNormals normals = pad_normals(outer_normals);
-    const double end_reach2 = end_reach * end_reach;  // m^2
-    const double reach2 = reach * reach;              // m^2
-    collect(
-        [&](const Node& n) {
-            // (Boxes first: most nodes fail there, and the cone test costs more.)
-            if (offset_may_reach(n, p, r, reach, 1.0) && cones_meet(n.normals, normals.outer)) return true;
-            // The inner side's cone first: it faces away from the outer one, so along a contour
-            // whose outer side the pad presses it rarely meets the node's, and the offset test it
-            // spares is the dearer one (the same answer: both tests are pure). The outer side
-            // keeps boxes first: far nodes fail there, over a dense contour most of them.
-            if (inner && cones_meet(n.normals, normals.inner) && offset_may_reach(n, p, r, reach, -1.0)) return true;
-            for (int k = 0; k < end_count; ++k)
-                if (n.box.distance_squared_to(ends[k]) <= end_reach2) return true;
+    q.p = p;
+    q.r = r;
+    q.reach = reach;
+    q.end_reach = end_reach;
+    q.inner = inner;
+    q.end_count = std::min(end_count, 2);
+    for (int k = 0; k < q.end_count; ++k) q.ends[k] = ends[k];
+    q.outer = normals.outer;
+    q.inner_normals = normals.inner;
+    q.top = 0;
+    if (!nodes_.empty()) q.stack[q.top++] = 0;
+    q.active = true;
+}
+
+bool AabbTree::continue_pad_reach(PadReach& q, int budget, std::vector<int>& out, int* visited_out) const {
+    const Vec2 p = q.p;
+    const double r = q.r, reach = q.reach;
+    const double end_reach2 = q.end_reach * q.end_reach;  // m^2
+    const double reach2 = reach * reach;                  // m^2
+    int visited = 0;
+    while (q.top > 0) {
+        if (budget > 0 && visited >= budget) {
+            if (visited_out) *visited_out = visited;
             return false;
-        },
-        [&](const Node& leaf, int position) {
+        }
+        const Node& n = nodes_[q.stack[--q.top]];
+        ++visited;
+        // (Boxes first: most nodes fail there, and the cone test costs more.)
+        bool may_hold = offset_may_reach(n, p, r, reach, 1.0) && cones_meet(n.normals, q.outer);
+        // The inner side's cone first: it faces away from the outer one, so along a contour
+        // whose outer side the pad presses it rarely meets the node's, and the offset test it
+        // spares is the dearer one (the same answer: both tests are pure). The outer side
+        // keeps boxes first: far nodes fail there, over a dense contour most of them.
+        if (!may_hold && q.inner && cones_meet(n.normals, q.inner_normals) && offset_may_reach(n, p, r, reach, -1.0))
+            may_hold = true;
+        for (int k = 0; k < q.end_count && !may_hold; ++k)
+            if (n.box.distance_squared_to(q.ends[k]) <= end_reach2) may_hold = true;
+        if (!may_hold) continue;
+        if (n.left >= 0) {
+            // The left child first (pushed last), as collect's.
+            q.stack[q.top++] = n.right;
+            q.stack[q.top++] = n.left;
+            continue;
+        }
+        for (int i = n.first; i < n.first + n.count; ++i) {
+            ++visited;
             // The leaf's test with each item's own boxes and cone (a leaf spans several items).
-            if (!has_offsets_) return true;
-            const auto pos = static_cast<std::size_t>(position);
-            if (item_outer_at(pos, r) && moved_offset(leaf, item_offsets_[pos], r, 1.0).distance_squared_to(p) <= reach2 &&
-                cones_meet(item_normals_[pos], normals.outer))
-                return true;
-            if (inner && cones_meet(item_normals_[pos], normals.inner) &&
-                moved_offset(leaf, item_offsets_[pos], r, -1.0).distance_squared_to(p) <= reach2)
-                return true;
-            for (int k = 0; k < end_count; ++k)
-                if (item_boxes_[pos].distance_squared_to(ends[k]) <= end_reach2) return true;
-            return false;
-        },
-        out);
+            bool item = !has_offsets_;
+            const auto pos = static_cast<std::size_t>(i);
+            if (!item && item_outer_at(pos, r) && moved_offset(n, item_offsets_[pos], r, 1.0).distance_squared_to(p) <= reach2 &&
+                cones_meet(item_normals_[pos], q.outer))
+                item = true;
+            if (!item && q.inner && cones_meet(item_normals_[pos], q.inner_normals) &&
+                moved_offset(n, item_offsets_[pos], r, -1.0).distance_squared_to(p) <= reach2)
+                item = true;
+            for (int k = 0; k < q.end_count && !item; ++k)
+                if (item_boxes_[pos].distance_squared_to(q.ends[k]) <= end_reach2) item = true;
+            if (item) out.push_back(items_[i]);
+        }
+    }
+    q.active = false;
+    if (visited_out) *visited_out = visited;
+    return true;
 }
 
 }  // namespace contactlab

@@ -83,20 +83,32 @@ constexpr double kMaxKeptReach = 1e-3;
 constexpr double kMaxKeptTurn = 1e-2;
 // A steady slide re-gathered every tick: the kept disc, centred on the warm one, was only a few
 // shortest segments wider, and the proxy moves 50 um a tick at 5 cm/s. It is also led this many
-// ticks of the proxy's last motion ahead (Proxy::gather_warm), so the next ticks' discs lie in it,
-// as long as the contour there is no denser than kKeptLeadBudget segments over the disc (the
-// last kept gather's count scaled to the led disc's radius): where pieces crowd (a valley shaped
-// like the pad), a wider disc only makes its rarer re-gathers slower.
+// ticks of the proxy's last motion ahead (Proxy::gather_warm), so the next ticks' discs lie in it.
+// (Until the re-gathers were made ahead in parts, the lead stopped where the contour held more
+// than 256 segments over the disc: in a valley shaped like the pad a wider disc only made its
+// rarer re-gathers slower. Made ahead, a rarer re-gather is spread over more ticks: the dense
+// curves' slowest ticks went down with the lead everywhere, and the same strokes took 0.3-2.8 %
+// fewer instructions.)
 constexpr double kKeptLeadTicks = 2.0;
-constexpr double kKeptLeadBudget = 256.0;  // segments
 // ... and only after this many ticks without a turn of the finger.
 constexpr std::int64_t kKeptLeadStillTicks = 16;
 constexpr int kHoldAsks = kAnticipationHoldAsks;  // (proxy.hpp says why 8)
 // A hold that fails backs off for 2^n - 1 ticks after its n-th failure in a row, n at most this.
 constexpr int kHoldFailures = 4;
-// A kept gather of at least this many segments has the next one made a tick ahead when the
-// motion will leave it (Proxy::prefetch_gather).
-constexpr int kPrefetchFrom = 256;
+// A kept gather of at least this many segments has the next one made ahead when the motion will
+// leave it (Proxy::prefetch_gather)...
+constexpr int kPrefetchFrom = 64;
+// ... up to this many ticks ahead, its work shared over the ticks before the one expected to need
+// it, in units of about 12 ns on the development VM (beside a valley of 100,000 dense curves): a
+// node or item the query visits (3), a segment built (16), a segment's pieces copied (1). Each tick
+// takes at least kAheadLeastUnits and at most kAheadMostUnits (about 35 us: beside a walk of 20-35
+// us in the valley, the tick stays well under 100 us); the query takes the most each tick until it
+// ends (its size is not known before), the build what is left over the ticks left.
+constexpr int kAheadTicks = 8;
+constexpr int kAheadVisitUnits = 3;
+constexpr int kAheadBuildUnits = 16;
+constexpr int kAheadLeastUnits = 1000;
+constexpr int kAheadMostUnits = kProxyAheadMostUnits;
 // ... and a turn larger than this (rad) keeps nothing: a kept range stays far below a half-turn,
 // where the gather's "shortest way between the two angles" would go round the other way.
 constexpr double kMaxKeptTurnSpan = 1.0;
@@ -255,6 +267,9 @@ Proxy::Proxy(const Environment& env, const ProxyDef& def) : env_(&env), def_(def
     built_ids_.reserve(ids);
     built_first_.reserve(ids + 1);
     next_first_.reserve(ids + 1);
+    ahead_pieces_.reserve(pieces);
+    ahead_boxes_.reserve(pieces);
+    ahead_first_.reserve(ids + 1);
 }
 
 void Proxy::reset(Vec2 finger, double phi) {
@@ -307,6 +322,7 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
     clock_.start(def_.profile);
     work_.kept_gather = false;
     work_.prefetched_gather = false;
+    work_.ahead_units = work_.ahead_rest_units = 0;
     work_.built_segments = 0;  // (with validation on, its reference run's builds count too)
     // Validation: the tick the slow way first (every segment within reach, every scan over all
     // pieces), the reference the shortcuts below must match bit for bit.
@@ -500,8 +516,7 @@ Proxy::WarmDisc Proxy::gather_warm(const WarmDisc& warm, double phi, double turn
     // The gather the last tick made ahead (prefetch_gather) becomes the kept one: this tick's
     // query was made then, only its pieces are built now.
     if (covers(pending_, warm, from, width)) {
-        std::swap(kept_, pending_);
-        pending_.valid = false;
+        adopt_pending(phi);
         segment_ids_.assign(kept_.ids.begin(), kept_.ids.end());
         work_.prefetched_gather = true;
         return kept_.disc;
@@ -533,44 +548,164 @@ bool Proxy::covers(const KeptGather& g, const WarmDisc& disc, double from, doubl
 
 Proxy::WarmDisc Proxy::kept_disc_for(const WarmDisc& warm) const {
     const double extra = std::min({2.0 * env_->min_feature, 4.0 * warm.radius, kMaxKeptReach});  // m
-    // Led ahead along the proxy's last motion (kKeptLeadTicks), at most as far as the last kept
-    // gather's density allows within kKeptLeadBudget segments, four warm discs or kMaxKeptReach;
-    // not at all after an empty or no kept gather (nothing to scale by). The disc still holds the
-    // warm one: it is widened by the lead.
+    // Led ahead along the proxy's last motion (kKeptLeadTicks), at most four warm discs or
+    // kMaxKeptReach; not at all after an empty or no kept gather (a free finger's: its gathers
+    // are kept empty). The disc still holds the warm one: it is widened by the lead.
     Vec2 ahead = kKeptLeadTicks * last_motion_;  // m
     double ahead_cap = 0.0;                      // m
     // Not while the finger turns: every turn builds the kept segments again at the new angle, and
     // a wider gather made seed 002's hand (its angle stepping by encoder counts every few ticks)
     // build 9 % more.
     const bool still = ticks_ - last_turn_tick_ > kKeptLeadStillTicks;
-    if (still && kept_.valid && !kept_.ids.empty()) {
-        const double per_m = static_cast<double>(kept_.ids.size()) / kept_.disc.radius;  // segments per m of radius
-        ahead_cap = std::min({4.0 * warm.radius, kMaxKeptReach, kKeptLeadBudget / per_m - (warm.radius + extra)});
-    }
+    if (still && kept_.valid && !kept_.ids.empty()) ahead_cap = std::min(4.0 * warm.radius, kMaxKeptReach);
     const double ahead_len = glm::length(ahead);  // m
     if (ahead_len > ahead_cap) ahead = ahead_cap > 0.0 ? ahead * (ahead_cap / ahead_len) : Vec2{0.0};
     return WarmDisc{warm.center + ahead, warm.radius + extra + glm::length(ahead)};
 }
 
-// After a warm tick at an unchanged angle: if the next tick's warm disc, guessed from this one
-// moved by this tick's motion, will not lie in the kept disc, that tick's gather is made now
-// (pending_), for the disc it would make there and this angle. Why: where pieces crowd (a pad in
-// a valley of its own shape) a re-gather's query and its builds were each half of a 130 us tick
-// every few ticks; split over two ticks, neither reaches 100 us. A wrong guess costs a query: the
-// next tick gathers as before. Only where the last kept gather held more than kPrefetchFrom
-// segments: elsewhere a re-gather is cheap, and the guess's query would be spent for nothing as
-// often as not.
+// After a warm tick at an unchanged angle: if the warm disc of one of the next kAheadTicks ticks,
+// guessed from this one moved by this tick's motion, will not lie in the kept disc, the first such
+// tick's gather is made ahead (pending_), for the disc it would make there and this angle: its
+// query and then its segments' pieces, a share each tick until that one (advance_ahead); the tick
+// that takes it (adopt_pending) finishes what is left. Why: where pieces crowd (a pad in a valley
+// of its own shape) a re-gather's query and its builds were each 60-100 us, made in one tick the
+// query and in the next the builds: the dense curves' slowest ticks. Nothing here changes which
+// segments a tick walks on, only when their query and pieces are made: the same walk, bit for bit.
+// A wrong guess costs the work: that tick gathers as before. Only where the last kept gather held
+// at least kPrefetchFrom segments: elsewhere a re-gather is cheap.
 void Proxy::prefetch_gather(const WarmDisc& warm, double phi) {
+    if (pending_.valid && ahead_stage_ != AheadStage::built) {  // under way: this tick's share
+        if (phi == ahead_phi_) {
+            advance_ahead(ahead_share(), true);
+            return;
+        }
+        pending_.valid = false;  // made for another angle
+    }
     if (!kept_.valid || static_cast<int>(kept_.ids.size()) < kPrefetchFrom) return;
     const Vec2 moved = proxy_ - turned_;  // m, this tick's walk
-    const WarmDisc next{warm.center + moved, warm.radius};
-    if (covers(kept_, next, phi, 0.0) || covers(pending_, next, phi, 0.0)) return;  // the next tick has its gather
+    WarmDisc next{warm.center + moved, warm.radius};
+    int ticks = 1;  // until the tick that needs it
+    while (covers(kept_, next, phi, 0.0)) {
+        if (ticks == kAheadTicks) return;  // the kept gather lasts
+        ++ticks;
+        next.center += moved;
+    }
+    if (covers(pending_, next, phi, 0.0)) return;  // made already
     const double margin = std::min(2.0 * recent_turn_, kMaxKeptTurn);  // rad
     pending_.disc = kept_disc_for(next);
     pending_.from = phi - margin;
     pending_.width = 2.0 * margin;
-    gather_near(pending_.disc.center, pending_.from, pending_.from + pending_.width, pending_.disc.radius, pending_.ids);
     pending_.valid = true;
+    ahead_phi_ = phi;
+    ahead_due_ = ticks_ + ticks;
+    ahead_next_ = 0;
+    ahead_build_units_ = 0;
+    ahead_pieces_.clear();
+    ahead_boxes_.clear();
+    ahead_first_.clear();
+    if (!start_gather(pending_.disc.center, pending_.from, pending_.from + pending_.width, pending_.disc.radius, ahead_query_,
+                      pending_.ids)) {
+        ahead_stage_ = AheadStage::built;  // all of a small scene: nothing to make ahead
+        return;
+    }
+    ahead_stage_ = AheadStage::query;
+    // The next tick needs it: the whole query now, its pieces built then (at the angle it has):
+    // the query and the builds on two ticks.
+    if (ticks == 1) {
+        advance_ahead(0, false);
+        return;
+    }
+    advance_ahead(ahead_share(), true);
+}
+
+// This tick's share of the gather made ahead (work units): while its query runs, the most (how
+// much is left is not known); then what is left of its build over the ticks left before the one
+// expected to need it; within [kAheadLeastUnits, kAheadMostUnits].
+int Proxy::ahead_share() const {
+    if (ahead_stage_ == AheadStage::query) return kAheadMostUnits;
+    const std::int64_t left_ticks = std::max<std::int64_t>(1, ahead_due_ - ticks_);
+    const std::int64_t left = ahead_build_units_;
+    return static_cast<int>(std::clamp<std::int64_t>((left + left_ticks - 1) / left_ticks, kAheadLeastUnits, kAheadMostUnits));
+}
+
+void Proxy::advance_ahead(int units, bool build) {
+    const bool all = units <= 0;
+    int done = 0;  // units this call
+    if (ahead_stage_ == AheadStage::query) {
+        // (A visit of a node or an item: kAheadVisitUnits units.)
+        const int visits = units > 0 ? std::max(1, units / kAheadVisitUnits) : 0;
+        int visited = 0;
+        const bool ended = env_->tree.continue_pad_reach(ahead_query_, visits, pending_.ids, &visited);
+        done += visited * kAheadVisitUnits;
+        work_.ahead_units += visited * kAheadVisitUnits;
+        if (!ended) return;
+        finish_gather(pending_.ids);
+        ahead_stage_ = AheadStage::build;
+        // The build's units: its segments built at the last build's angle are copied.
+        const bool reuse = built_valid_ && built_phi_ == ahead_phi_;
+        std::size_t copied = 0, k = 0;
+        if (reuse)
+            for (const int id : pending_.ids) {
+                while (k < built_ids_.size() && built_ids_[k] < id) ++k;
+                if (k < built_ids_.size() && built_ids_[k] == id) ++copied;
+            }
+        ahead_build_units_ = static_cast<int>(copied + (pending_.ids.size() - copied) * kAheadBuildUnits);
+        if (!all) {
+            units -= done;
+            if (units <= 0) return;  // this call's share spent
+        }
+    }
+    if (ahead_stage_ == AheadStage::build && build) {
+        // Copied from the last build when it was at this angle; a cursor into it per call (a
+        // build between calls, validation's reference walk's, may have changed it).
+        const bool reuse = built_valid_ && built_phi_ == ahead_phi_;
+        const PadFrame& pad = pad_frame(ahead_phi_);
+        std::size_t j = 0;
+        if (built_valid_ && ahead_next_ < pending_.ids.size())
+            j = static_cast<std::size_t>(std::lower_bound(built_ids_.begin(), built_ids_.end(), pending_.ids[ahead_next_]) -
+                                         built_ids_.begin());
+        int spent = 0;
+        while (ahead_next_ < pending_.ids.size()) {
+            if (!all && spent >= units) break;
+            const int built_before = work_.built_segments;
+            ahead_first_.push_back(static_cast<int>(ahead_pieces_.size()));
+            append_segment_pieces(pending_.ids[ahead_next_], pad, reuse, j, ahead_pieces_, ahead_boxes_);
+            spent += work_.built_segments > built_before ? kAheadBuildUnits : 1;
+            ++ahead_next_;
+        }
+        ahead_build_units_ = std::max(0, ahead_build_units_ - spent);
+        work_.ahead_units += spent;
+        if (ahead_next_ == pending_.ids.size()) {
+            ahead_first_.push_back(static_cast<int>(ahead_pieces_.size()));
+            ahead_stage_ = AheadStage::built;
+        }
+    }
+}
+
+void Proxy::adopt_pending(double phi) {
+    // What the ticks before did not finish: the rest of the query, and of the build if it is at
+    // this angle (else build_pieces builds them as for any gather).
+    const bool at_phi = phi == ahead_phi_;
+    if (ahead_stage_ != AheadStage::built) {
+        const int shares = work_.ahead_units;
+        advance_ahead(0, at_phi);
+        work_.ahead_rest_units = work_.ahead_units - shares;
+        work_.ahead_units = shares;
+    }
+    std::swap(kept_, pending_);
+    pending_.valid = false;
+    if (!at_phi || ahead_first_.empty()) return;
+    std::swap(pieces_, ahead_pieces_);
+    std::swap(piece_boxes_, ahead_boxes_);
+    std::swap(built_first_, ahead_first_);
+    built_ids_.assign(kept_.ids.begin(), kept_.ids.end());
+    built_phi_ = phi;
+    built_valid_ = true;
+    cache_aside_ = false;
+    pieces_changed_ = true;
+    local_valid_ = false;
+    active_count_ = 0;
+    ahead_first_.clear();
 }
 
 // Turns the pad from phi_ to phi (re-projecting) and walks the proxy from `start` toward the
@@ -680,12 +815,20 @@ void Proxy::gather_within_reach(Vec2 finger, double phi, double reach) {
 }
 
 void Proxy::gather_near(Vec2 finger, double phi_from, double phi_to, double reach, std::vector<int>& out) {
+    AabbTree::PadReach q;
+    if (!start_gather(finger, phi_from, phi_to, reach, q, out)) return;
+    env_->tree.continue_pad_reach(q, 0, out);
+    finish_gather(out);
+}
+
+bool Proxy::start_gather(Vec2 finger, double phi_from, double phi_to, double reach, AabbTree::PadReach& q,
+                         std::vector<int>& out) {
     out.clear();
     // A small scene at an unchanged angle: all of it (see kSmallScene). While the finger turns
     // every piece is built anew, and then the index's few are cheaper.
     if (!def_.use_index || gathers_all(phi_from, phi_to)) {
         for (int i = 0; i < static_cast<int>(env_->segments.size()); ++i) out.push_back(i);
-        return;
+        return false;
     }
     // The offset pieces, the inner ones, and the segments within reach of each pad end as it
     // turns, all in one walk of the tree (four walks were a fifth of a small scene's tick), each
@@ -716,8 +859,12 @@ void Proxy::gather_near(Vec2 finger, double phi_from, double phi_to, double reac
     const NormalCone outer_normals = h >= kPi ? NormalCone{0.0, kTwoPi}
                                               : NormalCone{wrap_2pi(pad_mid_angle(phi_from) - h + std::min(turn, 0.0) + kPi),
                                                            2.0 * h + std::abs(turn)};
-    env_->tree.query_pad_reach(finger, shape.radius, reach, ends, end_centres, ends ? 2 : 0, reach + half_chord,
-                               outer_normals, out);
+    env_->tree.start_pad_reach(q, finger, shape.radius, reach, ends, end_centres, ends ? 2 : 0, reach + half_chord,
+                               outer_normals);
+    return true;
+}
+
+void Proxy::finish_gather(std::vector<int>& out) {
     // Sorted, so the pieces' order (and thus tie-breaks) does not depend on the tree. (Along a
     // contour the tree's order usually is sorted already: checking is linear, sorting is not.)
     if (!std::is_sorted(out.begin(), out.end())) std::sort(out.begin(), out.end());
@@ -758,50 +905,13 @@ void Proxy::build_pieces(double phi) {
     const bool reuse = built_valid_ && phi == built_phi_;
     if (reuse && !cache_aside_ && segment_ids_ == built_ids_) return;  // the same pieces: keep them
     pieces_changed_ = true;
-    const std::vector<CPiece>& old_pieces = cache_aside_ ? aside_pieces_ : pieces_;
-    const std::vector<Aabb>& old_boxes = cache_aside_ ? aside_boxes_ : piece_boxes_;
     next_pieces_.clear();
     next_boxes_.clear();
     next_first_.clear();
     std::size_t j = 0;  // position in built_ids_ (both lists are sorted)
     for (const int id : segment_ids_) {
         next_first_.push_back(static_cast<int>(next_pieces_.size()));
-        // The segment's pieces in the last build (at built_phi_), if it was built then. A segment
-        // that had none at that angle has none now: copied as nothing, not built again (at the
-        // bottom of a valley tighter than the pad, most segments gathered have no piece, and
-        // building them again made 2,000 of a slow tick's 2,300 builds).
-        int old_from = 0, old_to = 0;
-        bool was_built = false;
-        if (built_valid_) {
-            while (j < built_ids_.size() && built_ids_[j] < id) ++j;
-            if (j < built_ids_.size() && built_ids_[j] == id) {
-                old_from = built_first_[j], old_to = built_first_[j + 1];
-                was_built = true;
-            }
-        }
-        if (reuse && was_built) {
-            for (int k = old_from; k < old_to; ++k) {
-                next_pieces_.push_back(old_pieces[static_cast<std::size_t>(k)]);
-                next_boxes_.push_back(old_boxes[static_cast<std::size_t>(k)]);
-            }
-            continue;
-        }
-        const std::size_t from = next_pieces_.size();
-        append_cspace_pieces(*env_, id, pad, next_pieces_);
-        ++work_.built_segments;
-        for (std::size_t k = from; k < next_pieces_.size(); ++k) {
-            // A circle's box is arc_bounds' two sincos: a piece the turn left as it was (an arc's
-            // offset or inner circle whose span the pad's still holds whole, made of the segment
-            // alone) keeps the box it had, the same function of the same bits.
-            const CPiece& piece = next_pieces_[k];
-            const int old = old_from + static_cast<int>(k - from);
-            if (piece.kind == CPiece::Kind::circle && old < old_to &&
-                same_circle(piece, old_pieces[static_cast<std::size_t>(old)])) {
-                next_boxes_.push_back(old_boxes[static_cast<std::size_t>(old)]);
-                continue;
-            }
-            next_boxes_.push_back(piece_box(piece).grown(kBoxSlack));
-        }
+        append_segment_pieces(id, pad, reuse, j, next_pieces_, next_boxes_);
     }
     next_first_.push_back(static_cast<int>(next_pieces_.size()));
     std::swap(pieces_, next_pieces_);
@@ -811,6 +921,51 @@ void Proxy::build_pieces(double phi) {
     built_ids_.assign(segment_ids_.begin(), segment_ids_.end());
     built_phi_ = phi;
     built_valid_ = true;
+}
+
+// Segment id's pieces at pad (and their boxes), appended: copied from the last build (pieces_, or
+// aside_pieces_ while set aside) when that was at this angle (reuse), else made. j: a cursor in
+// built_ids_, for ids asked in ascending order.
+void Proxy::append_segment_pieces(int id, const PadFrame& pad, bool reuse, std::size_t& j, std::vector<CPiece>& pieces,
+                                  std::vector<Aabb>& boxes) {
+    const std::vector<CPiece>& old_pieces = cache_aside_ ? aside_pieces_ : pieces_;
+    const std::vector<Aabb>& old_boxes = cache_aside_ ? aside_boxes_ : piece_boxes_;
+    // The segment's pieces in the last build (at built_phi_), if it was built then. A segment
+    // that had none at that angle has none now: copied as nothing, not built again (at the
+    // bottom of a valley tighter than the pad, most segments gathered have no piece, and
+    // building them again made 2,000 of a slow tick's 2,300 builds).
+    int old_from = 0, old_to = 0;
+    bool was_built = false;
+    if (built_valid_) {
+        while (j < built_ids_.size() && built_ids_[j] < id) ++j;
+        if (j < built_ids_.size() && built_ids_[j] == id) {
+            old_from = built_first_[j], old_to = built_first_[j + 1];
+            was_built = true;
+        }
+    }
+    if (reuse && was_built) {
+        for (int k = old_from; k < old_to; ++k) {
+            pieces.push_back(old_pieces[static_cast<std::size_t>(k)]);
+            boxes.push_back(old_boxes[static_cast<std::size_t>(k)]);
+        }
+        return;
+    }
+    const std::size_t from = pieces.size();
+    append_cspace_pieces(*env_, id, pad, pieces);
+    ++work_.built_segments;
+    for (std::size_t k = from; k < pieces.size(); ++k) {
+        // A circle's box is arc_bounds' two sincos: a piece the turn left as it was (an arc's
+        // offset or inner circle whose span the pad's still holds whole, made of the segment
+        // alone) keeps the box it had, the same function of the same bits.
+        const CPiece& piece = pieces[k];
+        const int old = old_from + static_cast<int>(k - from);
+        if (piece.kind == CPiece::Kind::circle && old < old_to &&
+            same_circle(piece, old_pieces[static_cast<std::size_t>(old)])) {
+            boxes.push_back(old_boxes[static_cast<std::size_t>(old)]);
+            continue;
+        }
+        boxes.push_back(piece_box(piece).grown(kBoxSlack));
+    }
 }
 
 // pieces_ for segment_ids_ at a re-projection sub-step's angle: no boxes (only the walk uses them)

@@ -66,6 +66,11 @@ inline constexpr int kProxyMaxRotationSteps = 1024;  // finger-angle re-projecti
 // Scenes of at most this many environment segments skip the index: every tick gathers all of them
 // (no warm start), which costs less than walking the tree and keeps last tick's pieces.
 inline constexpr int kProxySmallScene = 16;
+// The most work units (ProxyWork::ahead_units) a tick gives its share of a gather made ahead in
+// parts, but for a gather the very next tick needs (its whole query at once); a node's items or a
+// segment's build may pass it by a few units. (The tick that takes a gather also finishes what
+// the ticks before left: ProxyWork::ahead_rest_units.)
+inline constexpr int kProxyAheadMostUnits = 3000;
 // The most segments anticipation's search asks while it gathers its hold (Proxy::anticipate):
 // beyond, it gives the hold up and prunes as a plain search. Hovering 1 cm above the bench's
 // sinusoids, 32 made the slowest ticks of 100 to 1,000-segment scenes ask 30-44 segments where a
@@ -85,9 +90,15 @@ struct ProxyWork {
     bool warm_start = false;
     // The warm start's segments were those a recent tick gathered (Proxy::gather_warm), no query.
     bool kept_gather = false;
-    // ... or a gather made a tick ahead, when the last tick's motion was about to leave the kept
-    // one (Proxy::prefetch_gather): only its pieces were built this tick.
+    // ... or a gather made ahead, when the motion was about to leave the kept one
+    // (Proxy::prefetch_gather): its query, and its pieces where the angle held, were made by the
+    // ticks before; this one finished what they left.
     bool prefetched_gather = false;
+    // Work units (about 12 ns each on the development VM) this tick spent on its share of a gather
+    // made ahead in parts (Proxy::prefetch_gather), and at the tick that takes one, on what the
+    // ticks before left of it.
+    int ahead_units = 0;
+    int ahead_rest_units = 0;
     // The walk's first move entered the piece under the resting proxy, found among the pieces
     // near it alone (Proxy::walk), not by a scan along the whole move toward the finger.
     bool near_start = false;
@@ -416,6 +427,36 @@ private:
     // along the proxy's motion.
     WarmDisc kept_disc_for(const WarmDisc& warm) const;
     void prefetch_gather(const WarmDisc& warm, double phi);
+    // The gather made ahead in parts (prefetch_gather), several ticks before the tick that needs
+    // it: first its query (ahead_query_), then its segments' pieces at ahead_phi_ (into
+    // ahead_pieces_, ahead_boxes_, ahead_first_, as build_pieces makes them), a share of the work
+    // each tick; adopt_pending then takes both, finishing what is left. Meaningful while
+    // pending_.valid.
+    enum class AheadStage { query, build, built };
+    AheadStage ahead_stage_ = AheadStage::built;
+    AabbTree::PadReach ahead_query_;
+    double ahead_phi_ = 0.0;       // rad
+    std::size_t ahead_next_ = 0;   // pending_.ids' position the build has reached
+    std::int64_t ahead_due_ = 0;   // ticks_ of the tick expected to need it
+    int ahead_build_units_ = 0;    // work units (kAheadBuildUnits) left of its build
+    std::vector<CPiece> ahead_pieces_;
+    std::vector<Aabb> ahead_boxes_;
+    std::vector<int> ahead_first_;
+    // Does about `units` work units of the gather made ahead (<= 0: all of it); with `build`
+    // false, stops after the query.
+    void advance_ahead(int units, bool build);
+    int ahead_share() const;
+    // pending_ becomes kept_ (gather_warm), with the pieces built ahead when they are at phi.
+    void adopt_pending(double phi);
+    // Appends segment id's pieces at pad (phi) and their boxes: copied from the last build when
+    // that was at phi (reuse), else made; j is a cursor in built_ids_ for ids taken in order.
+    void append_segment_pieces(int id, const PadFrame& pad, bool reuse, std::size_t& j, std::vector<CPiece>& pieces,
+                               std::vector<Aabb>& boxes);
+    // gather_near's query, started in q (true), or its answer already in out (false: a small
+    // scene or no index); finish_gather sorts what the query appended.
+    bool start_gather(Vec2 finger, double phi_from, double phi_to, double reach, AabbTree::PadReach& q,
+                      std::vector<int>& out);
+    static void finish_gather(std::vector<int>& out);
     double recent_turn_ = 0.0;  // rad, the size of the last tick's turn that was not 0
     std::int64_t last_turn_tick_ = 0;  // ticks_ at that turn
     // Warm start (Proxy::update): the centre of the gathered disc, and how far from it the path went (m).

@@ -830,15 +830,17 @@ TEST_CASE("a kept gather (slow slides, the angle stepping by encoder counts) mov
     }
 }
 
-TEST_CASE("in a valley of the pad's own shape, the gathers made a tick ahead move the proxy as a search of every segment") {
+TEST_CASE("in a valley of the pad's own shape, the gathers made ahead in parts move the proxy as a search of every segment") {
     // One valley of the bench's dense sinusoid (amplitude 10 mm, period 0.1 m: curvature radius
     // 25.3 mm at its floor, under the 26 mm pad) in 10,000 lines of 4 um, the bench's density at
     // 100,000 segments. The pad's ends rest on its walls and hundreds of segments' offset pieces
-    // crowd round the proxy, so a warm tick whose motion is about to leave a kept gather of 256
-    // segments or more makes the next one ahead (Proxy::prefetch_gather), and the next tick uses
-    // it. Pressed 1 mm in and slid across the floor at 5 cm/s and back at 2 cm/s: the proxy, force
-    // and l_d must be those of a proxy that builds every segment's pieces, bit for bit, and
-    // gathers made ahead must have served (43 of the stroke's 316 re-gathers).
+    // crowd round the proxy, so a warm tick whose motion will leave a kept gather of 64 segments
+    // or more within a few ticks makes the next one ahead (Proxy::prefetch_gather): its query and
+    // pieces a share a tick, at most kProxyAheadMostUnits, the tick that takes it the rest. Pressed
+    // 1 mm in and slid across the floor at 5 cm/s and back at 2 cm/s: the proxy, force and l_d
+    // must be those of a proxy that builds every segment's pieces, bit for bit; gathers made ahead
+    // must have served, and most of their work must have been done on ticks before the one that
+    // took them, each within its share.
     constexpr double kAmplitude = 0.010;              // m
     const double k_wave = 2.0 * kPi * 4.0 / 0.4;      // 1/m
     auto surface = [&](double x) { return kAmplitude * std::sin(k_wave * (x + 0.2)); };
@@ -852,7 +854,8 @@ TEST_CASE("in a valley of the pad's own shape, the gathers made a tick ahead mov
     Vec2 finger{-0.035, surface(-0.035) + R + 0.005};
     pair.indexed.reset(finger, 0.0);
     pair.brute.reset(finger, 0.0);
-    int contacts = 0, prefetched = 0, regathered = 0, ticks = 0;
+    int contacts = 0, prefetched = 0, regathered = 0, ticks = 0, sharing = 0, over_share = 0;
+    long share_units = 0, rest_units = 0;  // work units in the ticks' shares, and left to the ticks that took them
     auto tick = [&](Vec2 f) {
         ++ticks;
         CAPTURE(ticks);
@@ -860,6 +863,12 @@ TEST_CASE("in a valley of the pad's own shape, the gathers made a tick ahead mov
         contacts += a.contact ? 1 : 0;
         prefetched += a.work.prefetched_gather ? 1 : 0;
         regathered += a.contact && a.work.warm_start && !a.work.kept_gather && !a.work.prefetched_gather ? 1 : 0;
+        CHECK((a.work.ahead_rest_units == 0 || a.work.prefetched_gather));
+        rest_units += a.work.ahead_rest_units;
+        share_units += a.work.ahead_units;
+        sharing += a.work.ahead_units > 0 ? 1 : 0;
+        // (A whole query for the very next tick may pass the share: counted, and few.)
+        over_share += a.work.ahead_units > kProxyAheadMostUnits + 16 ? 1 : 0;
     };
     // Lowered 0.5 mm a tick until it touches, then 1 mm below the proxy as it slides.
     for (int k = 0; k < 40 && !pair.brute.output().contact; ++k) tick(finger -= Vec2{0.0, 0.0005});
@@ -872,10 +881,14 @@ TEST_CASE("in a valley of the pad's own shape, the gathers made a tick ahead mov
             tick(finger);
         }
     }
-    MESSAGE(ticks, " ticks, ", contacts, " in contact, ", prefetched, " on a gather made a tick ahead, ", regathered,
-            " gathered anew");
+    MESSAGE(ticks, " ticks, ", contacts, " in contact, ", prefetched, " on a gather made ahead, ", regathered,
+            " gathered anew; ", sharing, " ticks with a share of the work ahead (", over_share, " over it), ", share_units,
+            " units in the shares, ", rest_units, " left to the ticks that took the gathers");
     CHECK(contacts > 1300);
     CHECK(prefetched > 20);
+    CHECK(sharing >= prefetched);
+    CHECK(rest_units * 3 < share_units);
+    CHECK(over_share * 10 < sharing);
 }
 
 TEST_CASE("point finger: the proxy is the god-object on the contour itself with l = 0") {

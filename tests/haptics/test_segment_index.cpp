@@ -175,3 +175,58 @@ TEST_CASE("index: a bowl tighter than the pad is asked for by the pad's ends onl
     contactlab::test::replay_against_every_segment(env, proxy_def_of(scene), path, counts);
     CHECK(counts.contact_rows >= 601);
 }
+
+TEST_CASE("index: a pad query made in parts finds what the whole query does, in the same order") {
+    // Proxy::prefetch_gather makes a gather ahead a share a tick (AabbTree::continue_pad_reach);
+    // the tick that takes it must walk on the whole query's segments in the whole query's order.
+    // Over the soak's seeded random scenes and a dense valley, at random points, reaches, pad
+    // radii, normal cones and pad ends, with budgets from 1 visit to 16: the parts' items,
+    // concatenated, are the whole query's.
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::vector<Environment> envs;
+    for (std::uint64_t index = 0; index < 8; ++index) envs.push_back(build_environment(make_contact_case(case_seed(9, index)).scene));
+    Scene valley;  // 4,000 lines of 10 um on a sinusoid of 10 mm amplitude and 0.1 m period
+    Contour c;
+    for (int i = 0; i < 4000; ++i) {
+        auto y = [](double x) { return 0.01 * std::sin(2.0 * kPi * x / 0.1); };
+        const double x0 = -0.045 + 1e-5 * i, x1 = x0 + 1e-5;  // m
+        c.segments.push_back(LineSegment{{x0, y(x0)}, {x1, y(x1)}});
+    }
+    valley.contours.push_back(c);
+    envs.push_back(build_environment(valley));
+    int queries = 0, split = 0;
+    std::size_t items = 0;
+    for (const Environment& env : envs) {
+        for (int q = 0; q < 40; ++q) {
+            // About a pad's radius from a random segment, where pad queries are asked.
+            const EnvSegment& near = env.segments[static_cast<std::size_t>(unit(rng) * static_cast<double>(env.segments.size()))];
+            const double r = 0.005 + 0.03 * unit(rng);  // m
+            const double a = kTwoPi * unit(rng);         // rad
+            const Vec2 p = 0.5 * (near.box.lo + near.box.hi) + (0.8 + 0.4 * unit(rng)) * r * Vec2{std::cos(a), std::sin(a)};  // m
+            const double reach = 1e-5 * std::pow(1e3, unit(rng));                // m: 10 um to 1 cm
+            const bool inner = unit(rng) < 0.5;
+            const Vec2 ends[2] = {p + Vec2{-r, 0.0}, p + Vec2{r, 0.0}};
+            const int end_count = unit(rng) < 0.5 ? 2 : 0;
+            const NormalCone cone = unit(rng) < 0.3 ? NormalCone{0.0, kTwoPi} : NormalCone{kTwoPi * unit(rng), kPi * unit(rng)};
+            std::vector<int> whole, parts;
+            env.tree.query_pad_reach(p, r, reach, inner, ends, end_count, reach, cone, whole);
+            AabbTree::PadReach query;
+            env.tree.start_pad_reach(query, p, r, reach, inner, ends, end_count, reach, cone);
+            const int budget = 1 + static_cast<int>(unit(rng) * 16.0);
+            int calls = 0;
+            while (!env.tree.continue_pad_reach(query, budget, parts)) {
+                ++calls;
+                REQUIRE(calls < 1000000);
+            }
+            CHECK_FALSE(query.active);
+            CHECK(parts == whole);
+            ++queries;
+            split += calls > 0 ? 1 : 0;
+            items += whole.size();
+        }
+    }
+    MESSAGE(queries, " queries, ", split, " of them in more than one part, ", items, " items found");
+    CHECK(split > queries / 2);
+    CHECK(items > 2000);
+}
