@@ -36,6 +36,10 @@ inline double wrap_2pi(double a) {
         a += kTwoPi;
         return a >= kTwoPi ? 0.0 : a;
     }
+    // One turn above it (a pad's span turned by pi): a - 2 pi is exact there (Sterbenz: a within a
+    // factor 2 of 2 pi), so it is fmod's answer, the same bits without the call (2 % of a dense
+    // contour's tick, building vertex pieces).
+    if (a >= kTwoPi && a < 2.0 * kTwoPi) return a - kTwoPi;
     a = std::fmod(a, kTwoPi);
     if (a < 0.0) a += kTwoPi;
     return a >= kTwoPi ? 0.0 : a;
