@@ -513,8 +513,8 @@ Proxy::WarmDisc Proxy::gather_warm(const WarmDisc& warm, double phi, double turn
         work_.kept_gather = true;
         return kept_.disc;
     }
-    // The gather the last tick made ahead (prefetch_gather) becomes the kept one: this tick's
-    // query was made then, only its pieces are built now.
+    // The gather made ahead (prefetch_gather) becomes the kept one: its query, and its pieces
+    // where the angle held, were made by the ticks before; adopt_pending finishes the rest.
     if (covers(pending_, warm, from, width)) {
         adopt_pending(phi);
         segment_ids_.assign(kept_.ids.begin(), kept_.ids.end());
