@@ -49,6 +49,10 @@ int run_trace_timing(const BenchArgs& a) {
     std::printf("ns per tick: median %.0f, p99 %.0f, p99.9 %.0f, max %.0f  (a 1 kHz servo has 1,000,000; 10 kHz 100,000)\n",
                 t.stats.median_ns, t.stats.p99_ns, t.stats.p999_ns, t.stats.max_ns);
     std::printf("ticks over 100 us: %zu, over 1 ms: %zu, of %zu\n", t.stats.over_100us, t.stats.over_1ms, t.stats.ticks);
+    if (t.least)
+        std::printf("each tick's least over the %d passes (the code's own tail; the rest of the above is the machine's): "
+                    "median %.0f, p99 %.0f, p99.9 %.0f, max %.0f\n",
+                    t.passes, t.least->median_ns, t.least->p99_ns, t.least->p999_ns, t.least->max_ns);
     const ProxyStages& s = t.stages;
     std::printf("stages, mean ns per tick (a second pass, timed by stage; its median %.0f ns): gather %.0f, "
                 "pieces %.0f, walk %.0f, contact %.0f, anticipate %.0f\n",

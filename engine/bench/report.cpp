@@ -122,18 +122,51 @@ std::string study_section(const std::string& title, const StudySpeed& st, const 
            experiments::profile_table(st.profile);
 }
 
+// The tail twice: every tick's p99.9 and max (the table above, what a user meets on this machine)
+// beside the same over each tick's least time across the passes. Every pass replays the same
+// stroke, so a tick slow in all passes is slow by its own work and a tick slow in one pass only
+// was stalled by the machine; where the two columns differ, the difference is the machine's.
+std::string least_of_passes_table(const BenchResults& r) {
+    const auto has_least = [](const CostRow& row) { return row.proxy_least && row.hover_least; };
+    if (std::none_of(r.cost.begin(), r.cost.end(), has_least)) return "";
+    std::string md =
+        "\n### The code's tail and the machine's\n\n"
+        "Every pass replays the same stroke from the same lifted start, so a tick that is slow in every pass is "
+        "slow by its own work, and one slow in a single pass was stalled by the machine (a preemption, an "
+        "interrupt, caches flushed by another process). `least of passes`: p99.9 and max over each tick's least "
+        "time across the passes. Where it is far below the all-ticks figure, the difference is the machine's "
+        "(the machine's own stalls in the same run: the bare loop under \"Servo beside renderer\").\n\n"
+        "| scene | N | passes | contact p99.9: all ticks / least of passes | contact max: all / least | hover p99.9: all / "
+        "least | hover max: all / least |\n"
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+    for (const CostRow& row : r.cost) {
+        if (!has_least(row)) continue;
+        const TickStats& c = *row.proxy_least;
+        const TickStats& h = *row.hover_least;
+        md += "| " + row.key + " | " + std::to_string(row.scene.segments) + " | " +
+              std::to_string(c.ticks ? row.proxy.ticks / c.ticks : 0) + " | " + duration(row.proxy.p999_ns) + " / " +
+              duration(c.p999_ns) + " | " + duration(row.proxy.max_ns) + " / " + duration(c.max_ns) + " | " +
+              duration(row.hover.p999_ns) + " / " + duration(h.p999_ns) + " | " + duration(row.hover.max_ns) + " / " +
+              duration(h.max_ns) + " |\n";
+    }
+    return md;
+}
+
 }  // namespace
 
 nlohmann::json results_json(const BenchResults& r) {
     nlohmann::json j;
     j["quick"] = r.quick;
-    j["units"] = "tick_ns: ns per proxy tick (median, p99, p999, max; over_100us and over_1ms count ticks); errors in m";
+    j["units"] = "tick_ns: ns per proxy tick (median, p99, p999, max; over_100us and over_1ms count ticks); "
+                 "*_least_of_passes: the same over each tick's least time across the passes; errors in m";
     for (const CostRow& row : r.cost) {
         const std::string n = std::to_string(row.scene.segments);
         j["tick_ns"][row.key][n] = stats_json(row.proxy);
         j["contact_fraction"][row.key][n] = row.contact_fraction;
         j["env_segments"][row.key][n] = row.env_segments;
         j["hover_ns"][row.key][n] = stats_json(row.hover);
+        if (row.proxy_least) j["tick_ns_least_of_passes"][row.key][n] = stats_json(*row.proxy_least);
+        if (row.hover_least) j["hover_ns_least_of_passes"][row.key][n] = stats_json(*row.hover_least);
         if (row.tail_contact.ticks) j["slowest_ticks"][row.key][n] = {{"contact", tail_json(row.tail_contact)}, {"hover", tail_json(row.tail_hover)}};
         if (row.hover_spread) {
             nlohmann::json spread = stats_json(*row.hover_spread);
@@ -262,11 +295,13 @@ nlohmann::json results_json(const BenchResults& r) {
 }
 
 nlohmann::json trace_json(const TraceTiming& t) {
-    return {{"samples", t.samples}, {"passes", t.passes}, {"contact_fraction", t.contact_fraction},
-            {"tick_ns", stats_json(t.stats)},
-            {"stages_ns", stages_json(t.stages)},
-            {"profiled_tick_ns", stats_json(t.profiled)},
-            {"slowest_ticks", tail_json(t.tail)}};
+    nlohmann::json j = {{"samples", t.samples}, {"passes", t.passes}, {"contact_fraction", t.contact_fraction},
+                        {"tick_ns", stats_json(t.stats)},
+                        {"stages_ns", stages_json(t.stages)},
+                        {"profiled_tick_ns", stats_json(t.profiled)},
+                        {"slowest_ticks", tail_json(t.tail)}};
+    if (t.least) j["tick_ns_least_of_passes"] = stats_json(*t.least);
+    return j;
 }
 
 std::string ticks_csv(const TraceTiming& t) {
@@ -322,6 +357,7 @@ std::string results_markdown(const BenchResults& r, const ReportPlots* plots) {
               (row.tail_hover.ticks ? main_stage(row.tail_hover.stages) : "") + " |\n";
     }
     md += figure(plots, "tail_dense.png");
+    md += least_of_passes_table(r);
     md += "\n## Anticipation spread over ticks (an option)\n\n"
           "Hovering, the tick's work is the search for the contact the finger would make. Over a valley shaped "
           "like the pad, thousands of segments tie to within micrometres and the exact search asks them all. "

@@ -32,6 +32,9 @@ constexpr double kStartAbove = 0.003;  // m: each pass starts this far above its
 // ---- measure ----------------------------------------------------------------------------------
 struct Measured {
     TickStats stats;
+    // With two passes or more: each tick's least time over the passes (least_over_passes), the
+    // code's own tail without the machine's one-pass stalls.
+    std::optional<TickStats> least;
     double contact_fraction = 0.0;
     ProxyStages stages;  // mean ns per tick in each stage (def.profile; zero otherwise)
     TailSplit tail;      // the slowest ticks and their stages (stages zero without def.profile)
@@ -92,6 +95,7 @@ Measured measure(const std::string& name, const Environment& env, const ProxyDef
             }
         }
         result.stats = timer.stats();
+        if (passes > 1) result.least = tick_stats(least_over_passes(timer.samples(), path.size()));
         result.tail = tail_split(timer.samples(), tick_stages);
         if (keep_rows) {
             result.rows.resize(ticks);
@@ -135,6 +139,7 @@ void cost_growth(const BenchOptions& o, BenchResults& r) {
                 ProxyDef def = proxy_def_of(scene);
                 const Measured m = measure(name, env, def, path, passes);
                 row.proxy = m.stats;
+                row.proxy_least = m.least;
                 row.contact_fraction = m.contact_fraction;
                 if (n <= brute_max) {
                     ProxyDef brute = def;
@@ -149,7 +154,9 @@ void cost_growth(const BenchOptions& o, BenchResults& r) {
                 row.point_finger = measure(name + "/point_finger", env, point, point_path, passes).stats;
                 std::vector<FingerSample> hover_path = path;
                 for (FingerSample& s : hover_path) s.x.y += 0.011;  // m: 1 cm above the surface
-                row.hover = measure(name + "/hover", env, def, hover_path, passes).stats;
+                const Measured h = measure(name + "/hover", env, def, hover_path, passes);
+                row.hover = h.stats;
+                row.hover_least = h.least;
                 if (n == sizes.back()) {
                     // Where the slowest ticks' time goes: the same strokes again with the stages
                     // timed (their clock reads cost a little, so the plain passes stay the figures).
@@ -311,6 +318,7 @@ TraceTiming time_trace(const Scene& scene, const std::vector<FingerSample>& samp
     // Starts from the first sample with no history, as `contactlab trace` does.
     const Measured m = measure("trace", env, proxy_def_of(scene), samples, passes, 0.0, keep_rows);
     t.stats = m.stats;
+    t.least = m.least;
     t.contact_fraction = m.contact_fraction;
     // Where the time goes: the same again with the stages timed (their clock reads cost a little,
     // so the plain pass above stays the figure to budget with).

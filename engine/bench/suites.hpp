@@ -62,6 +62,10 @@ struct CostRow {
     // The same stroke 1 cm above the surface: free space, where the tick's cost is the
     // anticipation of the nearest contact (hover_ns.<key>.<segments>).
     TickStats hover;
+    // With more than one pass (the full suite runs 3): each tick's least time over the passes, in
+    // contact and hovering (least_over_passes): the code's own tail, the machine's stalls that hit
+    // one pass only taken out. The figures above stay every tick's, as a user meets them.
+    std::optional<TickStats> proxy_least, hover_least;
     // At the suite's largest size: the slowest ticks' stage split, in contact and hovering.
     TailSplit tail_contact, tail_hover;
     // At the largest size: hovering with anticipation spread over ticks (kBenchAnticipationBudget
@@ -112,6 +116,7 @@ BenchResults run_suites(const BenchOptions& options);
 // tick timed (I/O and set-up excluded).
 struct TraceTiming {
     TickStats stats;
+    std::optional<TickStats> least;  // with --passes 2 or more: each tick's least over the passes
     // A second pass with ProxyDef::profile: mean ns per tick in each named stage, and that pass's
     // own tick statistics (the stages' clock reads included).
     ProxyStages stages;

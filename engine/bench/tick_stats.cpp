@@ -2,6 +2,8 @@
 #include "engine/bench/tick_stats.hpp"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 namespace contactlab::bench {
 
@@ -19,6 +21,19 @@ TickStats tick_stats(std::vector<double> v) {
     s.over_100us = static_cast<std::size_t>(v.end() - std::upper_bound(v.begin(), v.end(), kTenKilohertzPeriodNs));
     s.over_1ms = static_cast<std::size_t>(v.end() - std::upper_bound(v.begin(), v.end(), kOneKilohertzPeriodNs));
     return s;
+}
+
+std::vector<double> least_over_passes(const std::vector<double>& ns, std::size_t ticks_per_pass) {
+    if (ticks_per_pass == 0 || ns.size() % ticks_per_pass != 0)
+        throw std::invalid_argument("least_over_passes: " + std::to_string(ns.size()) + " tick times are not whole passes of " +
+                                    std::to_string(ticks_per_pass));
+    if (ns.empty()) return {};
+    std::vector<double> least(ns.begin(), ns.begin() + static_cast<std::ptrdiff_t>(ticks_per_pass));
+    for (std::size_t i = ticks_per_pass; i < ns.size(); ++i) {
+        double& l = least[i % ticks_per_pass];
+        l = std::min(l, ns[i]);
+    }
+    return least;
 }
 
 }  // namespace contactlab::bench

@@ -26,6 +26,15 @@ struct TickStats {
 // The statistics of a set of tick times (ns), in any order.
 TickStats tick_stats(std::vector<double> samples_ns);
 
+// Each tick's least time over the passes of one stroke. `ns` holds whole passes of
+// `ticks_per_pass` ticks, pass after pass, as TickTimer records them; the result has one entry
+// per tick of a pass. Every pass replays the same samples from the same lifted start, so a tick
+// that is slow in every pass is slow by its own work, and one slow in a single pass was slowed by
+// the machine (a preemption, an interrupt, caches flushed by another process): the statistics of
+// these least times are the code's own tail, to read beside the all-ticks figures a user meets.
+// Throws std::invalid_argument when `ticks_per_pass` is 0 or does not divide ns.size().
+std::vector<double> least_over_passes(const std::vector<double>& ns, std::size_t ticks_per_pass);
+
 class TickTimer {
 public:
     explicit TickTimer(std::size_t expected_ticks) { samples_.reserve(expected_ticks); }

@@ -20,6 +20,7 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 
 namespace fs = std::filesystem;
 using namespace contactlab;
@@ -157,6 +158,49 @@ TEST_CASE("tick_stats: nearest-rank percentiles, and the ticks that miss a 10 kH
     CHECK(few.p999_ns == 5.0);
     CHECK(few.over_100us == 0);
     CHECK(tick_stats({}).ticks == 0);
+}
+
+TEST_CASE("least_over_passes: each tick's least time across whole passes; a part pass is refused") {
+    // Three passes of four ticks; the machine stalls a different tick in each pass.
+    const std::vector<double> ns = {10, 20, 900, 40,   //
+                                    11, 700, 30, 41,   //
+                                    800, 19, 31, 39};
+    const std::vector<double> least = least_over_passes(ns, 4);
+    REQUIRE(least.size() == 4);
+    CHECK(least == std::vector<double>{10, 19, 30, 39});
+    // One pass: its own times.
+    CHECK(least_over_passes({5, 6, 7}, 3) == std::vector<double>{5, 6, 7});
+    CHECK(least_over_passes({}, 4).empty());
+    CHECK_THROWS_AS(least_over_passes(ns, 5), std::invalid_argument);  // 12 ticks are not whole passes of 5
+    CHECK_THROWS_AS(least_over_passes(ns, 0), std::invalid_argument);
+    // A tick slow in every pass stays slow: the code's own tail survives the least.
+    const std::vector<double> slow_everywhere = {1, 500, 1, 501, 1, 502};
+    CHECK(tick_stats(least_over_passes(slow_everywhere, 2)).max_ns == 500.0);
+}
+
+TEST_CASE("bench report: with passes, the code's tail (least of passes) beside every tick's, in the page and the JSON") {
+    BenchResults r = made_up_results();
+    // A quick run has one pass: no such table.
+    CHECK(results_markdown(r).find("### The code's tail and the machine's") == std::string::npos);
+    CHECK_FALSE(results_json(r).contains("tick_ns_least_of_passes"));
+    for (CostRow& row : r.cost) {
+        TickStats c = stats(row.proxy.median_ns), h = stats(row.hover.median_ns);
+        c.ticks = h.ticks = 50;  // the rows' 100 ticks were two passes of 50
+        c.p999_ns = 0.5 * row.proxy.p999_ns, c.max_ns = 0.25 * row.proxy.max_ns;
+        h.p999_ns = 0.5 * row.hover.p999_ns, h.max_ns = 0.25 * row.hover.max_ns;
+        row.proxy_least = c, row.hover_least = h;
+    }
+    const std::string md = results_markdown(r);
+    const std::size_t at = md.find("### The code's tail and the machine's");
+    REQUIRE(at != std::string::npos);
+    // lines_dense at 100,000: contact p99.9 2.5 x 2,000 ns = 5 us all ticks, 2.5 us least; max
+    // 6 us / 1.5 us; hover p99.9 2.5 x 2,800 = 7 us / 3.5 us, max 8.4 us / 2.1 us. Two passes.
+    CHECK(md.find("| lines_dense | 100000 | 2 | 5 us / 2.5 us | 6 us / 1.5 us | 7 us / 3.5 us | 8.4 us / 2.1 us |",
+                  at) != std::string::npos);
+    const nlohmann::json j = results_json(r);
+    CHECK(j["tick_ns_least_of_passes"]["lines_dense"]["100000"]["p999"].get<double>() == doctest::Approx(2500.0));
+    CHECK(j["hover_ns_least_of_passes"]["curves"]["10"]["max"].get<double>() ==
+          doctest::Approx(0.25 * 3.0 * (800.0 + 10 * 0.02)));
 }
 
 TEST_CASE("bench report: one chart per figure, cost charts with ContactLab and both baselines per kind") {
