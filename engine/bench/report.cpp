@@ -152,6 +152,30 @@ std::string least_of_passes_table(const BenchResults& r) {
     return md;
 }
 
+// The first tick in contact after a hand's approach (FirstContact), at the largest size.
+std::string first_contact_table(const BenchResults& r) {
+    const auto has = [](const CostRow& row) { return !row.first_contact.empty(); };
+    if (std::none_of(r.cost.begin(), r.cost.end(), has)) return "";
+    std::string md = "\n### The first tick in contact, after an approach\n\n"
+                     "The strokes above start 3 mm above the profile and press 1 mm in within one tick. A hand comes "
+                     "down over many ticks: here the finger descends from " +
+                     fmt("%.0f", kApproachFrom * 1e3) +
+                     " mm above the stroke's first sample at each speed (a sample a 1 ms tick), then slides " +
+                     std::to_string(kApproachStrokeTicks) +
+                     " ticks of the stroke. Each tick's least time over the passes; `after` is the ticks that follow the "
+                     "first contact.\n\n"
+                     "| scene | N | approach | first contact at tick | its time | after: median / p99.9 / max |\n"
+                     "| --- | ---: | ---: | ---: | ---: | ---: |\n";
+    for (const CostRow& row : r.cost)
+        for (const FirstContact& f : row.first_contact) {
+            md += "| " + row.key + " | " + std::to_string(row.scene.segments) + " | " + fmt("%.2g m/s", f.speed) + " | ";
+            md += f.found ? std::to_string(f.tick) + " | " + duration(f.ns) + " | " + duration(f.later.median_ns) + " / " +
+                                duration(f.later.p999_ns) + " / " + duration(f.later.max_ns) + " |\n"
+                          : std::string("no contact | | |\n");
+        }
+    return md;
+}
+
 }  // namespace
 
 nlohmann::json results_json(const BenchResults& r) {
@@ -167,6 +191,11 @@ nlohmann::json results_json(const BenchResults& r) {
         j["hover_ns"][row.key][n] = stats_json(row.hover);
         if (row.proxy_least) j["tick_ns_least_of_passes"][row.key][n] = stats_json(*row.proxy_least);
         if (row.hover_least) j["hover_ns_least_of_passes"][row.key][n] = stats_json(*row.hover_least);
+        for (const FirstContact& f : row.first_contact) {
+            nlohmann::json fc = {{"speed_m_s", f.speed}, {"found", f.found}};
+            if (f.found) fc.update({{"tick", f.tick}, {"ns", f.ns}, {"later_ns", stats_json(f.later)}});
+            j["first_contact"][row.key][n].push_back(fc);
+        }
         if (row.tail_contact.ticks) j["slowest_ticks"][row.key][n] = {{"contact", tail_json(row.tail_contact)}, {"hover", tail_json(row.tail_hover)}};
         if (row.hover_spread) {
             nlohmann::json spread = stats_json(*row.hover_spread);
@@ -358,6 +387,7 @@ std::string results_markdown(const BenchResults& r, const ReportPlots* plots) {
     }
     md += figure(plots, "tail_dense.png");
     md += least_of_passes_table(r);
+    md += first_contact_table(r);
     md += "\n## Anticipation spread over ticks (an option)\n\n"
           "Hovering, the tick's work is the search for the contact the finger would make. Over a valley shaped "
           "like the pad, thousands of segments tie to within micrometres and the exact search asks them all. "

@@ -2,6 +2,7 @@
 //
 // Index
 //   measure            one benchmark: a proxy over a stroke, every tick timed
+//   first contact      the first tick in contact after an approach, at the largest size
 //   cost growth        extent and density, lines/arcs/curves, with the two baselines
 //   feature costs      each force-law feature used, and all enabled but unused
 //   Pareto             curve modes against exact mode on seed 002's bumps stimulus
@@ -117,6 +118,38 @@ Measured measure(const std::string& name, const Environment& env, const ProxyDef
     return result;
 }
 
+// The finger brought down onto `stroke`'s first sample at `speed` (m/s, a sample a 1 ms tick), then
+// along the stroke; timed `passes` times (FirstContact).
+FirstContact first_contact_after_approach(const std::string& name, const Environment& env, const ProxyDef& def,
+                                          const std::vector<FingerSample>& stroke, double speed, int passes) {
+    FirstContact fc;
+    fc.speed = speed;
+    const double step = speed * 1e-3;  // m a tick at 1 kHz
+    std::vector<FingerSample> path;
+    const auto above = static_cast<int>(std::ceil(kApproachFrom / step - 1e-9));
+    for (int k = above; k >= 1; --k) {
+        FingerSample s = stroke[0];
+        s.x.y += k * step;
+        path.push_back(s);
+    }
+    path.insert(path.end(), stroke.begin(), stroke.begin() + std::min<std::ptrdiff_t>(stroke.size(), kApproachStrokeTicks));
+    char label[32];
+    std::snprintf(label, sizeof label, "/approach_%gm_s", speed);
+    const Measured m = measure(name + label, env, def, path, passes, 0.0, true);
+    std::vector<double> ns(m.rows.size());
+    for (std::size_t i = 0; i < ns.size(); ++i) ns[i] = m.rows[i].ns;
+    const std::vector<double> least = least_over_passes(ns, path.size());
+    for (std::size_t i = 0; i < path.size(); ++i) {
+        if (!m.rows[i].contact) continue;
+        fc.found = true;
+        fc.tick = i;
+        fc.ns = least[i];
+        fc.later = tick_stats(std::vector<double>(least.begin() + static_cast<std::ptrdiff_t>(i) + 1, least.end()));
+        break;
+    }
+    return fc;
+}
+
 // ---- cost growth --------------------------------------------------------------------------------
 void cost_growth(const BenchOptions& o, BenchResults& r) {
     const std::vector<int> sizes = o.quick ? std::vector<int>{10, 1000, 100000}
@@ -170,6 +203,8 @@ void cost_growth(const BenchOptions& o, BenchResults& r) {
                     spread.anticipation_budget = kBenchAnticipationBudget;
                     row.hover_spread = measure(name + "/hover/spread", env, spread, hover_path, passes).stats;
                     row.spread_error = anticipation_spread_error(env, def, hover_path, kBenchAnticipationBudget);
+                    for (const double speed : kApproachSpeeds)
+                        row.first_contact.push_back(first_contact_after_approach(name, env, def, path, speed, passes));
                 }
                 r.cost.push_back(row);
             }

@@ -50,6 +50,22 @@ struct TickRow {
     double profiled_ns = 0.0;  // the profiled pass's time of this tick (stages plus their clock reads)
 };
 
+// The first tick in contact after a hand's approach: the finger comes straight down from
+// kApproachFrom above the stroke's first sample at `speed` (a sample a 1 ms tick), then slides the
+// stroke's first kApproachStrokeTicks ticks. A hand reaches a surface over many ticks, its gathers
+// made by the hover's anticipation on the way, so the first contact tick should cost what later
+// ones cost (the strokes above start 3 mm above the profile and press 1 mm in within one tick).
+inline constexpr double kApproachFrom = 0.01;     // m
+inline constexpr int kApproachStrokeTicks = 500;  // ticks of the stroke after the approach
+inline constexpr double kApproachSpeeds[] = {0.1, 0.5};  // m/s: a slow reach and a quick tap
+struct FirstContact {
+    double speed = 0.0;        // m/s
+    bool found = false;        // the approach reached contact
+    std::size_t tick = 0;      // the first tick in contact, counted from the approach's first
+    double ns = 0.0;           // its time: least over the passes (one with --quick)
+    TickStats later;           // the ticks after it, each its least over the passes
+};
+
 // One scene size: ContactLab's proxy, and in the same process the baselines: brute force (every
 // segment every tick, no index; run up to `kBruteForceMaxSegments`) and a point-finger
 // god-object on the same contour.
@@ -71,6 +87,8 @@ struct CostRow {
     // At the largest size: hovering with anticipation spread over ticks (kBenchAnticipationBudget
     // segments a tick), its times and its l_d error against the exact hover.
     std::optional<TickStats> hover_spread;
+    // At the largest size: the first tick in contact after an approach, one per kApproachSpeeds.
+    std::vector<FirstContact> first_contact;
     SpreadError spread_error;
     double contact_fraction = 0.0;  // ticks in contact / ticks
     int env_segments = 0;           // after compiling curves to arcs

@@ -199,8 +199,33 @@ TEST_CASE("bench report: with passes, the code's tail (least of passes) beside e
                   at) != std::string::npos);
     const nlohmann::json j = results_json(r);
     CHECK(j["tick_ns_least_of_passes"]["lines_dense"]["100000"]["p999"].get<double>() == doctest::Approx(2500.0));
+    CHECK_FALSE(j.contains("first_contact"));  // none measured in these rows
     CHECK(j["hover_ns_least_of_passes"]["curves"]["10"]["max"].get<double>() ==
           doctest::Approx(0.25 * 3.0 * (800.0 + 10 * 0.02)));
+}
+
+TEST_CASE("bench report: the first tick in contact after an approach, a row per speed, or says none was reached") {
+    BenchResults r = made_up_results();
+    CHECK(results_markdown(r).find("### The first tick in contact") == std::string::npos);
+    CostRow& row = r.cost.back();  // curves_dense at 100,000
+    REQUIRE(row.key == "curves_dense");
+    FirstContact slow{0.1, true, 91, 12e3, stats(4e3)};
+    FirstContact none{0.5, false, 0, 0.0, {}};
+    row.first_contact = {slow, none};
+    const std::string md = results_markdown(r);
+    const std::size_t at = md.find("### The first tick in contact, after an approach");
+    REQUIRE(at != std::string::npos);
+    CHECK(md.find("descends from 10 mm above", at) != std::string::npos);
+    CHECK(md.find("| curves_dense | 100000 | 0.1 m/s | 91 | 12 us | 4 us / 10 us / 12 us |", at) != std::string::npos);
+    CHECK(md.find("| curves_dense | 100000 | 0.5 m/s | no contact | | |", at) != std::string::npos);
+    const nlohmann::json j = results_json(r);
+    const nlohmann::json& fc = j["first_contact"]["curves_dense"]["100000"];
+    REQUIRE(fc.size() == 2);
+    CHECK(fc[0]["tick"].get<int>() == 91);
+    CHECK(fc[0]["ns"].get<double>() == 12e3);
+    CHECK(fc[0]["later_ns"]["p999"].get<double>() == 10e3);
+    CHECK_FALSE(fc[1]["found"].get<bool>());
+    CHECK_FALSE(fc[1].contains("tick"));
 }
 
 TEST_CASE("bench report: one chart per figure, cost charts with ContactLab and both baselines per kind") {
@@ -447,6 +472,26 @@ TEST_CASE("bench --quick --report: every PNG decodes at the plot size, render_ms
         CHECK(max <= 0.02 + 1e-12);
         CHECK(spread["ticks_behind_max"].get<int>() >= 0);
         CHECK(spread["ticks_behind_max"].get<int>() < spread["ticks"].get<int>());
+    }
+    // The first tick in contact after an approach from 1 cm above at 0.1 and 0.5 m/s (a sample a
+    // 1 ms tick: 100 and 20 ticks down to the stroke's first sample, which is 1 mm deep): the
+    // finger starts in free space and is in contact by that sample; every tick after it is timed.
+    CHECK(md.find("### The first tick in contact, after an approach") != std::string::npos);
+    for (const char* key : {"lines", "arcs", "curves", "lines_dense", "arcs_dense", "curves_dense"}) {
+        CAPTURE(key);
+        const nlohmann::json& fc = j["first_contact"][key]["100000"];
+        REQUIRE(fc.size() == 2);
+        for (const auto& [speed, approach_ticks] : {std::pair{0.1, 100}, std::pair{0.5, 20}}) {
+            const nlohmann::json& f = fc[speed == 0.1 ? 0 : 1];
+            CAPTURE(f.dump());
+            CHECK(f["speed_m_s"].get<double>() == speed);
+            REQUIRE(f["found"].get<bool>());
+            CHECK(f["tick"].get<int>() >= 1);
+            CHECK(f["tick"].get<int>() <= approach_ticks);
+            CHECK(f["ns"].get<double>() > 0.0);
+            CHECK(f["later_ns"]["ticks"].get<int>() == approach_ticks + 500 - f["tick"].get<int>() - 1);
+            CHECK(f["later_ns"]["median"].get<double>() > 0.0);
+        }
     }
     // The energy terms on the seeds' trials (energy_table.hpp): seed 002 at 5 and 10 cm/s, seed
     // 000's block. None faulted; the observer's sum stayed under its threshold (K T / 2 = 0.65 N s/m
