@@ -3,6 +3,7 @@
 
 #include "engine/experiments/runs/experiment_run.hpp"
 #include "engine/experiments/protocol/protocol.hpp"
+#include "engine/experiments/base/results_table.hpp"
 
 #include <cstdlib>
 #include <filesystem>
@@ -10,6 +11,20 @@
 #include <string>
 
 namespace contactlab::bench {
+namespace {
+
+// The results file's time_s column summed (s); an empty cell (not measured) counts nothing.
+double rows_time_s(const std::string& results) {
+    const experiments::ResultsTable t = experiments::read_results_csv(results);
+    const auto col = t.column("time_s");
+    if (!col) throw experiments::ExperimentError(results + ": no time_s column");
+    double sum = 0.0;
+    for (std::size_t r = 0; r < t.rows.size(); ++r)
+        if (!t.rows[r][*col].empty()) sum += t.number(r, *col);
+    return sum;
+}
+
+}  // namespace
 
 StudySpeed study_speed(const std::string& protocol_path, bool quick) {
     StudySpeed s;
@@ -41,6 +56,7 @@ StudySpeed study_speed(const std::string& protocol_path, bool quick) {
         o.jobs = 1;
         o.profile = true;
         s.profile = experiments::run_experiment(p, o).profile;
+        s.rows_time_s = rows_time_s(o.output);
         s.skipped.clear();
     } catch (const std::exception& e) {
         // A relative path is found from the checkout's root or in an installed tree's share/.

@@ -529,6 +529,11 @@ TEST_CASE("bench --quick --report: every PNG decodes at the plot size, render_ms
     CHECK(st["virtual_s"].get<double>() < 20 * 8.0);
     CHECK(st["x_real_time"].get<double>() == doctest::Approx(st["virtual_s"].get<double>() / st["wall_s"].get<double>()));
     CHECK(st["goal_x_real_time"].get<double>() == 500.0);
+    // The goal's figure: the rows' time_s, each trial from its start to the answer, so within the
+    // trial's virtual time and at least its slide (2.05 s at the median pace, faster ones 1.6 s).
+    CHECK(st["rows_time_s"].get<double>() > 20 * 1.6);
+    CHECK(st["rows_time_s"].get<double>() <= st["virtual_s"].get<double>());
+    CHECK(st["x_real_time_by_rows"].get<double>() == doctest::Approx(st["rows_time_s"].get<double>() / st["wall_s"].get<double>()));
     double staged = 0.0;
     for (const char* k : {"servo_tick", "simulated_rig", "tick_records", "servo_scene", "stimulus", "wearable_platform", "perception", "files"}) {
         CAPTURE(k);
@@ -548,6 +553,8 @@ TEST_CASE("bench --quick --report: every PNG decodes at the plot size, render_ms
     CHECK(sw["virtual_s"].get<double>() == doctest::Approx(6 * 3.41).epsilon(0.01));
     CHECK(sw["x_real_time"].get<double>() == doctest::Approx(sw["virtual_s"].get<double>() / sw["wall_s"].get<double>()));
     CHECK_FALSE(sw.contains("goal_x_real_time"));
+    CHECK(sw["rows_time_s"].get<double>() > 0.0);
+    CHECK(sw["rows_time_s"].get<double>() <= sw["virtual_s"].get<double>() * (1.0 + 1e-9));
     CHECK(sw["ms_per_virtual_s"]["wearable_platform"].get<double>() > 0.0);
     CHECK(sw["ms_per_virtual_s"]["servo_tick"].get<double>() == 0.0);  // no CLD servo: the platform's own loop
     CHECK(sw["ms_per_virtual_s"]["wearable_platform"].get<double>() <= sw["ms_per_virtual_s"]["all"].get<double>() * (1.0 + 1e-9));
