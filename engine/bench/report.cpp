@@ -121,7 +121,7 @@ std::string study_section(const std::string& title, const StudySpeed& st, const 
     std::string md = "\n## " + title + "\n\n";
     if (!st.skipped.empty()) return md + "Skipped: " + st.skipped + "\n";
     return md + st.protocol + how + fmt("**%.0fx real time** by the rows' time_s", st.x_real_time_by_rows()) +
-           fmt(" (%.1f s of trials to their answers", st.rows_time_s) +
+           fmt(" (%.1f s in the rows", st.rows_time_s) +
            fmt("; %.0fx by the trials' whole virtual time)", st.x_real_time()) + note + experiments::profile_table(st.profile);
 }
 

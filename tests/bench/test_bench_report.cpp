@@ -529,10 +529,11 @@ TEST_CASE("bench --quick --report: every PNG decodes at the plot size, render_ms
     CHECK(st["virtual_s"].get<double>() < 20 * 8.0);
     CHECK(st["x_real_time"].get<double>() == doctest::Approx(st["virtual_s"].get<double>() / st["wall_s"].get<double>()));
     CHECK(st["goal_x_real_time"].get<double>() == 500.0);
-    // The goal's figure: the rows' time_s, each trial from its start to the answer, so within the
-    // trial's virtual time and at least its slide (2.05 s at the median pace, faster ones 1.6 s).
+    // The goal's figure: the rows' time_s, each trial's slide from its start to its end (2.05 s at
+    // the median pace, faster people 1.6 s), so at most the trial's virtual time less the reach
+    // and the 0.3 s of settling before the slide.
     CHECK(st["rows_time_s"].get<double>() > 20 * 1.6);
-    CHECK(st["rows_time_s"].get<double>() <= st["virtual_s"].get<double>());
+    CHECK(st["rows_time_s"].get<double>() <= st["virtual_s"].get<double>() - 20 * 0.3);
     CHECK(st["x_real_time_by_rows"].get<double>() == doctest::Approx(st["rows_time_s"].get<double>() / st["wall_s"].get<double>()));
     double staged = 0.0;
     for (const char* k : {"servo_tick", "simulated_rig", "tick_records", "servo_scene", "stimulus", "wearable_platform", "perception", "files"}) {
