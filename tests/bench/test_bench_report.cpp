@@ -160,7 +160,7 @@ TEST_CASE("tick_stats: nearest-rank percentiles, and the ticks that miss a 10 kH
     CHECK(tick_stats({}).ticks == 0);
 }
 
-TEST_CASE("least_over_passes: each tick's least time across whole passes; a part pass is refused") {
+TEST_CASE("least_over_passes: each tick's least time across whole passes, a part pass refused") {
     // Three passes of four ticks; the machine stalls a different tick in each pass.
     const std::vector<double> ns = {10, 20, 900, 40,   //
                                     11, 700, 30, 41,   //
