@@ -33,8 +33,10 @@ constexpr double kStartAbove = 0.003;  // m: each pass starts this far above its
 // ---- measure ----------------------------------------------------------------------------------
 struct Measured {
     TickStats stats;
-    // With two passes or more: each tick's least time over the passes (least_over_passes), the
-    // code's own tail without the machine's one-pass stalls.
+    // Each tick of the stroke, its least time over the passes (least_over_passes; with one pass,
+    // that pass's times), and with two passes or more their statistics: the code's own tail
+    // without the machine's one-pass stalls.
+    std::vector<double> least_ns;
     std::optional<TickStats> least;
     double contact_fraction = 0.0;
     ProxyStages stages;  // mean ns per tick in each stage (def.profile; zero otherwise)
@@ -96,7 +98,8 @@ Measured measure(const std::string& name, const Environment& env, const ProxyDef
             }
         }
         result.stats = timer.stats();
-        if (passes > 1) result.least = tick_stats(least_over_passes(timer.samples(), path.size()));
+        result.least_ns = least_over_passes(timer.samples(), path.size());
+        if (passes > 1) result.least = tick_stats(result.least_ns);
         result.tail = tail_split(timer.samples(), tick_stages);
         if (keep_rows) {
             result.rows.resize(ticks);
@@ -136,9 +139,7 @@ FirstContact first_contact_after_approach(const std::string& name, const Environ
     char label[32];
     std::snprintf(label, sizeof label, "/approach_%gm_s", speed);
     const Measured m = measure(name + label, env, def, path, passes, 0.0, true);
-    std::vector<double> ns(m.rows.size());
-    for (std::size_t i = 0; i < ns.size(); ++i) ns[i] = m.rows[i].ns;
-    const std::vector<double> least = least_over_passes(ns, path.size());
+    const std::vector<double>& least = m.least_ns;
     for (std::size_t i = 0; i < path.size(); ++i) {
         if (!m.rows[i].contact) continue;
         fc.found = true;
