@@ -144,6 +144,13 @@ constexpr double kLocalAcceptRadius = 5e-9;
 // walk scanned every piece's box on ~16 slides a tick; now on ~8. (Two shortest segments kept
 // more pieces and were no faster.)
 constexpr double kMaxChainReach = 1e-4;
+// ... and kChainAhead more of it ahead, in the direction the scan's motion goes (Proxy::scan_pieces):
+// the walk goes on along the chain that way, so the next slides' boxes stay inside what was kept,
+// while kept all round it only added pieces behind and beside. Over 100,000 dense line segments
+// the full scans fell from 7.8 to 3.7 a tick and the median tick by 5-9 % (the same answers: the
+// kept box only decides which list is asked). 2 and 8 did about as well, 16 and 32 worse (the
+// chain scans then ask 23-36 kept pieces, not 10).
+constexpr double kChainAhead = 4.0;
 // Sub-steps of a finger-angle change (see Proxy::update): the pad end's chord per sub-step (m) is
 // a quarter of the scene's smallest feature, within these bounds, and the count is capped so a
 // wild jump of phi costs a bounded time (at the cap a feature thinner than
@@ -1143,8 +1150,8 @@ double Proxy::chain_reach() const {
 // all (or from_local, when the caller has judged so), else from every piece, keeping as local_
 // those within chain_reach() of `scan` (more pieces kept, the same ones asked: the box test only
 // rejects pieces that cannot be entered). Either way the same pieces in the same order.
-template <typename Ask>
-void Proxy::scan_pieces(const Aabb& scan, bool from_local, Ask&& ask) {
+template <typename Ask, typename Ahead>
+void Proxy::scan_pieces(const Aabb& scan, bool from_local, Ask&& ask, Ahead&& ahead_of_motion) {
     if (from_local || local_holds(scan)) {
         ++work_.chain_scans;
         for (const int i : local_)
@@ -1154,7 +1161,11 @@ void Proxy::scan_pieces(const Aabb& scan, bool from_local, Ask&& ask) {
     ++work_.full_scans;
     local_valid_ = false;  // handed_over must not read the list while it is being filled
     local_.clear();
-    const Aabb kept = scan.grown(chain_reach());
+    Aabb kept = scan.grown(chain_reach());
+    const double further = kChainAhead * chain_reach();  // m, ahead along `ahead`
+    const Vec2 ahead = ahead_of_motion();
+    (ahead.x > 0.0 ? kept.hi.x : kept.lo.x) += further * ahead.x;
+    (ahead.y > 0.0 ? kept.hi.y : kept.lo.y) += further * ahead.y;
     for_pieces([&](const Aabb& box) { return !box.overlaps(kept); },
                [&](int i) {
                    local_.push_back(i);
@@ -1416,7 +1427,8 @@ Proxy::Hit Proxy::first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b,
         scan.grow(p);
         scan = scan.grown(kBoxSlack + kNearMargin + kLocalAcceptRadius);
     }
-    scan_pieces(scan, scan_kind == Scan::among_local, consider);
+    // A full scan's list is kept further along the motion: the walk goes on that way.
+    scan_pieces(scan, scan_kind == Scan::among_local, consider, [&] { return scan_kind == Scan::full ? v / len : Vec2{0.0}; });
     return best;
 }
 
@@ -1463,7 +1475,7 @@ Proxy::Hit Proxy::first_entry_arc(const CPiece& on, double s0, double s1, int ex
             for (int k = 0; k < n; ++k) consider(i, pts[k]);
         }
     };
-    scan_pieces(motion, /*from_local=*/false, ask);
+    scan_pieces(motion, /*from_local=*/false, ask, [&] { return arc_tangent(on, s0, direction); });
     return best;
 }
 

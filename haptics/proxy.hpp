@@ -259,9 +259,11 @@ private:
     // How much wider (m) than its motion a scan keeps local_ (chain walk).
     double chain_reach() const;
     // The entry scans' one loop (first_entry_line, first_entry_arc): ask(i) for the pieces whose
-    // boxes overlap `scan` (m), from local_ when it holds them, else from all (keeping local_).
-    template <typename Ask>
-    void scan_pieces(const Aabb& scan, bool from_local, Ask&& ask);
+    // boxes overlap `scan` (m), from local_ when it holds them, else from all (keeping local_,
+    // further toward the unit direction ahead_of_motion() returns, asked only then, or all round
+    // for a zero one).
+    template <typename Ask, typename Ahead>
+    void scan_pieces(const Aabb& scan, bool from_local, Ask&& ask, Ahead&& ahead_of_motion);
     // Calls visit(i) in order for every piece whose box is not far(box), skipping whole runs and
     // groups whose boxes are; stops when visit returns true.
     template <typename Far, typename Visit>
