@@ -894,10 +894,10 @@ const PadFrame& Proxy::pad_frame(double phi) {
 // segments, a small scene all of them (building was a fifth of the tick). Same pieces, same order.
 void Proxy::build_pieces(double phi) {
     active_count_ = 0;
-    local_valid_ = false;
     const PadFrame& pad = pad_frame(phi);
     if (segment_ids_.empty()) {
         pieces_changed_ = true;
+        local_valid_ = false;
         // Nothing near (a free finger's motion): keep the last build aside for the next one to
         // copy from (anticipation's, a tick later) instead of forgetting it.
         if (!cache_aside_) {
@@ -910,8 +910,12 @@ void Proxy::build_pieces(double phi) {
         return;
     }
     const bool reuse = built_valid_ && phi == built_phi_;
-    if (reuse && !cache_aside_ && segment_ids_ == built_ids_) return;  // the same pieces: keep them
+    // The same pieces: keep them, and the last scan's list of those near the walk (local_), which
+    // still lists every piece whose box overlaps local_box_ (a tick's first scan then asks it
+    // instead of every piece: over a dense contour four ticks in five keep their pieces).
+    if (reuse && !cache_aside_ && segment_ids_ == built_ids_) return;
     pieces_changed_ = true;
+    local_valid_ = false;
     next_pieces_.clear();
     next_boxes_.clear();
     next_first_.clear();
@@ -1187,7 +1191,7 @@ bool Proxy::local_near(Vec2 at, double within) const {
 // ---- Proxy::walk --------------------------------------------------------------------------------
 Vec2 Proxy::walk(Vec2 p, Vec2 goal) {
     active_count_ = 0;
-    local_valid_ = false;  // pieces_ may have been rebuilt since the last scan
+    // (local_ stays valid while pieces_ does: whatever rebuilds pieces_ clears local_valid_.)
     work_.near_start = false;
     work_.chain_scans = work_.full_scans = 0;
     int excluded = -1;     // the piece just slid off the end of (not re-entered at its end)
@@ -1228,8 +1232,10 @@ Vec2 Proxy::walk(Vec2 p, Vec2 goal) {
             // (A far piece used to win: a pad end in a terrain's valley, the hand 12 cm away
             // under the terrain, went straight through the solid to a thin wall's inner vertex
             // piece 7.5 mm off; fuzz-contact, case seed 14920330087293500056.)
+            // (A hit at the start, s = 0, is entered within kOnTolerance whatever the move's length:
+            // over a dense contour nearly every entry, so the length is not taken for it.)
             const Vec2 v = goal - proxy_;
-            const double v_len = glm::length(v);  // m
+            const double v_len = ended >= 0 && !(hit.found && hit.s == 0.0) ? glm::length(v) : 0.0;  // m
             if (ended >= 0 && v_len > 0.0 && !(hit.found && hit.s * v_len <= kOnTolerance) &&
                 pressing(pieces_[ended], proxy_, goal) && !handed_over(ended, proxy_, v / v_len)) {
                 active_[0] = ended;
@@ -1257,20 +1263,21 @@ Vec2 Proxy::walk(Vec2 p, Vec2 goal) {
             continue;
         }
         const PieceFoot foot = piece_foot(piece, goal);
-        const double hi = piece.kind == CPiece::Kind::line ? piece.len : piece.span.width;
-        const double s0 = std::clamp(piece_param(piece, proxy_), 0.0, hi);
+        const bool line = piece.kind == CPiece::Kind::line;
+        // rad along a circle from its span's start (a line's slide needs none)
+        const double s0 = line ? 0.0 : std::clamp(piece_param(piece, proxy_), 0.0, piece.span.width);
         // A slide of at most kOnTolerance (m) is no motion: it enters nothing. The entry tests
         // accept hits within kOnTolerance of the start, a slack that then covers the whole slide
         // and more: at a piece's end with the foot a rounding error away (a circle's |ds| of
         // 6e-15 rad) the other piece through the junction read as entered at once, and the walk
         // went corner, release, slide, corner... on the spot until its step cap, every tick
         // (fuzz-contact, case seed 14920330087293500056).
-        const double slide = piece.kind == CPiece::Kind::line ? glm::length(foot.point - proxy_)
-                                                               : piece.radius * std::abs(foot.param - s0);
+        const double chord = glm::length(foot.point - proxy_);  // m, the step to the foot
+        const double slide = line ? chord : piece.radius * std::abs(foot.param - s0);
         Hit hit;
         if (slide <= kOnTolerance) {
             // no motion: nothing entered
-        } else if (piece.kind == CPiece::Kind::line) {
+        } else if (line) {
             hit = first_entry_line(proxy_, foot.point, current, -1);
         } else {
             hit = first_entry_arc(piece, s0, foot.param, current);
@@ -1294,7 +1301,7 @@ Vec2 Proxy::walk(Vec2 p, Vec2 goal) {
             active_count_ = 2;
             continue;
         }
-        const double step = glm::length(foot.point - proxy_);
+        const double step = chord;  // the scans above do not move proxy_
         note_path(foot.point);
         proxy_ = foot.point;
         if (!foot.clamped) return proxy_;  // resting on this piece: one contact
