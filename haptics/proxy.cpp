@@ -368,7 +368,7 @@ const ProxyOutput& Proxy::update(Vec2 finger, double phi, double dt) {
         const WarmDisc disc = gather_warm(warm, phi, turn);
         clock_.lap(stages_.gather);
         move_proxy(finger, phi, turn, max_push, start, disc.center);
-        work_.warm_start = path_extent_ + 2.0 * max_push + kWarmStartMargin <= disc.radius;
+        work_.warm_start = path_extent() + 2.0 * max_push + kWarmStartMargin <= disc.radius;
         if (!work_.warm_start) proxy_ = start;
         if (work_.warm_start && turn == 0.0) {
             prefetch_gather(warm, phi);
@@ -716,12 +716,12 @@ void Proxy::adopt_pending(double phi) {
 }
 
 // Turns the pad from phi_ to phi (re-projecting) and walks the proxy from `start` toward the
-// finger, on the pieces of segment_ids_; path_extent_ is how far from `center` the path went.
+// finger, on the pieces of segment_ids_; path_extent() is how far from `center` the path went.
 void Proxy::move_proxy(Vec2 finger, double phi, double turn, double max_push, Vec2 start, Vec2 center) {
     const double R = def_.finger.radius;
     const double dphi = std::abs(turn);
     path_center_ = center;
-    path_extent_ = 0.0;
+    path_extent2_ = 0.0;
     proxy_ = start;
     // Re-project continuously: rotate in sub-steps whose pad-end chord is at most a quarter of
     // the scene's smallest feature, pushing the proxy out after each. A push is only ever as deep
@@ -797,8 +797,17 @@ void Proxy::move_proxy(Vec2 finger, double phi, double turn, double max_push, Ve
     clock_.lap(stages_.walk);
 }
 
-void Proxy::note_path(Vec2 p) { path_extent_ = std::max(path_extent_, glm::length(p - path_center_)); }
-void Proxy::note_path_box(const Aabb& box) { path_extent_ = std::max(path_extent_, box.max_distance_to(path_center_)); }
+// The squares, a root at the end: max of the roots is the root of the max (sqrt is monotone and
+// correctly rounded), the same bits as glm::length of the farthest, without a root a walk step.
+void Proxy::note_path(Vec2 p) {
+    const Vec2 d = p - path_center_;
+    path_extent2_ = std::max(path_extent2_, glm::dot(d, d));
+}
+void Proxy::note_path_box(const Aabb& box) {
+    const Vec2 d = glm::max(glm::abs(path_center_ - box.lo), glm::abs(box.hi - path_center_));  // as Aabb::max_distance_to
+    path_extent2_ = std::max(path_extent2_, glm::dot(d, d));
+}
+double Proxy::path_extent() const { return std::sqrt(path_extent2_); }
 
 // The segments whose c-space pieces can come within `reach` (m) of the finger while the pad turns
 // from phi_ to phi: every piece the walk and the re-projection can meet. Pad-interior and vertex
@@ -1369,7 +1378,10 @@ Proxy::Hit Proxy::first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b,
     const Vec2 v = q - p;
     const double len = glm::length(v);
     if (len <= 0.0) return best;
-    const double t_slack = kOnTolerance / len;
+    // kOnTolerance along the motion (the slack of an entry at its start): asked only of a piece
+    // entered there, so taken then (a division each of the dense walk's ~28 scans a tick).
+    double t_slack_once = -1.0;
+    auto t_slack = [&] { return t_slack_once >= 0.0 ? t_slack_once : (t_slack_once = kOnTolerance / len); };
     Aabb motion;
     motion.grow(p);
     motion.grow(q);
@@ -1387,7 +1399,7 @@ Proxy::Hit Proxy::first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b,
             if (t >= best.s) return;
             const Vec2 x = p + t * v;
             if (!piece_param_inside(piece, piece_param(piece, x), kOnTolerance)) return;
-            if (t <= t_slack && handed_over(i, x, v / len, ended)) return;
+            if (t <= t_slack() && handed_over(i, x, v / len, ended)) return;
             best = {true, t, x, i};
         } else {
             if (piece.free_outside && std::abs(piece_signed_distance(piece, p)) <= kOnTolerance) {
@@ -1406,7 +1418,7 @@ Proxy::Hit Proxy::first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b,
             const int n = line_circle(p, v, piece.center, piece.radius, roots);
             for (int k = 0; k < n; ++k) {
                 const double t = roots[k];
-                if (t < -t_slack || t > 1.0 || t >= best.s) continue;
+                if (t > 1.0 || t >= best.s || t < -t_slack()) continue;
                 const Vec2 x = p + t * v;
                 // Within the circle's span only if inside its box (grown by kBoxSlack, ten times
                 // the span's slack): a crossing of the rest of the circle is refused before the
@@ -1420,7 +1432,7 @@ Proxy::Hit Proxy::first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b,
                 if (!piece_param_inside(piece, piece_param(piece, x), kOnTolerance / piece.radius)) {
                     continue;
                 }
-                if (t <= t_slack && handed_over(i, x, v / len, ended)) continue;
+                if (t <= t_slack() && handed_over(i, x, v / len, ended)) continue;
                 best = {true, std::max(t, 0.0), t < 0.0 ? p : x, i};
             }
         }

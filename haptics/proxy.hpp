@@ -233,7 +233,7 @@ private:
     // gather when one covers it, else a slightly wider one, kept (kept_).
     WarmDisc gather_warm(const WarmDisc& warm, double phi, double turn);
     void move_proxy(Vec2 finger, double phi, double turn, double max_push, Vec2 start, Vec2 center);
-    void note_path(Vec2 p);               // the motion visited p: widen path_extent_
+    void note_path(Vec2 p);               // the motion visited p: widen path_extent2_
     void note_path_box(const Aabb& box);  // ... every point of box
     // Pushes the proxy out of the pieces it lies behind by at most max_push (m). With `within`:
     // false, stopping there, when a point it asks the pieces about lies outside that disc.
@@ -461,9 +461,11 @@ private:
     static void finish_gather(std::vector<int>& out);
     double recent_turn_ = 0.0;  // rad, the size of the last tick's turn that was not 0
     std::int64_t last_turn_tick_ = 0;  // ticks_ at that turn
-    // Warm start (Proxy::update): the centre of the gathered disc, and how far from it the path went (m).
+    // Warm start (Proxy::update): the centre of the gathered disc, and the square of how far from it
+    // the path went (m^2; path_extent() is the distance, m).
     Vec2 path_center_{0.0};
-    double path_extent_ = 0.0;
+    double path_extent2_ = 0.0;
+    double path_extent() const;
     Vec2 last_finger_{0.0};         // m, the finger at the last tick
     Vec2 last_finger_motion_{0.0};  // m, how the finger moved in the last tick
     Vec2 last_motion_{0.0};         // m, how the proxy moved in the last tick
