@@ -169,7 +169,7 @@ constexpr int kMostPiecesPerSegment = 16;
 // True when the straight motion from `at` (on the piece) toward `goal` heads into the obstacle
 // across this piece. For a line that is "goal behind the line"; for a circle it is not the same as
 // "goal inside the circle": a chord toward a goal outside a convex circle still cuts through it.
-bool pressing(const CPiece& piece, Vec2 at, Vec2 goal) {
+bool pressing(const CPiece& piece, const Vec2& at, const Vec2& goal) {
     const Vec2 v = goal - at;
     return glm::dot(v, piece_normal_at(piece, at)) < -kTangentTolerance * glm::length(v);
 }
@@ -1116,7 +1116,7 @@ bool Proxy::inside_or_past_concave_end(const CPiece& piece, double param, double
 // onto, if any piece through `at` keeps t within its extent (a convex junction, or a tangential
 // one). If none does, t points into the wedge beyond both ends: at a concave junction that wedge
 // is solid, so piece i's own normal still decides (returns false).
-bool Proxy::handed_over(int i, Vec2 at, Vec2 t, int ended) const {
+bool Proxy::handed_over(int i, const Vec2& at, const Vec2& t, int ended) const {
     if (!leaves_range(pieces_[i], at, t)) return false;
     auto continues = [&](int j) {  // piece j passes through `at` and keeps t within its extent
         if (j == i || j == ended || !piece_boxes_[static_cast<std::size_t>(j)].contains(at)) return false;
@@ -1380,7 +1380,7 @@ bool Proxy::try_release_corner(Vec2 goal) {
 }
 
 // ---- first_entry_line / first_entry_arc --------------------------------------------------------
-Proxy::Hit Proxy::first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b, int ended, Scan scan_kind) {
+Proxy::Hit Proxy::first_entry_line(const Vec2& p, const Vec2& q, int exclude_a, int exclude_b, int ended, Scan scan_kind) {
     Hit best;
     const Vec2 v = q - p;
     const double len = glm::length(v);

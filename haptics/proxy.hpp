@@ -238,7 +238,7 @@ private:
     // Pushes the proxy out of the pieces it lies behind by at most max_push (m). With `within`:
     // false, stopping there, when a point it asks the pieces about lies outside that disc.
     bool depenetrate(double max_push, const WarmDisc* within = nullptr);
-    bool handed_over(int i, Vec2 at, Vec2 t, int ended = -1) const;
+    bool handed_over(int i, const Vec2& at, const Vec2& t, int ended = -1) const;
     bool inside_or_past_concave_end(const CPiece& piece, double param, double reach) const;
     Vec2 walk(Vec2 from, Vec2 goal);
     // Which pieces first_entry_line asks: those near the motion (from local_ when it holds them
@@ -247,7 +247,7 @@ private:
     // full one only when the hit lies within kLocalAcceptRadius of p: the caller judges.
     enum class Scan { full, among_local, near_start };
     // Where the straight move p -> q first enters a piece.
-    Hit first_entry_line(Vec2 p, Vec2 q, int exclude_a, int exclude_b, int ended = -1, Scan scan = Scan::full);
+    Hit first_entry_line(const Vec2& p, const Vec2& q, int exclude_a, int exclude_b, int ended = -1, Scan scan = Scan::full);
     // ... along the circle `on` from parameter s0 to s1 (rad); arc_slide_box_ is then that arc's box.
     Hit first_entry_arc(const CPiece& on, double s0, double s1, int exclude);
     Aabb arc_slide_box_;
