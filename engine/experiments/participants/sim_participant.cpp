@@ -234,8 +234,8 @@ std::vector<std::size_t> slide_ticks(const TrialTrace& tr, double t0, double t1,
 
 TrialOutcome bump_counting(const Protocol& p, const Condition& c, const PlannedTrial& t, std::uint64_t& rng) {
     const ParticipantModel& m = p.participant;
-    const Stimulus st = make_stimulus(p, c, t);
     const bool feel = p.hand_model == HandModel::feel;
+    const Stimulus st = make_stimulus(p, c, t, 0.0, 0.0, feel ? PathUse::envelope : PathUse::script);
     FeelTrial f;
     if (feel) f = feel_slide(m.hand, c, t, st);
     else f.trace = run_servo_trial(st.scene, st.path, c.contact_location), f.start = st.slide_start, f.end = st.slide_end;

@@ -88,7 +88,7 @@ std::vector<Vec2> surface_points(const Scene& s) {
 // the contour, seed 002's gimbal measures it): the pad reaches slopes only within L / 2R of its
 // axis, and seed 002's base shape is steeper than that.
 drivers::HandPath slide_path(const SurfaceProfile& pts, double x0, double x1, double r, double speed, double press,
-                             double& slide_start, double& slide_end) {
+                             double& slide_start, double& slide_end, PathUse use) {
     RestingCursor at, ahead, behind;  // where each of the three heights was last found
     auto height = [&](double x, RestingCursor& cursor) { return resting_height(pts, x, r, cursor) - press; };
     // The slide's positions and heights first: a slope asks for the heights 15 mm either side of
@@ -127,7 +127,8 @@ drivers::HandPath slide_path(const SurfaceProfile& pts, double x0, double x1, do
     for (int i = 0; i < 300; ++i) push(above + (Vec2{x0, y0} - above) * (i / 300.0), phi0);  // 0.3 s down
     for (int i = 0; i < 300; ++i) push({x0, y0}, phi0);                                      // 0.3 s settle
     slide_start = t;
-    for (int i = 0; i <= n; ++i) push({xs[static_cast<std::size_t>(i)], hs[static_cast<std::size_t>(i)]}, i == 0 ? phi0 : slope(i));
+    for (int i = 0; i <= n; ++i)
+        push({xs[static_cast<std::size_t>(i)], hs[static_cast<std::size_t>(i)]}, i == 0 || use == PathUse::envelope ? phi0 : slope(i));
     slide_end = t;
     const drivers::PathSample last = out.back();
     for (int i = 0; i < 200; ++i) push(last.x, last.phi);  // 0.2 s hold
@@ -166,7 +167,7 @@ Stimulus make_edge_stimulus(const Protocol& p, double radius) {
     st.scene = generate_edge(radius, p.edge_slope_deg * kPi / 180.0, 0.05);
     set_rendering(st.scene, p);
     const SurfaceProfile pts = profile_of(surface_points(st.scene));
-    st.path = slide_path(pts, -0.03, 0.03, p.finger_radius, p.hand_speed, p.hand_press, st.slide_start, st.slide_end);
+    st.path = slide_path(pts, -0.03, 0.03, p.finger_radius, p.hand_speed, p.hand_press, st.slide_start, st.slide_end, PathUse::script);
     return st;
 }
 
@@ -184,7 +185,8 @@ double arc_slope_range_deg(double chord, double height) {
     return 2.0 * std::asin(std::min(1.0, chord / (2.0 * ra))) * 180.0 / kPi;
 }
 
-Stimulus make_stimulus(const Protocol& p, const Condition& c, const PlannedTrial& t, double overshoot, double top_speed) {
+Stimulus make_stimulus(const Protocol& p, const Condition& c, const PlannedTrial& t, double overshoot, double top_speed,
+                       PathUse use) {
     const StageTimer timer(&TrialProfile::stimulus);
     Stimulus st;
     std::uint64_t rng = t.seed;
@@ -218,7 +220,7 @@ Stimulus make_stimulus(const Protocol& p, const Condition& c, const PlannedTrial
             set_rendering(st.scene, p);
             const SurfaceProfile pts = profile_of(surface_points(st.scene));
             st.path = slide_path(pts, 0.01, p.traced_length - 0.01, p.finger_radius, p.hand_speed, p.hand_press,
-                                 st.slide_start, st.slide_end);
+                                 st.slide_start, st.slide_end, use);
             break;
         }
         case Task::curvature: {
@@ -226,7 +228,7 @@ Stimulus make_stimulus(const Protocol& p, const Condition& c, const PlannedTrial
             set_rendering(st.scene, p);
             const SurfaceProfile pts = profile_of(surface_points(st.scene));
             const double x0 = curvature_slide_start(p, c);
-            st.path = slide_path(pts, x0, -x0, p.finger_radius, p.hand_speed, p.hand_press, st.slide_start, st.slide_end);
+            st.path = slide_path(pts, x0, -x0, p.finger_radius, p.hand_speed, p.hand_press, st.slide_start, st.slide_end, use);
             break;
         }
         case Task::surface_orientation: {

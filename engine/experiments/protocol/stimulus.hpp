@@ -36,10 +36,17 @@ struct Stimulus {
     double probe[4] = {0, 0, 0, 0};
 };
 
+// What the stimulus's hand path is for. `script`: a scripted hand follows it, positions and
+// finger angles. `envelope`: a hand that steers by feel reads only its positions (the rig's box),
+// its first sample and where its slide ends; the finger angles after the first sample are then
+// left at the first's (bump counting and curvature: the angle from the surface's slope over +-15 mm
+// was about half of making a seed 002 path, for samples nobody read).
+enum class PathUse { script, envelope };
+
 // Contour following: `overshoot` (m) past the edge before tipping, `top_speed` (m/s) along the
 // top and round the corner (0: the protocol's hand speed, which the far face always takes).
 Stimulus make_stimulus(const Protocol& p, const Condition& c, const PlannedTrial& t, double overshoot = 0.0,
-                       double top_speed = 0.0);
+                       double top_speed = 0.0, PathUse use = PathUse::script);
 
 // Curvature: where the slide across the arc starts (m): 2 cm before the arc, on the left for
 // motion A (which ends as far on the right), on the right for B. The live sweep starts there too.
