@@ -148,8 +148,8 @@ constexpr double kMaxChainReach = 1e-4;
 // the walk goes on along the chain that way, so the next slides' boxes stay inside what was kept,
 // while kept all round it only added pieces behind and beside. Over 100,000 dense line segments
 // the full scans fell from 7.8 to 3.7 a tick and the median tick by 5-9 % (the same answers: the
-// kept box only decides which list is asked). 2 and 8 did about as well, 16 and 32 worse (the
-// chain scans then ask 23-36 kept pieces, not 10).
+// kept box only decides which list is asked). 6 did as well, 2 was 4 % slower, 8 and more slower
+// (the chain scans then ask 15-36 kept pieces, not 10-15; docs/benchmarks.md, "the kept list ahead").
 constexpr double kChainAhead = 4.0;
 // A tick whose pieces are the last tick's keeps the last scan's list (local_) if it holds at most
 // this many pieces (a dense chain's slide keeps ~15).
