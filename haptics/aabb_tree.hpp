@@ -36,8 +36,13 @@ struct Aabb {
         const Vec2 d = glm::max(glm::max(lo - p, p - hi), Vec2(0.0));
         return glm::dot(d, d);
     }
-    // Distance (m) from p to the box's farthest point.
-    double max_distance_to(Vec2 p) const { return glm::length(glm::max(glm::abs(p - lo), glm::abs(hi - p))); }
+    // Squared distance (m^2) from p to the box's farthest point; its root is max_distance_to's.
+    double max_distance_squared_to(Vec2 p) const {
+        const Vec2 d = glm::max(glm::abs(p - lo), glm::abs(hi - p));
+        return glm::dot(d, d);
+    }
+    // Distance (m) from p to the box's farthest point (glm::length's root of the same square).
+    double max_distance_to(Vec2 p) const { return std::sqrt(max_distance_squared_to(p)); }
     // Distance (m) between the two boxes; 0 when they overlap.
     double gap_to(const Aabb& b) const { return std::sqrt(gap_squared_to(b)); }
     double gap_squared_to(const Aabb& b) const {

@@ -806,10 +806,7 @@ void Proxy::note_path(Vec2 p) {
     const Vec2 d = p - path_center_;
     path_extent2_ = std::max(path_extent2_, glm::dot(d, d));
 }
-void Proxy::note_path_box(const Aabb& box) {
-    const Vec2 d = glm::max(glm::abs(path_center_ - box.lo), glm::abs(box.hi - path_center_));  // as Aabb::max_distance_to
-    path_extent2_ = std::max(path_extent2_, glm::dot(d, d));
-}
+void Proxy::note_path_box(const Aabb& box) { path_extent2_ = std::max(path_extent2_, box.max_distance_squared_to(path_center_)); }
 double Proxy::path_extent() const { return std::sqrt(path_extent2_); }
 
 // The segments whose c-space pieces can come within `reach` (m) of the finger while the pad turns

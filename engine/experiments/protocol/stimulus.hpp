@@ -39,8 +39,8 @@ struct Stimulus {
 // What the stimulus's hand path is for. `script`: a scripted hand follows it, positions and
 // finger angles. `envelope`: a hand that steers by feel reads only its positions (the rig's box),
 // its first sample and where its slide ends; the finger angles after the first sample are then
-// left at the first's (bump counting and curvature: the angle from the surface's slope over +-15 mm
-// was about half of making a seed 002 path, for samples nobody read).
+// left at the first's (bump counting and curvature honour it; bump counting's feel hand asks for
+// it: the angle from the surface's slope over +-15 mm was about half of making a seed 002 path).
 enum class PathUse { script, envelope };
 
 // Contour following: `overshoot` (m) past the edge before tipping, `top_speed` (m/s) along the
