@@ -336,6 +336,8 @@ bool Script::run(EditorState& s, const Line& line, double now) {
     } else if (c == "record") {
         const bool ok = w[1] == "stop" ? cmd_record_stop(s) : cmd_record_start(s, w[1]);
         if (!ok) throw ScriptError(s.message);
+        // What the status line says (on stop: the ticks written and those the ring dropped).
+        std::fprintf(stderr, "script record: %s\n", s.message.c_str());
     } else if (c == "devices") {
         // The device menu as the Haptics panel shows it (USB scanned again), one line each.
         if (s.haptics)

@@ -133,12 +133,21 @@ TEST_CASE("idle editor: next to no frames while nothing moves, every tick still 
     const long ramp_frames = std::strtol(p.err.c_str() + at + 13, nullptr, 10);
     CHECK(ramp_frames > 3);
     CHECK(ramp_frames < 60);
-    // The recording ring was drained while idle: 3 s of 1 kHz ticks, no gap over 20 ms.
+    // The recording ring was drained while idle: no tick dropped, and the file holds every tick
+    // the servo ran in those 3 s at 1 kHz (a late tick from a stalled machine is still a tick:
+    // how late is the benchmarks' business, not a unit test's).
     const Csv take = parse_csv(read_text(rec));
     CHECK(take.rows.size() > 2800);
-    double worst = 0.0;
-    for (std::size_t i = 1; i < take.rows.size(); ++i) worst = std::max(worst, take.rows[i][0] - take.rows[i - 1][0]);
-    CHECK(worst < 0.02);
+    const auto said = p.err.find("script record: recording written to ");
+    REQUIRE(said != std::string::npos);
+    const std::string line = p.err.substr(said, p.err.find('\n', said) - said);
+    INFO("record stop said: " << line);
+    CHECK(contains(line, "(" + std::to_string(take.rows.size()) + " ticks, 0 dropped)"));
+    // The rows are the ticks in order: time never goes back, and no row repeats one.
+    for (std::size_t i = 1; i < take.rows.size(); ++i) {
+        INFO("row " << i);
+        REQUIRE(take.rows[i][0] > take.rows[i - 1][0]);
+    }
 }
 
 TEST_CASE("kept scene layer: drawn again after a scene edit and a view change, pixels of a fresh draw") {
