@@ -1,6 +1,8 @@
 // report.cpp — JSON and Markdown renderings of the bench results (report.hpp).
 #include "engine/bench/report.hpp"
 
+#include "engine/bench/goals.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -50,15 +52,6 @@ std::string fmt(const char* f, double v) {
     char buf[256];
     std::snprintf(buf, sizeof buf, f, v);
     return buf;
-}
-
-// ns as a readable figure: 950 ns, 1.52 us, 3.10 ms.
-std::string duration(double ns) {
-    // The thresholds sit where %.3g would round up to the next unit (999.95 us is "1.00 ms", not
-    // "1e+03 us").
-    if (ns < 999.5) return fmt("%.0f ns", ns);
-    if (ns < 999.5e3) return fmt("%.3g us", ns / 1e3);
-    return fmt("%.3g ms", ns / 1e6);
 }
 
 std::string metres(double m) {
@@ -323,6 +316,8 @@ nlohmann::json results_json(const BenchResults& r) {
     j["simulated_study"] = study_json(r.study);
     if (r.study.skipped.empty()) j["simulated_study"]["goal_x_real_time"] = kStudySpeedGoal;
     j["simulated_study_wearable"] = study_json(r.wearable_study);
+    // Each goal's verdict, as the page's "Goals in this run" (goals.hpp).
+    j["goals"] = goals_json(judge_goals(r));
     return j;
 }
 
@@ -355,6 +350,8 @@ std::string results_markdown(const BenchResults& r, const ReportPlots* plots) {
     if (plots && !plots->skipped.empty())
         md += "**Plots skipped**, Vulkan could not render them: " + plots->skipped +
               "\n\nThe tables hold the same figures.\n\n";
+    // The verdicts first: what a user asks of a run is whether the loop fits its period here.
+    md += goals_markdown(judge_goals(r));
     md += "## Cost growth: ns per proxy tick\n\n"
           "The finger slides 1 mm deep along the contour (`extent`: 5 mm segments, the contour grows; "
           "`dense`: a 0.4 m sinusoid cut finer). Baselines in the same process: brute force (every "

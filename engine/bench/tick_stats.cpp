@@ -2,10 +2,24 @@
 #include "engine/bench/tick_stats.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
 namespace contactlab::bench {
+
+std::string duration(double ns) {
+    // The thresholds sit where %.3g would round up to the next unit (999.95 us is "1.00 ms", not
+    // "1e+03 us").
+    char buf[64];
+    if (ns < 999.5)
+        std::snprintf(buf, sizeof buf, "%.0f ns", ns);
+    else if (ns < 999.5e3)
+        std::snprintf(buf, sizeof buf, "%.3g us", ns / 1e3);
+    else
+        std::snprintf(buf, sizeof buf, "%.3g ms", ns / 1e6);
+    return buf;
+}
 
 TickStats tick_stats(std::vector<double> v) {
     TickStats s;
