@@ -187,6 +187,14 @@ TEST_CASE("bench goals: 1 kHz beside the renderer, 2 per 5,000 more is met, more
     sb.floor_10k.missed = 5000;
     g = judge_goals(r)[kServo1k];
     CHECK(g.verdict == GoalVerdict::missed);
+    // Nor is it 1 kHz's reference: a met verdict is called noisy by its alone phase only.
+    sb.beside.overruns = 1;
+    CHECK(judge_goals(r)[kServo1k].verdict == GoalVerdict::met);
+    CHECK(judge_goals(r)[kServo1k].floor.empty());
+    sb.alone.overruns = 6, sb.beside.overruns = 6;  // 12 per 10,000 alone
+    g = judge_goals(r)[kServo1k];
+    CHECK(g.verdict == GoalVerdict::met);
+    CHECK(g.floor.rfind("Noisy reference: alone 12.0 overruns per 10,000 ticks", 0) == 0);
 }
 
 TEST_CASE("bench goals: seed 002 at 500x by the rows is met, below is missed, not run is not measured") {
