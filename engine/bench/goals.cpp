@@ -1,7 +1,7 @@
 // goals.cpp — judging one bench run against the goals (goals.hpp).
 //
 // Index
-//   helpers        per-10,000 rates, the largest size's rows
+//   helpers        per-10,000 rates, the largest size's rows (figures: tick_stats.hpp)
 //   tick goals     p99.9 and max at the largest size, contact and hovering; the dense ratio
 //   servo goals    10 kHz and 1 kHz beside the renderer against alone, the bare loop's floor
 //   study goal     seed 002 at 500x real time by the rows
@@ -17,18 +17,6 @@ namespace {
 
 // ---------------------------------------------------------------------------------------------
 // helpers
-
-std::string text(const char* f, double a) {
-    char buf[256];
-    std::snprintf(buf, sizeof buf, f, a);
-    return buf;
-}
-
-std::string text(const char* f, double a, double b) {
-    char buf[256];
-    std::snprintf(buf, sizeof buf, f, a, b);
-    return buf;
-}
 
 // Events per `per` ticks (0 with no ticks).
 double rate_per(std::uint64_t events, std::uint64_t ticks, double per) {
@@ -108,16 +96,17 @@ std::vector<GoalRow> tick_goals(const BenchResults& r) {
                  "", GoalVerdict::not_measured, why},
                 {"the same: max at most " + duration(kGoalTickMaxNs), "", GoalVerdict::not_measured, why},
                 {"dense against sparse: lines_dense median at the largest size over 10 segments, at most " +
-                     text("%.0fx", kGoalDenseRatio),
+                     printf_text("%.0fx", kGoalDenseRatio),
                  "", GoalVerdict::not_measured, why}};
     }
+    // A least-of-passes figure, when the run had passes.
+    auto opt = [](const std::optional<TickStats>& s, double TickStats::*field) -> std::optional<double> {
+        if (!s) return std::nullopt;
+        return (*s).*field;
+    };
     std::vector<TickFigure> p999, max;
     for (const CostRow& row : r.cost) {
         if (row.scene.segments != n) continue;
-        auto opt = [](const std::optional<TickStats>& s, double TickStats::*field) -> std::optional<double> {
-            if (!s) return std::nullopt;
-            return (*s).*field;
-        };
         p999.push_back({row.key + " in contact", row.proxy.p999_ns, opt(row.proxy_least, &TickStats::p999_ns)});
         p999.push_back({row.key + " hovering", row.hover.p999_ns, opt(row.hover_least, &TickStats::p999_ns)});
         max.push_back({row.key + " in contact", row.proxy.max_ns, opt(row.proxy_least, &TickStats::max_ns)});
@@ -132,19 +121,19 @@ std::vector<GoalRow> tick_goals(const BenchResults& r) {
     // The dense ratio: lines_dense's median at the largest size over its median at 10 segments.
     GoalRow ratio;
     ratio.goal = "dense against sparse: lines_dense median at " + std::to_string(n) + " over 10 segments, at most " +
-                 text("%.0fx", kGoalDenseRatio);
+                 printf_text("%.0fx", kGoalDenseRatio);
     const CostRow* big = find_row(r, "lines_dense", n);
     const CostRow* small = find_row(r, "lines_dense", 10);
     if (big && small && small->proxy.median_ns > 0.0 && n > 10) {
         const double x = big->proxy.median_ns / small->proxy.median_ns;
-        ratio.measured = duration(big->proxy.median_ns) + " against " + duration(small->proxy.median_ns) + text(", %.2fx", x);
+        ratio.measured = duration(big->proxy.median_ns) + " against " + duration(small->proxy.median_ns) + printf_text(", %.2fx", x);
         if (x <= kGoalDenseRatio) {
             ratio.verdict = GoalVerdict::met;
         } else if (big->proxy_least && small->proxy_least && small->proxy_least->median_ns > 0.0) {
             const double xl = big->proxy_least->median_ns / small->proxy_least->median_ns;
             ratio.verdict = xl <= kGoalDenseRatio ? GoalVerdict::machine : GoalVerdict::missed;
             ratio.floor = "medians of each tick's least over the passes: " + duration(big->proxy_least->median_ns) +
-                          " against " + duration(small->proxy_least->median_ns) + text(", %.2fx. Rule: ", xl) +
+                          " against " + duration(small->proxy_least->median_ns) + printf_text(", %.2fx. Rule: ", xl) +
                           (xl <= kGoalDenseRatio ? "the code's own ticks meet the ratio" : "the code's own ticks miss it too");
         } else {
             ratio.verdict = GoalVerdict::missed;
@@ -169,13 +158,13 @@ std::string noisy_reference(const ServoBesideRenderer& sb, const ServoPeriodFigu
     const double alone_rate = rate_per(alone.overruns, alone.ticks, 10000.0);
     const double floor_rate = rate_per(sb.floor_10k.missed, sb.floor_10k.ticks, 10000.0);
     const std::string tail =
-        text("%.0f; the phases run one after another, so a quieter run is the firmer verdict", kNoisyReference);
+        printf_text("%.0f; the phases run one after another, so a quieter run is the firmer verdict", kNoisyReference);
     if (!ten_khz)  // the bare loop runs at 10 kHz, in a phase of its own: 1 kHz's reference is its alone phase
         return alone_rate <= kNoisyReference
                    ? ""
-                   : text("Noisy reference: alone %.1f overruns per 10,000 ticks, over ", alone_rate) + tail;
+                   : printf_text("Noisy reference: alone %.1f overruns per 10,000 ticks, over ", alone_rate) + tail;
     if (alone_rate <= kNoisyReference && floor_rate <= kNoisyReference) return "";
-    return text("Noisy references: alone %.1f and the bare loop %.1f overruns per 10,000 ticks, over ", alone_rate,
+    return printf_text("Noisy references: alone %.1f and the bare loop %.1f overruns per 10,000 ticks, over ", alone_rate,
                 floor_rate) +
            tail;
 }
@@ -185,8 +174,8 @@ GoalRow servo_goal(const ServoBesideRenderer& sb, bool ten_khz) {
     const double per = ten_khz ? 10000.0 : 5000.0;
     const double allowed = ten_khz ? kGoalExtraOverruns10k : kGoalExtraOverruns1k;
     g.goal = std::string("servo at ") + (ten_khz ? "10 kHz" : "1 kHz") + " beside the renderer: at most " +
-             text("%.0f overrun(s) per %.0f ticks more than alone, p99 within ", allowed, per) +
-             text("%.1fx of alone", kGoalP99Ratio);
+             printf_text("%.0f overrun(s) per %.0f ticks more than alone, p99 within ", allowed, per) +
+             printf_text("%.1fx of alone", kGoalP99Ratio);
     if (!sb.skipped.empty()) {
         g.floor = "not measured: " + sb.skipped;
         return g;
@@ -199,8 +188,8 @@ GoalRow servo_goal(const ServoBesideRenderer& sb, bool ten_khz) {
     const double p99_ratio = beside.p99 / alone.p99;
     g.measured = std::to_string(beside.overruns) + " overruns in " + std::to_string(beside.ticks) + " beside, " +
                  std::to_string(alone.overruns) + " in " + std::to_string(alone.ticks) + " alone" +
-                 text(" (%+.1f per %.0f); ", extra, per) + text("p99 %.3fx", p99_ratio);
-    const double floor_rate = rate_per(sb.floor_10k.missed, sb.floor_10k.ticks, per);
+                 printf_text(" (%+.1f per %.0f); ", extra, per) + printf_text("p99 %.3fx", p99_ratio);
+    const double floor_rate = rate_per(sb.floor_10k.missed, sb.floor_10k.ticks, 10000.0);
     const std::string bare = "the bare loop at 10 kHz with no work on the servo's CPU: " +
                              std::to_string(sb.floor_10k.missed) + " of " + std::to_string(sb.floor_10k.ticks) +
                              " periods a whole period late";
@@ -208,8 +197,9 @@ GoalRow servo_goal(const ServoBesideRenderer& sb, bool ten_khz) {
         g.verdict = GoalVerdict::met;
         g.floor = noisy_reference(sb, alone, ten_khz);
     } else if (ten_khz && p99_ratio <= kGoalP99Ratio && sb.floor_10k.ticks > 0 && beside_rate <= floor_rate) {
+        // (at 10 kHz `per` is 10,000, so beside_rate and floor_rate are in the same unit)
         g.verdict = GoalVerdict::machine;
-        g.floor = bare + text(" (%.1f per 10,000). Rule: beside the renderer the servo overran no more often (%.1f per "
+        g.floor = bare + printf_text(" (%.1f per 10,000). Rule: beside the renderer the servo overran no more often (%.1f per "
                               "10,000) than a loop doing nothing on the same CPU in the same run",
                               floor_rate, beside_rate);
         const std::string noisy = noisy_reference(sb, alone, ten_khz);
@@ -217,8 +207,8 @@ GoalRow servo_goal(const ServoBesideRenderer& sb, bool ten_khz) {
     } else {
         g.verdict = GoalVerdict::missed;
         if (sb.floor_10k.ticks > 0)
-            g.floor = bare + text(" (%.1f per 10,000)", rate_per(sb.floor_10k.missed, sb.floor_10k.ticks, 10000.0)) +
-                      (ten_khz ? text("; the servo beside the renderer overran %.1f per 10,000", beside_rate)
+            g.floor = bare + printf_text(" (%.1f per 10,000)", floor_rate) +
+                      (ten_khz ? printf_text("; the servo beside the renderer overran %.1f per 10,000", beside_rate)
                                : std::string("; no bare loop at 1 kHz in this run (tools/servo-beside-editor's rounds "
                                              "give the hypervisor's steal time on the servo's CPU)"));
     }
@@ -230,14 +220,14 @@ GoalRow servo_goal(const ServoBesideRenderer& sb, bool ten_khz) {
 
 GoalRow study_goal(const StudySpeed& st) {
     GoalRow g;
-    g.goal = "one simulated participant of seed 002 on one core: at least " + text("%.0fx", kStudySpeedGoal) +
+    g.goal = "one simulated participant of seed 002 on one core: at least " + printf_text("%.0fx", kStudySpeedGoal) +
              " real time by the rows' time_s";
     if (!st.skipped.empty()) {
         g.floor = "not measured: " + st.skipped;
         return g;
     }
     const double x = st.x_real_time_by_rows();
-    g.measured = text("%.0fx by the rows (%.0fx by the whole virtual time)", x, st.x_real_time());
+    g.measured = printf_text("%.0fx by the rows (%.0fx by the whole virtual time)", x, st.x_real_time());
     g.verdict = x >= kStudySpeedGoal ? GoalVerdict::met : GoalVerdict::missed;
     return g;
 }
@@ -282,7 +272,7 @@ std::string goals_markdown(const std::vector<GoalRow>& goals) {
           "| goal | measured | verdict | the machine's floor in this run, and the rule |\n| --- | --- | --- | --- |\n";
     for (const GoalRow& g : goals)
         md += "| " + g.goal + " | " + (g.measured.empty() ? "-" : g.measured) + " | " + verdict_name(g.verdict) + " | " +
-              (g.floor.empty() ? "" : g.floor) + " |\n";
+              g.floor + " |\n";
     return md + "\n";
 }
 

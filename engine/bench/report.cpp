@@ -48,17 +48,11 @@ const char* cause_name(InstabilityCause c) {
     return "none";
 }
 
-std::string fmt(const char* f, double v) {
-    char buf[256];
-    std::snprintf(buf, sizeof buf, f, v);
-    return buf;
-}
-
 std::string metres(double m) {
     if (m == 0.0) return "0";
-    if (m < 1e-6) return fmt("%.2g nm", m * 1e9);
-    if (m < 1e-3) return fmt("%.3g um", m * 1e6);
-    return fmt("%.3g mm", m * 1e3);
+    if (m < 1e-6) return printf_text("%.2g nm", m * 1e9);
+    if (m < 1e-3) return printf_text("%.3g um", m * 1e6);
+    return printf_text("%.3g mm", m * 1e3);
 }
 
 // The figure under a table: a Markdown image link, or why it is missing.
@@ -83,8 +77,8 @@ std::string applied_note(const std::vector<ZWidthRow>& rows) {
         seen.push_back(z.rate_hz);
         const double ratio = z.damping_applied / z.damping;
         if (std::abs(ratio - 1.0) > 1e-6)
-            off += (off.empty() ? "" : ", ") + fmt("%.3g B", ratio) + fmt(" at %.0f Hz", z.rate_hz) +
-                   fmt(" (the damper divides the depth's one-tick step by %.3g ms, not by T)", 1e3 / (ratio * z.rate_hz));
+            off += (off.empty() ? "" : ", ") + printf_text("%.3g B", ratio) + printf_text(" at %.0f Hz", z.rate_hz) +
+                   printf_text(" (the damper divides the depth's one-tick step by %.3g ms, not by T)", 1e3 / (ratio * z.rate_hz));
     }
     return off.empty() ? "B_a = B at every rate" : "B_a = B except " + off;
 }
@@ -113,9 +107,9 @@ std::string study_section(const std::string& title, const StudySpeed& st, const 
                           const std::string& note) {
     std::string md = "\n## " + title + "\n\n";
     if (!st.skipped.empty()) return md + "Skipped: " + st.skipped + "\n";
-    return md + st.protocol + how + fmt("**%.0fx real time** by the rows' time_s", st.x_real_time_by_rows()) +
-           fmt(" (%.1f s in the rows", st.rows_time_s) +
-           fmt("; %.0fx by the trials' whole virtual time)", st.x_real_time()) + note + experiments::profile_table(st.profile);
+    return md + st.protocol + how + printf_text("**%.0fx real time** by the rows' time_s", st.x_real_time_by_rows()) +
+           printf_text(" (%.1f s in the rows", st.rows_time_s) +
+           printf_text("; %.0fx by the trials' whole virtual time)", st.x_real_time()) + note + experiments::profile_table(st.profile);
 }
 
 // The tail twice: every tick's p99.9 and max (the table above, what a user meets on this machine)
@@ -155,7 +149,7 @@ std::string first_contact_table(const BenchResults& r) {
     std::string md = "\n### The first tick in contact, after an approach\n\n"
                      "The strokes above start 3 mm above the profile and press 1 mm in within one tick. A hand comes "
                      "down over many ticks: here the finger descends from " +
-                     fmt("%.0f", kApproachFrom * 1e3) +
+                     printf_text("%.0f", kApproachFrom * 1e3) +
                      " mm above the stroke's first sample at each speed (a sample a 1 ms tick), then slides " +
                      std::to_string(kApproachStrokeTicks) +
                      " ticks of the stroke. Each tick's least time over the passes; `after` is the ticks that follow the "
@@ -164,7 +158,7 @@ std::string first_contact_table(const BenchResults& r) {
                      "| --- | ---: | ---: | ---: | ---: | ---: |\n";
     for (const CostRow& row : r.cost)
         for (const FirstContact& f : row.first_contact) {
-            md += "| " + row.key + " | " + std::to_string(row.scene.segments) + " | " + fmt("%.2g m/s", f.speed) + " | ";
+            md += "| " + row.key + " | " + std::to_string(row.scene.segments) + " | " + printf_text("%.2g m/s", f.speed) + " | ";
             md += f.found ? std::to_string(f.tick) + " | " + duration(f.ns) + " | " + duration(f.later.median_ns) + " / " +
                                 duration(f.later.p999_ns) + " / " + duration(f.later.max_ns) + " |\n"
                           : std::string("no contact | | |\n");
@@ -363,10 +357,10 @@ std::string results_markdown(const BenchResults& r, const ReportPlots* plots) {
     for (const CostRow& row : r.cost) {
         md += "| " + row.key + " | " + std::to_string(row.scene.segments) + " | " + std::to_string(row.env_segments) +
               " | " + duration(row.proxy.median_ns) + " | " + duration(row.proxy.p99_ns) + " | " +
-              fmt("%.0f %%", 100.0 * row.contact_fraction) + " | " +
-              (row.brute_force ? duration(row.brute_force->median_ns) + fmt(" (%.2f)", row.proxy.median_ns / row.brute_force->median_ns)
+              printf_text("%.0f %%", 100.0 * row.contact_fraction) + " | " +
+              (row.brute_force ? duration(row.brute_force->median_ns) + printf_text(" (%.2f)", row.proxy.median_ns / row.brute_force->median_ns)
                                : std::string("not run")) +
-              " | " + duration(row.point_finger.median_ns) + fmt(" (%.2f)", row.proxy.median_ns / row.point_finger.median_ns) +
+              " | " + duration(row.point_finger.median_ns) + printf_text(" (%.2f)", row.proxy.median_ns / row.point_finger.median_ns) +
               " | " + duration(row.hover.median_ns) + " / " + duration(row.hover.p99_ns) + " |\n";
     }
     md += figure(plots, "cost_extent.png") + figure(plots, "cost_dense.png");
@@ -405,7 +399,7 @@ std::string results_markdown(const BenchResults& r, const ReportPlots* plots) {
               std::to_string(row.hover.ticks) + " | " + duration(row.hover_spread->median_ns) + " / " +
               duration(row.hover_spread->p999_ns) + " / " + duration(row.hover_spread->max_ns) + " | " +
               std::to_string(row.hover_spread->over_100us) + " of " + std::to_string(row.hover_spread->ticks) + " | " +
-              fmt("%.3g", row.spread_error.l_d_error_p99 * 1e3) + " / " + fmt("%.3g mm", row.spread_error.l_d_error_max * 1e3) +
+              printf_text("%.3g", row.spread_error.l_d_error_p99 * 1e3) + " / " + printf_text("%.3g mm", row.spread_error.l_d_error_max * 1e3) +
               " | " + std::to_string(row.spread_error.behind_max) + " ticks |\n";
     }
     md += "\n## What each feature costs (lines, 1000 segments)\n\n"
@@ -433,11 +427,11 @@ std::string results_markdown(const BenchResults& r, const ReportPlots* plots) {
           "| rate | 2b/T normal | 2b/T declared | no fault | settles | ideal arm, settles | 1.5x | 4x | 20x | 1000x |\n"
           "| ---: | ---: | ---: | ---: | ---: | ---: | --- | --- | --- | --- |\n";
     for (const StabilityRow& s : r.stability) {
-        md += fmt("| %.0f Hz", s.rate_hz) + fmt(" | %.0f", s.passivity_bound) + fmt(" | %.0f", s.bound_declared) +
-              fmt(" | %.0f", s.k_no_fault) + fmt(" | %.0f", s.k_settles) + fmt(" | %.0f", s.k_ideal_settles);
+        md += printf_text("| %.0f Hz", s.rate_hz) + printf_text(" | %.0f", s.passivity_bound) + printf_text(" | %.0f", s.bound_declared) +
+              printf_text(" | %.0f", s.k_no_fault) + printf_text(" | %.0f", s.k_settles) + printf_text(" | %.0f", s.k_ideal_settles);
         for (const AboveBoundProbe& a : s.above)
             md += a.outcome == AboveBoundOutcome::detected
-                      ? fmt(" | %.3f s ", a.detect_time) + (a.cause == InstabilityCause::limit_cycle ? "LC" : "E")
+                      ? printf_text(" | %.3f s ", a.detect_time) + (a.cause == InstabilityCause::limit_cycle ? "LC" : "E")
                       : std::string(" | ") + to_string(a.outcome);
         md += " |\n";
     }
@@ -458,15 +452,15 @@ std::string results_markdown(const BenchResults& r, const ReportPlots* plots) {
               "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
         for (const ZWidthRow& z : r.zwidth) {
             auto k = [&](double v) {
-                if (v <= 0.0) return fmt(" | < %.0f", z.search_lo);
-                return (v >= z.search_hi ? std::string(" | >= ") : std::string(" | ")) + fmt("%.0f", v);
+                if (v <= 0.0) return printf_text(" | < %.0f", z.search_lo);
+                return (v >= z.search_hi ? std::string(" | >= ") : std::string(" | ")) + printf_text("%.0f", v);
             };
             // <= 0: no K is passive with that much damping applied.
-            auto bound = [](double v) { return v > 0.0 ? fmt(" | %.0f", v) : std::string(" | none"); };
-            md += fmt("| %.0f Hz", z.rate_hz) + fmt(" | %.2f", z.damping) + fmt(" | %.3f", z.damping_applied) +
+            auto bound = [](double v) { return v > 0.0 ? printf_text(" | %.0f", v) : std::string(" | none"); };
+            md += printf_text("| %.0f Hz", z.rate_hz) + printf_text(" | %.2f", z.damping) + printf_text(" | %.3f", z.damping_applied) +
                   k(z.k_press) + k(z.k_slide) + k(z.k_press_no_fault) + k(z.k_slide_no_fault) +
                   bound(z.bound_normal) + bound(z.bound_declared) +
-                  fmt(" | %.0f |\n", 2.0 * (z.b_normal + std::abs(z.damping_applied)) * z.rate_hz);
+                  printf_text(" | %.0f |\n", 2.0 * (z.b_normal + std::abs(z.damping_applied)) * z.rate_hz);
         }
         md += figure(plots, "zwidth.png");
     }
@@ -483,17 +477,17 @@ std::string results_markdown(const BenchResults& r, const ReportPlots* plots) {
               "threshold | faulted | would fault with turn |\n"
               "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
         for (const EnergyRow& e : r.energy)
-            md += "| " + e.task + fmt(" | %.0f mm/s", e.speed * 1e3) + fmt(" | %.0f", static_cast<double>(e.trials)) +
-                  fmt(" | %.3f", e.mean.hold * 1e3) + fmt(" | %.3f", e.mean.turn * 1e3) +
-                  fmt(" | %.3f", e.mean.proxy * 1e3) + fmt(" | %.3f", e.mean.friction * 1e3) +
-                  fmt(" | %.3f", e.mean.damping * 1e3) + fmt(" | %.3f", e.mean.generated() * 1e3) +
-                  fmt(" | %.3f", e.peak_observer * 1e3) + fmt(" | %.3f", e.peak_with_turn * 1e3) +
-                  fmt(" | %.3f", e.threshold * 1e3) + fmt(" | %.0f", static_cast<double>(e.faulted)) + fmt(" | %.0f |\n", static_cast<double>(e.would_fault));
+            md += "| " + e.task + printf_text(" | %.0f mm/s", e.speed * 1e3) + printf_text(" | %.0f", static_cast<double>(e.trials)) +
+                  printf_text(" | %.3f", e.mean.hold * 1e3) + printf_text(" | %.3f", e.mean.turn * 1e3) +
+                  printf_text(" | %.3f", e.mean.proxy * 1e3) + printf_text(" | %.3f", e.mean.friction * 1e3) +
+                  printf_text(" | %.3f", e.mean.damping * 1e3) + printf_text(" | %.3f", e.mean.generated() * 1e3) +
+                  printf_text(" | %.3f", e.peak_observer * 1e3) + printf_text(" | %.3f", e.peak_with_turn * 1e3) +
+                  printf_text(" | %.3f", e.threshold * 1e3) + printf_text(" | %.0f", static_cast<double>(e.faulted)) + printf_text(" | %.0f |\n", static_cast<double>(e.would_fault));
     }
-    md += fmt("\n## Roller tracking (seed 000 block task)\n\n"
+    md += printf_text("\n## Roller tracking (seed 000 block task)\n\n"
               "Tracking: |l_d - l| while l_d moves continuously, i.e. outside the jumps of l_d (its 10 ms "
               "mean rate changing by more than %.0f mm/s, or contact made or lost) and the ", kJumpRateChange * 1e3) +
-          fmt("%.0f ms after each; jumps: inside those windows; all: every tick in contact. Feed-forward off is "
+          printf_text("%.0f ms after each; jumps: inside those windows; all: every tick in contact. Feed-forward off is "
               "seed 000's eq. 2 alone (the \"before\"); on is the default (kff = Kd + back-EMF). True: over the "
               "tracking ticks, the contact element (what the finger feels) against l_d from the finger's true, "
               "unquantised pose; staircase: |l_d from the encoders - true l_d| there.\n\n",
@@ -502,8 +496,8 @@ std::string results_markdown(const BenchResults& r, const ReportPlots* plots) {
           "| true max | true RMS | staircase max |\n"
           "| ---: | :---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
     for (const RollerTrackingRow& t : r.roller)
-        md += fmt("| %.2g", t.gain_scale) + (t.feed_forward ? " | on" : " | off") +
-              fmt(" | %.0f mm/s", t.finger_speed * 1e3) + fmt(" | %.0f Hz", t.rate_hz) + " | " +
+        md += printf_text("| %.2g", t.gain_scale) + (t.feed_forward ? " | on" : " | off") +
+              printf_text(" | %.0f mm/s", t.finger_speed * 1e3) + printf_text(" | %.0f Hz", t.rate_hz) + " | " +
               metres(t.max_tracking_error) + " | " + metres(t.rms_tracking_error) + " | " + std::to_string(t.jumps) +
               " | " + metres(t.max_jump_error) + " | " + metres(t.max_error) + " | " + metres(t.rms_error) + " | " +
               metres(t.max_true_tracking_error) + " | " + metres(t.rms_true_tracking_error) + " | " +
@@ -515,12 +509,12 @@ std::string results_markdown(const BenchResults& r, const ReportPlots* plots) {
               "| jump | settle | force-limited | band | overshoot | furthest from centre / half travel |\n"
               "| ---: | ---: | ---: | ---: | ---: | ---: |\n";
         for (const RollerJumpRow& t : r.roller_jump)
-            md += "| " + metres(t.jump) + fmt(" | %.1f ms", t.jump_settle_s * 1e3) + fmt(" | %.1f ms", t.force_limited_s * 1e3) +
+            md += "| " + metres(t.jump) + printf_text(" | %.1f ms", t.jump_settle_s * 1e3) + printf_text(" | %.1f ms", t.force_limited_s * 1e3) +
                   " | " + metres(t.band) + " | " + metres(t.overshoot) + " | " + metres(t.max_excursion) + " / " +
                   metres(t.half_travel) + " |\n";
     }
-    md += fmt("\nRoller 1 cm sine bandwidth (-3 dB, 1 kHz): %.2f Hz (seed 000: about 8 Hz).\n", r.roller_bandwidth_hz);
-    md += fmt("\n## Render frame time (offscreen, %.0f", r.render.width) + fmt("x%.0f px)\n\n", r.render.height);
+    md += printf_text("\nRoller 1 cm sine bandwidth (-3 dB, 1 kHz): %.2f Hz (seed 000: about 8 Hz).\n", r.roller_bandwidth_hz);
+    md += printf_text("\n## Render frame time (offscreen, %dx%d px)\n\n", r.render.width, r.render.height);
     if (!r.render.skipped.empty()) {
         md += "Skipped: " + r.render.skipped + "\n";
     } else {
@@ -538,8 +532,8 @@ std::string results_markdown(const BenchResults& r, const ReportPlots* plots) {
     if (!sb.skipped.empty()) {
         md += "Skipped: " + sb.skipped + "\n";
     } else {
-        md += fmt("Each phase %.0f s; servo ", sb.seconds) + sb.scheduling + "; renderer " + sb.device +
-              fmt(", 1280x720 offscreen frames as fast as it goes (%.1f fps) on the other CPUs.\n\n", sb.fps) +
+        md += printf_text("Each phase %.0f s; servo ", sb.seconds) + sb.scheduling + "; renderer " + sb.device +
+              printf_text(", 1280x720 offscreen frames as fast as it goes (%.1f fps) on the other CPUs.\n\n", sb.fps) +
               "| servo | period p50 | p99 | max | overruns / ticks |\n| --- | ---: | ---: | ---: | ---: |\n";
         auto row = [&](const char* name, const ServoPeriodFigures& f) {
             md += std::string("| ") + name + " | " + duration(f.p50 * 1e9) + " | " + duration(f.p99 * 1e9) + " | " +
@@ -554,14 +548,14 @@ std::string results_markdown(const BenchResults& r, const ReportPlots* plots) {
               duration(sb.floor_10k.late_p99 * 1e9) + " at p99, " + duration(sb.floor_10k.late_max * 1e9) + " at most; " +
               std::to_string(sb.floor_10k.missed) + " of " + std::to_string(sb.floor_10k.ticks) +
               " periods a whole period late (overruns no servo on this machine can avoid).\n";
-        md += fmt("\np99 beside / alone: %.3f at 1 kHz, ", sb.alone.p99 > 0.0 ? sb.beside.p99 / sb.alone.p99 : 0.0) +
-              fmt("%.3f at 10 kHz (goal: at most 1.1; at 10 kHz also at most 1 overrun per 10,000 ticks).\n",
+        md += printf_text("\np99 beside / alone: %.3f at 1 kHz, ", sb.alone.p99 > 0.0 ? sb.beside.p99 / sb.alone.p99 : 0.0) +
+              printf_text("%.3f at 10 kHz (goal: at most 1.1; at 10 kHz also at most 1 overrun per 10,000 ticks).\n",
                   sb.alone_10k.p99 > 0.0 ? sb.beside_10k.p99 / sb.alone_10k.p99 : 0.0);
     }
     md += study_section("Simulated study speed (seed 002, one participant, one core)", r.study,
                         std::string(r.quick ? ", 10 trials per condition (`--quick`)" : ", as shipped") +
                             ", through `experiment run`'s code with `--profile` (no traces): ",
-                        fmt(" (goal: %.0fx).\n\n", kStudySpeedGoal));
+                        printf_text(" (goal: %.0fx).\n\n", kStudySpeedGoal));
     md += study_section("Simulated study speed on the wearable platform (seed 003, one participant, one core)",
                         r.wearable_study,
                         std::string(r.quick ? ", each stimulus once per condition (`--quick`)" : ", as shipped") +

@@ -2,23 +2,28 @@
 #include "engine/bench/tick_stats.hpp"
 
 #include <algorithm>
+#include <cstdarg>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
 
 namespace contactlab::bench {
 
+std::string printf_text(const char* format, ...) {
+    char buf[256];
+    va_list args;
+    va_start(args, format);
+    std::vsnprintf(buf, sizeof buf, format, args);
+    va_end(args);
+    return buf;
+}
+
 std::string duration(double ns) {
     // The thresholds sit where %.3g would round up to the next unit (999.95 us is "1.00 ms", not
     // "1e+03 us").
-    char buf[64];
-    if (ns < 999.5)
-        std::snprintf(buf, sizeof buf, "%.0f ns", ns);
-    else if (ns < 999.5e3)
-        std::snprintf(buf, sizeof buf, "%.3g us", ns / 1e3);
-    else
-        std::snprintf(buf, sizeof buf, "%.3g ms", ns / 1e6);
-    return buf;
+    if (ns < 999.5) return printf_text("%.0f ns", ns);
+    if (ns < 999.5e3) return printf_text("%.3g us", ns / 1e3);
+    return printf_text("%.3g ms", ns / 1e6);
 }
 
 TickStats tick_stats(std::vector<double> v) {

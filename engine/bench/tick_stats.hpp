@@ -17,6 +17,9 @@ inline constexpr double kOneKilohertzPeriodNs = 1e6;    // ns: a tick over this 
 // ns as a readable figure: 950 ns, 1.52 us, 3.10 ms (the report's tables and the goals).
 std::string duration(double ns);
 
+// printf into a string, for the report's and the goals' figures (at most 255 characters).
+std::string printf_text(const char* format, ...) __attribute__((format(printf, 1, 2)));
+
 struct TickStats {
     double median_ns = 0.0;
     double p99_ns = 0.0;
