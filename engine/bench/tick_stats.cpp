@@ -10,12 +10,17 @@
 namespace contactlab::bench {
 
 std::string printf_text(const char* format, ...) {
-    char buf[256];
-    va_list args;
+    // Measured first, then written: the report's longer paragraphs (the roller tracking's, over
+    // 400 characters) were cut at a fixed 256-byte buffer, and the table after one joined its line.
+    va_list args, again;
     va_start(args, format);
-    std::vsnprintf(buf, sizeof buf, format, args);
+    va_copy(again, args);
+    const int n = std::vsnprintf(nullptr, 0, format, args);
     va_end(args);
-    return buf;
+    std::string out(n > 0 ? static_cast<std::size_t>(n) : 0, '\0');
+    if (n > 0) std::vsnprintf(out.data(), out.size() + 1, format, again);
+    va_end(again);
+    return out;
 }
 
 std::string duration(double ns) {

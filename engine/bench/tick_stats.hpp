@@ -17,7 +17,7 @@ inline constexpr double kOneKilohertzPeriodNs = 1e6;    // ns: a tick over this 
 // ns as a readable figure: 950 ns, 1.52 us, 3.10 ms (the report's tables and the goals).
 std::string duration(double ns);
 
-// printf into a string, for the report's and the goals' figures (at most 255 characters).
+// printf into a string, for the report's and the goals' figures and paragraphs (any length).
 std::string printf_text(const char* format, ...) __attribute__((format(printf, 1, 2)));
 
 struct TickStats {

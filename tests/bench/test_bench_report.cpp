@@ -353,6 +353,16 @@ TEST_CASE("bench report: the JSON splits the roller's tracking from its jumps, o
     CHECK(md.find("force-limited") != std::string::npos);
 }
 
+TEST_CASE("bench report: a paragraph longer than 255 characters comes whole, and the table after it on its own line") {
+    // Regression: the report's printf helper wrote into 256 bytes, so the roller tracking's
+    // paragraph (over 400 characters) was cut mid-sentence and its table's header joined that line.
+    const std::string long_text = printf_text("%s|%.0f", std::string(300, 'x').c_str(), 42.0);
+    CHECK(long_text.size() == 303);
+    CHECK(long_text.substr(300) == "|42");
+    const std::string md = results_markdown(made_up_results());
+    CHECK(md.find("staircase: |l_d from the encoders - true l_d| there.\n\n| pole scale |") != std::string::npos);
+}
+
 TEST_CASE("bench report: the Z-width rows in the JSON and the Markdown") {
     const BenchResults r = made_up_results();
     const nlohmann::json j = results_json(r);
